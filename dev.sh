@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# cmkit's one entry point for set-up, building, the demo and the tests.
+#
+#   ./dev.sh demo    install what is needed, build, run the main job
+#   ./dev.sh test    install what is needed, build, run the whole test suite
+#                    (format check, release tests, ASan+UBSan tests)
+#   ./dev.sh deps    only install the Debian packages
+#   ./dev.sh build   only build (release preset)
+#   ./dev.sh tsan    build and run the tests under ThreadSanitizer
+#
+# Works on a fresh Debian 12 machine; uses sudo for apt-get when not root.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(build-essential cmake ninja-build ccache clang-format
+          libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
+          python3)
+
+deps() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    return 0
+  fi
+  echo "== installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+}
+
+build() {  # build PRESET
+  cmake --preset "$1" >/dev/null
+  cmake --build --preset "$1"
+}
+
+format_check() {
+  echo "== format check (clang-format)"
+  local files
+  files=$(git ls-files '*.h' '*.cpp' 2>/dev/null || find include src tools tests bench fuzz -name '*.h' -o -name '*.cpp')
+  # shellcheck disable=SC2086
+  clang-format --dry-run --Werror $files
+}
+
+case "${1:-}" in
+  deps) deps ;;
+  build) deps; build release ;;
+  demo)
+    deps
+    build release
+    echo "== main job: the trace model demonstration"
+    ./build/release/bin/cmkit trm box:-16,-16,0,16,16,72
+    ;;
+  test)
+    deps
+    format_check
+    echo "== release build and tests"
+    build release
+    ctest --preset release
+    echo "== ASan + UBSan build and tests"
+    build asan
+    ctest --preset asan
+    ;;
+  tsan)
+    deps
+    build tsan
+    ctest --preset tsan
+    ;;
+  *)
+    sed -n '2,12p' "$0"
+    exit 2
+    ;;
+esac

@@ -1,0 +1,80 @@
+// bounds.h: axis-aligned bounding boxes.
+#pragma once
+
+#include "cmkit/plane.h"
+#include "cmkit/vec3.h"
+
+namespace cmkit {
+
+/// An axis-aligned box [min, max]. A cleared box has min = +infinity-ish and
+/// max = -infinity-ish (tol::kBoundsInfinity), so adding a point makes it that
+/// point; isCleared() tells such an empty box.
+struct Bounds {
+  Vec3 min{tol::kBoundsInfinity, tol::kBoundsInfinity, tol::kBoundsInfinity};
+  Vec3 max{-tol::kBoundsInfinity, -tol::kBoundsInfinity, -tol::kBoundsInfinity};
+
+  constexpr Bounds() = default;
+  constexpr Bounds(const Vec3& mn, const Vec3& mx) : min(mn), max(mx) {}
+  /// The box around one point.
+  static constexpr Bounds ofPoint(const Vec3& p) { return {p, p}; }
+
+  constexpr const Vec3& operator[](int i) const { return i == 0 ? min : max; }
+  constexpr Vec3& operator[](int i) { return i == 0 ? min : max; }
+  constexpr bool operator==(const Bounds& o) const { return min == o.min && max == o.max; }
+
+  constexpr void clear() { *this = Bounds{}; }
+  /// True when max < min on some axis (nothing added yet, or inverted).
+  constexpr bool isCleared() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
+
+  constexpr void addPoint(const Vec3& p) {
+    if (p.x < min.x) min.x = p.x;
+    if (p.x > max.x) max.x = p.x;
+    if (p.y < min.y) min.y = p.y;
+    if (p.y > max.y) max.y = p.y;
+    if (p.z < min.z) min.z = p.z;
+    if (p.z > max.z) max.z = p.z;
+  }
+  constexpr void addBounds(const Bounds& b) {
+    addPoint(b.min);
+    addPoint(b.max);
+  }
+  /// Grown by d on every side (shrunk for negative d).
+  constexpr Bounds expanded(Real d) const {
+    return {{min.x - d, min.y - d, min.z - d}, {max.x + d, max.y + d, max.z + d}};
+  }
+  constexpr Bounds translated(const Vec3& t) const { return {min + t, max + t}; }
+  constexpr Vec3 center() const { return (min + max) * Real(0.5); }
+  constexpr Vec3 size() const { return max - min; }
+
+  /// True when the boxes overlap or touch (closed intervals).
+  constexpr bool intersects(const Bounds& b) const {
+    return !(b.max.x < min.x || b.max.y < min.y || b.max.z < min.z || b.min.x > max.x || b.min.y > max.y ||
+             b.min.z > max.z);
+  }
+  /// The common part (cleared when there is none).
+  constexpr Bounds intersection(const Bounds& b) const {
+    Bounds r{cmkit::max(min, b.min), cmkit::min(max, b.max)};
+    if (r.isCleared()) r.clear();
+    return r;
+  }
+  /// True when p is inside or on the box.
+  constexpr bool containsPoint(const Vec3& p) const {
+    return !(p.x < min.x || p.y < min.y || p.z < min.z || p.x > max.x || p.y > max.y || p.z > max.z);
+  }
+  constexpr bool containsBounds(const Bounds& b) const {
+    return containsPoint(b.min) && containsPoint(b.max);
+  }
+
+  /// Side of the plane the whole box is on, as the original computes it:
+  /// Front if the box is farther than epsilon in front, Back if farther than
+  /// epsilon behind, else Cross.
+  Side planeSide(const Plane& plane, Real epsilon = tol::kOnEpsilon) const;
+
+  /// Does the segment start->end touch the box? (slab test, closed box)
+  bool intersectsSegment(const Vec3& start, const Vec3& end) const;
+  /// Where the ray start + t*dir (t >= 0) enters the box: the smallest such
+  /// t, or a negative value when the ray misses. t = 0 when start is inside.
+  Real rayEntry(const Vec3& start, const Vec3& dir) const;
+};
+
+}  // namespace cmkit

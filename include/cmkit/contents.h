@@ -1,0 +1,79 @@
+// contents.h: content flags of surfaces and volumes (solid, water, clip...).
+//
+// The bit values are the original engine's: they appear as integers in query
+// results and as names in .cm brush records.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "cmkit/result.h"
+
+namespace cmkit {
+
+/// Content flags. Values are bit masks; combine with |.
+namespace contents {
+inline constexpr std::uint32_t kSolid = 1u << 0;
+inline constexpr std::uint32_t kOpaque = 1u << 1;
+inline constexpr std::uint32_t kWater = 1u << 2;
+inline constexpr std::uint32_t kPlayerClip = 1u << 3;
+inline constexpr std::uint32_t kMonsterClip = 1u << 4;
+inline constexpr std::uint32_t kMoveableClip = 1u << 5;
+inline constexpr std::uint32_t kIkClip = 1u << 6;
+inline constexpr std::uint32_t kBlood = 1u << 7;
+inline constexpr std::uint32_t kBody = 1u << 8;
+inline constexpr std::uint32_t kProjectile = 1u << 9;
+inline constexpr std::uint32_t kCorpse = 1u << 10;
+inline constexpr std::uint32_t kRenderModel = 1u << 11;
+inline constexpr std::uint32_t kTrigger = 1u << 12;
+inline constexpr std::uint32_t kAasSolid = 1u << 13;
+inline constexpr std::uint32_t kAasObstacle = 1u << 14;
+inline constexpr std::uint32_t kFlashlightTrigger = 1u << 15;
+/// Compile-time only: never reaches a collision model.
+inline constexpr std::uint32_t kAreaPortal = 1u << 20;
+/// Compile-time only: never reaches a collision model.
+inline constexpr std::uint32_t kNoCsg = 1u << 21;
+
+// Common masks.
+inline constexpr std::uint32_t kMaskAll = 0xFFFFFFFFu;
+inline constexpr std::uint32_t kMaskSolid = kSolid;
+inline constexpr std::uint32_t kMaskPlayerSolid = kSolid | kPlayerClip | kBody;
+inline constexpr std::uint32_t kMaskDeadSolid = kSolid | kPlayerClip;
+inline constexpr std::uint32_t kMaskMonsterSolid = kSolid | kMonsterClip | kBody;
+inline constexpr std::uint32_t kMaskWater = kWater;
+inline constexpr std::uint32_t kMaskOpaque = kOpaque;
+inline constexpr std::uint32_t kMaskShotRenderModel = kSolid | kRenderModel;
+inline constexpr std::uint32_t kMaskShotBoundingBox = kSolid | kBody;
+}  // namespace contents
+
+/// One named content flag.
+struct ContentName {
+  std::string_view name;
+  std::uint32_t flag;
+};
+
+/// All named flags in bit order: solid, opaque, water, playerclip,
+/// monsterclip, moveableclip, ikclip, blood, body, projectile, corpse,
+/// renderModel, trigger, aas_solid, aas_obstacle, flashlight_trigger.
+std::span<const ContentName> contentNames();
+
+/// Parses comma-separated flag names ("solid,playerclip"); names are
+/// case-sensitive as in the original, spaces around names are ignored, and an
+/// empty string gives 0. An unknown name is an error quoting it.
+Result<std::uint32_t> contentsFromString(std::string_view text);
+
+/// Comma-separated names of the named flags set in `flags`, in bit order
+/// ("" for 0). Unnamed bits are not listed: see contentsToStringExact.
+std::string contentsToString(std::uint32_t flags);
+
+/// As contentsToString, but bits without a name are appended as one
+/// hexadecimal number ("solid,0x100000"), so nothing is lost.
+std::string contentsToStringExact(std::uint32_t flags);
+
+/// Parses a mask the way the query format writes it: comma-separated names,
+/// or an integer in decimal or 0x hexadecimal.
+Result<std::uint32_t> parseContentsMask(std::string_view text);
+
+}  // namespace cmkit

@@ -1,0 +1,139 @@
+// model.h: collision models, the static geometry that trace models collide
+// with (the original's cm_model_t).
+//
+// A collision model is built from a map entity (src/build) or read from a
+// .cm file (src/format) and is IMMUTABLE afterwards: it is handed out as
+// std::shared_ptr<const CollisionModel>, and every query is a const function
+// of it, so any number of threads may query one model at once.
+//
+// Storage is flat: arrays indexed by 32-bit numbers instead of pointers.
+//  - vertices: 0..n-1.
+//  - edges: 1..n-1; edges[0] is a dummy so that a signed edge number -e means
+//    "edge e walked from vertex[1] to vertex[0]".
+//  - polygons and brushes are stored in .cm file order (tree pre-order, front
+//    child first, each item at its first reference), so a polygon's index is
+//    its index in the .cm file the model is written to.
+//  - nodes: nodes[0] is the root; the axial BSP tree in pre-order, front child
+//    first. Each node lists the polygons and brushes referenced there, as
+//    ranges of polygonRefs / brushRefs, in traversal order.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cmkit/math.h"
+
+namespace cmkit {
+
+/// An edge between two model vertices.
+struct CmEdge {
+  std::int32_t vertex[2] = {0, 0};
+  /// Internal edges can never be touched first by a trace (a concave crease
+  /// between faces, or an edge lying on another face): queries skip them.
+  bool internal = false;
+  /// Number of polygons using the edge (1 or 2; more only in odd .cm files).
+  std::uint8_t numUsers = 0;
+  /// Direction the edge faces: the bisector of its polygons' normals scaled
+  /// so that its component along each normal is 1 (the original's edge
+  /// normal). Times tol::kClipEpsilon it gives the "epsilon expanded" edge.
+  Vec3 normal;
+};
+
+/// A convex polygon of the model.
+struct CmPolygon {
+  Bounds bounds;
+  Plane plane;  ///< normal points out of the solid
+  std::uint32_t contents = 0;
+  std::int32_t material = -1;   ///< index into CollisionModel::materials, -1 = none
+  std::uint32_t firstEdge = 0;  ///< into CollisionModel::polygonEdges
+  std::uint32_t numEdges = 0;
+};
+
+/// A convex volume (a map brush) used by position tests and point contents.
+struct CmBrush {
+  Bounds bounds;
+  std::uint32_t contents = 0;
+  std::int32_t material = -1;     ///< index into CollisionModel::materials, -1 = none
+  std::int32_t primitiveNum = 0;  ///< the brush's primitive number in its entity
+  std::uint32_t firstPlane = 0;   ///< into CollisionModel::brushPlanes
+  std::uint32_t numPlanes = 0;
+};
+
+/// A node of the axial BSP tree.
+struct CmNode {
+  /// -1 for a leaf; 0, 1, 2 for a split plane normal to x, y, z.
+  std::int8_t planeType = -1;
+  /// The split plane: coordinate[planeType] == planeDist.
+  Real planeDist = 0;
+  /// children[0]: front (coordinate > planeDist), children[1]: back. -1 in leaves.
+  std::int32_t children[2] = {-1, -1};
+  std::int32_t parent = -1;
+  std::uint32_t firstPolygonRef = 0;
+  std::uint32_t numPolygonRefs = 0;
+  std::uint32_t firstBrushRef = 0;
+  std::uint32_t numBrushRefs = 0;
+
+  bool isLeaf() const { return planeType < 0; }
+};
+
+/// Statistics of building or loading a model (the original's PrintModel).
+struct ModelStats {
+  int internalEdges = 0;
+  int sharpEdges = 0;
+  int containedPolygonsRemoved = 0;
+  int polygonsMerged = 0;
+};
+
+/// A collision model. Build it with src/build or read it with src/format;
+/// treat it as immutable afterwards.
+struct CollisionModel {
+  std::string name;
+  Bounds bounds;
+  std::uint32_t contents = 0;  ///< OR of all polygon and brush contents
+  bool isConvex = false;       ///< true only for models made from a trace model
+
+  std::vector<Vec3> vertices;
+  std::vector<CmEdge> edges;               ///< edges[0] is a dummy
+  std::vector<std::int32_t> polygonEdges;  ///< signed edge numbers of all polygons
+  std::vector<CmPolygon> polygons;
+  std::vector<Plane> brushPlanes;  ///< planes of all brushes, normals out of the brush
+  std::vector<CmBrush> brushes;
+  std::vector<CmNode> nodes;              ///< nodes[0] is the root
+  std::vector<std::int32_t> polygonRefs;  ///< node polygon lists
+  std::vector<std::int32_t> brushRefs;    ///< node brush lists
+  std::vector<std::string> materials;     ///< material names used by polygons and brushes
+
+  ModelStats stats;
+
+  std::span<const std::int32_t> edgesOf(const CmPolygon& p) const {
+    return {polygonEdges.data() + p.firstEdge, p.numEdges};
+  }
+  std::span<const Plane> planesOf(const CmBrush& b) const {
+    return {brushPlanes.data() + b.firstPlane, b.numPlanes};
+  }
+  std::span<const std::int32_t> polygonsAt(const CmNode& n) const {
+    return {polygonRefs.data() + n.firstPolygonRef, n.numPolygonRefs};
+  }
+  std::span<const std::int32_t> brushesAt(const CmNode& n) const {
+    return {brushRefs.data() + n.firstBrushRef, n.numBrushRefs};
+  }
+  /// The vertex a signed edge number starts at.
+  std::int32_t edgeStart(std::int32_t signedEdge) const {
+    return signedEdge > 0 ? edges[std::size_t(signedEdge)].vertex[0]
+                          : edges[std::size_t(-signedEdge)].vertex[1];
+  }
+  /// Material name, or "" for none.
+  std::string_view materialName(std::int32_t material) const {
+    return material >= 0 ? std::string_view(materials[std::size_t(material)]) : std::string_view();
+  }
+  /// Number of real edges (edges.size() - 1, or 0).
+  std::size_t numEdges() const { return edges.empty() ? 0 : edges.size() - 1; }
+};
+
+using ModelPtr = std::shared_ptr<const CollisionModel>;
+
+}  // namespace cmkit

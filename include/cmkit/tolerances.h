@@ -1,0 +1,97 @@
+// tolerances.h: every tolerance and limit of cmkit, in one place.
+//
+// Units are map units (1 unit = 1 inch in Doom 3) unless stated. Each constant
+// says why it has its value. Values marked "original" are those of the Doom 3
+// collision module; changing them changes results against the reference data.
+#pragma once
+
+#include "cmkit/config.h"
+
+namespace cmkit::tol {
+
+// ---- Queries ---------------------------------------------------------------
+
+/// original: translations and rotations stop this far in front of a surface
+/// (along its normal), so that the next move does not start touching it.
+inline constexpr Real kClipEpsilon = 0.25f;
+/// original: trace bounds, BSP walk extents and heart-plane distances are
+/// padded by this much, so that float round-off never culls a real contact.
+inline constexpr Real kBoxEpsilon = 1.0f;
+/// original: the longest translation of a trace model the original accepts
+/// (cmkit accepts any length; kept for comparisons and documentation).
+inline constexpr Real kOriginalMaxTraceDist = 4096.0f;
+/// original: rotations treat a feature as already inside the epsilon zone
+/// when it is this close to it.
+inline constexpr Real kPluckerRangeEpsilon = 1e-4f;
+/// original: points this close to a rotation axis barely move and are ignored.
+inline constexpr Real kRotationAxisEpsilon = 0.0625f;
+/// original: chord length used to approximate rotation arcs in the tree walk.
+inline constexpr Real kCircleApproximationLength = 64.0f;
+/// original: default epsilon of the bounds/plane side test used to cull
+/// polygons whose plane the trace bounds do not cross.
+inline constexpr Real kOnEpsilon = 0.1f;
+
+// ---- Building models -------------------------------------------------------
+
+/// original: vertex coordinates this close to an integer are snapped to it
+/// (editor grids are integral; this removes parser and clipping noise).
+inline constexpr Real kIntegralEpsilon = 0.01f;
+/// original: vertices closer than this on every axis are welded into one.
+inline constexpr Real kVertexEpsilon = 0.1f;
+/// original: windings are split by brush planes with this thickness.
+inline constexpr Real kChopEpsilon = 0.1f;
+/// original: two polygon edges this close to collinear are merged into one.
+inline constexpr Real kContinuousEpsilon = 0.005f;
+/// original: polygon planes this close (normal components and distance) are
+/// treated as coplanar when merging.
+inline constexpr Real kNormalEpsilon = 0.01f;
+/// original: edges whose faces meet at a dot product below this are "sharp".
+inline constexpr Real kSharpEdgeDot = -0.7f;
+/// original: brush planes with axial normals get their distance rounded to
+/// an integer when within this of it.
+inline constexpr Real kDegenerateDistEpsilon = 1e-4f;
+/// original: maximum distance of a patch control point from the curve before
+/// the patch is subdivided further, for collision.
+inline constexpr Real kCurveMaxErrorCollision = 24.0f;
+/// original: axial BSP nodes smaller than this are not split.
+inline constexpr Real kMinNodeSize = 64.0f;
+/// original: ... unless they hold more than this many polygons.
+inline constexpr int kMaxNodePolygons = 128;
+/// original: a split plane must be farther than this from both node bounds.
+inline constexpr Real kSplitterMinDistance = 32.0f;
+/// original: windings with a coordinate at or beyond this are dropped.
+inline constexpr Real kMaxWorldCoord = 131072.0f;
+/// original: polygons with more edges are truncated (with a warning).
+inline constexpr int kMaxPolygonEdges = 64;
+
+// ---- Geometry helpers ------------------------------------------------------
+
+/// "Cleared" bounds use +-this value (the original's idMath::INFINITY).
+inline constexpr Real kBoundsInfinity = 1e30f;
+/// A vector whose squared length is below this cannot be normalised: its
+/// direction is noise. Normalising it yields the zero vector.
+inline constexpr Real kMinNormalizeLengthSquared = 1e-30f;
+/// A divisor with magnitude below this is treated as zero by safeDivide.
+inline constexpr Real kMinDivisor = 1e-30f;
+/// Plane::side() default: points closer than this to a plane are "on" it.
+inline constexpr Real kPlaneSideEpsilon = 0.1f;
+
+// ---- User-supplied orientations --------------------------------------------
+
+/// Orientation matrices whose rows deviate from orthonormal by more than this
+/// (length or pairwise dot) are re-orthonormalised before use: drift from
+/// repeated multiplication otherwise skews trace models.
+inline constexpr Real kAxisDriftEpsilon = 1e-5f;
+/// Orientation matrices that deviate by more than this are rejected: they are
+/// not rotations (scaled, sheared or garbage input).
+inline constexpr Real kAxisRejectTolerance = 0.05f;
+
+// ---- Trace models ----------------------------------------------------------
+
+/// Trace-model vertices closer than this are the same point (convex hull,
+/// polygon validation).
+inline constexpr Real kTrmPointEpsilon = 1e-3f;
+/// A trace-model polygon vertex may be this far from the polygon's plane.
+inline constexpr Real kTrmPlanarEpsilon = 1e-2f;
+
+}  // namespace cmkit::tol

@@ -1,0 +1,15 @@
+// The cmkit command-line tool: one file per command, each registering itself
+// on the CLI11 application. main.cpp lists them.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace cmkit::cli {
+
+/// `cmkit trm SPEC`: builds a trace model and prints its features.
+void registerTrm(CLI::App& app);
+
+/// Exit code for bad input (files, arguments) as opposed to 0 = success.
+inline constexpr int kExitBadInput = 2;
+
+}  // namespace cmkit::cli

@@ -1,0 +1,20 @@
+// cmkit: collision models for id Tech 4 (Doom 3) level geometry.
+#include <fmt/core.h>
+#include <CLI/CLI.hpp>
+
+#include "cmkit/config.h"
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "cmkit - collision models for id Tech 4 (Doom 3) level geometry.\n"
+      "Builds trace models (the shapes you move) and, in later commands, collision models\n"
+      "from .map and .cm files, and runs exact swept-shape queries against them.\n"
+      "Run 'cmkit COMMAND --help' for the options of a command."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", fmt::format("cmkit {}.{}.{}", cmkit::kVersionMajor, cmkit::kVersionMinor,
+                                                cmkit::kVersionPatch));
+  cmkit::cli::registerTrm(app);
+  CLI11_PARSE(app, argc, argv);
+  return 0;
+}
