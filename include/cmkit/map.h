@@ -1,0 +1,80 @@
+// map.h: Doom 3 .map files, parsed (the original's idMapFile).
+//
+// Parsing keeps what collision models need: entities with their key/value
+// pairs and their primitives (brushes and patches) in file order, and the
+// geometry CRC that .cm files carry on their third line.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "cmkit/math.h"
+#include "cmkit/result.h"
+
+namespace cmkit {
+
+/// One side of a brush: its plane and material.
+struct MapBrushSide {
+  /// The plane as read: the file's (a b c d) means a*x + b*y + c*z + d = 0,
+  /// so normal = (a, b, c) and dist = -d. Old-style three-point brushDef
+  /// sides get the plane through their points (shifted by -origin).
+  Plane plane;
+  /// The material name exactly as written in the file (not canonicalised).
+  std::string material;
+};
+
+/// A convex brush: the intersection of the back half-spaces of its sides.
+struct MapBrush {
+  std::vector<MapBrushSide> sides;
+  int line = 0;  ///< line of the primitive in the file (for messages)
+};
+
+/// A Bézier patch mesh (patchDef2, or patchDef3 with explicit subdivisions).
+struct MapPatch {
+  std::string material;               ///< as written in the file
+  int width = 0;                      ///< control points along the first index (odd, >= 3)
+  int height = 0;                     ///< control points along the second index (odd, >= 3)
+  bool explicitSubdivisions = false;  ///< patchDef3
+  int horzSubdivisions = 0;           ///< patchDef3 only
+  int vertSubdivisions = 0;           ///< patchDef3 only
+  /// width*height control points, already minus the entity origin: the
+  /// file's group j (0..width-1), point i (0..height-1) is at i*width + j.
+  std::vector<Vec3> points;
+  int line = 0;
+};
+
+using MapPrimitive = std::variant<MapBrush, MapPatch>;
+
+/// An entity: key/value pairs and primitives in file order.
+struct MapEntity {
+  std::vector<std::pair<std::string, std::string>> keyValues;
+  std::vector<MapPrimitive> primitives;
+  int line = 0;
+
+  /// The value of the first pair with this key (case-insensitive, as the
+  /// original's dictionary), or nullopt.
+  std::optional<std::string_view> value(std::string_view key) const;
+  /// The "origin" key parsed as three numbers, or (0,0,0).
+  Vec3 origin() const;
+};
+
+/// A parsed .map file.
+struct MapFile {
+  std::string fileName;
+  int version = 2;
+  std::vector<MapEntity> entities;
+  /// The geometry CRC (line 3 of the .cm files written for this map).
+  std::uint32_t geometryCrc = 0;
+};
+
+/// Parses map text. `fileName` is used in error messages.
+Result<MapFile> parseMapText(std::string_view text, std::string fileName = "<map>");
+/// Reads and parses a .map file.
+Result<MapFile> loadMapFile(const std::string& path);
+
+}  // namespace cmkit

@@ -1,0 +1,55 @@
+// materials.h: material names -> content flags.
+//
+// Sources, in this order: .mtr declarations supplied by the user (only their
+// content keywords are read), then the default rules of the reference data
+// (textures/common/clip -> playerclip|monsterclip|moveableclip, ..., anything
+// else -> solid|opaque); see docs and shared/spec/materials.md.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "cmkit/result.h"
+
+namespace cmkit {
+
+/// What a material means for collision.
+struct MaterialInfo {
+  std::uint32_t contents = 0;
+  bool twoSided = false;  ///< polygons get a reversed copy
+};
+
+/// A table of materials. Immutable once filled; lookups are const.
+class MaterialTable {
+ public:
+  /// Lower case, '\\' -> '/', a trailing file extension removed.
+  static std::string canonicalName(std::string_view name);
+  /// The default rules (exactly those the reference results were made with).
+  static MaterialInfo defaultInfo(std::string_view canonical);
+
+  /// Reads the material declarations of one .mtr text. Syntax errors in a
+  /// declaration are reported as warnings (file:line) and that declaration
+  /// is skipped; the rest is read.
+  void addMtrText(std::string_view text, const std::string& fileName);
+  /// Reads one .mtr file; error if it cannot be read.
+  Status addMtrFile(const std::string& path);
+  /// Reads every *.mtr file below a directory (sorted by path).
+  Status addMtrDirectory(const std::string& dir);
+
+  /// The material's info: declared, else the default rules.
+  MaterialInfo info(std::string_view name) const;
+  std::uint32_t contents(std::string_view name) const { return info(name).contents; }
+
+  /// Warnings gathered while reading .mtr files.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  std::size_t numDeclared() const { return declared_.size(); }
+
+ private:
+  std::unordered_map<std::string, MaterialInfo> declared_;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace cmkit
