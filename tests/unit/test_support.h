@@ -1,0 +1,36 @@
+// Helpers shared by the unit tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace cmkit::test {
+
+/// The shared data folder beside the clone (../shared): maps, reference
+/// results, specs. Absent in a user's clone.
+inline std::filesystem::path sharedDir() { return CMKIT_SHARED_DIR; }
+inline bool haveShared() { return std::filesystem::exists(sharedDir() / "reference"); }
+
+/// The project's own test data (tests/data), always present.
+inline std::filesystem::path testDataDir() { return CMKIT_TEST_DATA_DIR; }
+
+inline std::string readFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace cmkit::test
+
+/// Skips the current test with a message when ../shared is absent.
+#define CMKIT_REQUIRE_SHARED()                                                              \
+  do {                                                                                      \
+    if (!::cmkit::test::haveShared())                                                       \
+      GTEST_SKIP() << "needs the shared data folder " << ::cmkit::test::sharedDir()         \
+                   << " (maps and reference results beside the clone); absent, so skipped"; \
+  } while (0)
