@@ -3,6 +3,26 @@
 // Parsing keeps what collision models need: entities with their key/value
 // pairs and their primitives (brushes and patches) in file order, and the
 // geometry CRC that .cm files carry on their third line.
+//
+// Parser behaviour worth knowing:
+// - Accepted: "Version 2" / "Version 3" (Quake 4 sides without the three
+//   trailing integers; in fact up to three trailing numbers are optional in
+//   any version), no Version line (an old map: version 1, material names get
+//   "textures/" prefixed), // and /* */ comments, LF, CRLF and bare CR line
+//   endings (line numbers count each once), primitives brushDef3, brushDef
+//   (three points per side), patchDef2, patchDef3 and keyword-less Quake 3
+//   brushes. Numbers are read bit-exactly like the original lexer.
+// - Brushes are kept whatever their number of sides (even fewer than 4, even
+//   0): the parser reports what the file says; the model builder skips
+//   brushes that do not enclose a volume, with a warning.
+// - A key that repeats in an entity (case-insensitive) replaces the earlier
+//   value, as the original's dictionary does.
+// - Rejected with an Error (file:line:column, what was expected): malformed
+//   tokens and structure, a brushDef side whose three points are collinear,
+//   patches whose width or height is even or below 3 (the original reads past
+//   its control points), patchDef3 subdivisions below 1, grids beyond the
+//   limits in tolerances.h, and TrenchBroom "Valve 220" maps (which are not
+//   the Doom 3 format: the message says so). A failed parse returns no map.
 #pragma once
 
 #include <cstdint>

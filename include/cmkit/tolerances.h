@@ -94,4 +94,20 @@ inline constexpr Real kTrmPointEpsilon = 1e-3f;
 /// A trace-model polygon vertex may be this far from the polygon's plane.
 inline constexpr Real kTrmPlanarEpsilon = 1e-2f;
 
+// ---- Patches (map parser and tessellation) ---------------------------------
+
+/// original: after subdivision, an interior patch row or column whose points
+/// all lie closer than this to the line through their neighbours is removed
+/// (it adds no shape, only polygons).
+inline constexpr Real kPatchStraightEpsilon = 0.2f;
+/// cmkit limit: patch control grids wider or higher than this are rejected
+/// by the parser (editors write at most a few dozen; protects memory).
+inline constexpr int kMaxPatchControlSize = 1023;
+/// cmkit limit: patchDef3 subdivisions per span above this are rejected.
+inline constexpr int kMaxPatchGridSize = 4096;
+/// cmkit limit: a subdivided patch grid never exceeds this many points
+/// (automatic subdivision stops refining; explicit ones are rejected), so
+/// huge coordinates cannot make subdivision run away.
+inline constexpr int kMaxPatchGridPoints = 1 << 20;
+
 }  // namespace cmkit::tol

@@ -20,7 +20,16 @@ struct PatchGrid {
 /// Subdivides a patch as the original does for collision: explicit
 /// subdivisions for patchDef3, else max error tol::kCurveMaxErrorCollision
 /// (no max length), then removal of nearly straight rows/columns.
-/// The patch must have odd width and height >= 3 (the parser guarantees it).
+/// The patch must have odd width and height >= 3 (the parser guarantees it);
+/// anything else, or an explicit grid over tol::kMaxPatchGridPoints, gives
+/// an empty grid.
 PatchGrid subdividePatchForCollision(const MapPatch& patch);
+
+/// One point of a 3x3 quadratic Bézier block (ctrl[column][row]) at
+/// parameters (u along the columns, v along the rows), evaluated as the
+/// original's patchDef3 sampling does: each coordinate of the three rows
+/// along u first, then along v, with q(t) = (a - 2b + c)t^2 + (2b - 2a)t + a
+/// in float, in that operation order.
+Vec3 sampleBezierPatchPoint(const Vec3 (&ctrl)[3][3], Real u, Real v);
 
 }  // namespace cmkit
