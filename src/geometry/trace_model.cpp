@@ -372,6 +372,12 @@ Result<Vec3> checkPolygon(std::span<const Vec3> v, size_t maxVerts) {
     if (!p.isFinite()) return degenerate("polygon vertex is not finite");
     scale = std::max({scale, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
   }
+  for (size_t i = 0; i < v.size(); ++i) {
+    if ((v[(i + 1) % v.size()] - v[i]).length() <= tol::kTrmPointEpsilon) {
+      return degenerate("polygon vertices " + std::to_string(i) + " and " +
+                        std::to_string((i + 1) % v.size()) + " coincide");
+    }
+  }
   Vec3 normal = (v[1] - v[0]).cross(v[2] - v[0]);
   if (normal.normalize() == 0) return degenerate("polygon has a zero normal");
   const Real planarTol = tol::kTrmPlanarEpsilon * scale;
@@ -379,10 +385,6 @@ Result<Vec3> checkPolygon(std::span<const Vec3> v, size_t maxVerts) {
     const Vec3& a = v[i];
     const Vec3& b = v[(i + 1) % v.size()];
     const Vec3& c = v[(i + 2) % v.size()];
-    if ((b - a).length() <= tol::kTrmPointEpsilon) {
-      return degenerate("polygon vertices " + std::to_string(i) + " and " +
-                        std::to_string((i + 1) % v.size()) + " coincide");
-    }
     if (std::fabs(normal.dot(a - v[0])) > planarTol) {
       return degenerate("polygon is not planar (vertex " + std::to_string(i) + ")");
     }
