@@ -1,8 +1,9 @@
 // Patch tessellation for collision, from cm-algorithms.md section 3 step 6.
 //
-// The grid is kept as rows (rows[i][j]: row i = second index, column j =
-// first index, as in MapPatch). Every float expression is evaluated in the
-// original's order so that the grid points match it bit for bit.
+// The grid is kept as lines of points, rows (rows[i][j]: row i = second
+// index, column j = first index, as in MapPatch) or columns, transposed
+// between the passes so that every pass is linear in the grid size. Every float expression is evaluated in
+// the original's order so that the grid points match it bit for bit.
 #include "geometry/patch.h"
 
 #include <cstddef>
@@ -13,7 +14,8 @@ namespace cmkit {
 
 namespace {
 
-using Rows = std::vector<std::vector<Vec3>>;
+/// A grid as lines of points: either its rows or its columns.
+using Lines = std::vector<std::vector<Vec3>>;
 
 /// The midpoint 0.5 * (a + b), per component.
 Vec3 lerpHalf(const Vec3& a, const Vec3& b) {
@@ -28,88 +30,76 @@ bool spanNeedsSplit(const Vec3& a, const Vec3& b, const Vec3& c, Real maxErrorSq
   return (b - mid).lengthSquared() > maxErrorSquared;
 }
 
-int width(const Rows& rows) { return rows.empty() ? 0 : static_cast<int>(rows[0].size()); }
-int height(const Rows& rows) { return static_cast<int>(rows.size()); }
-
-/// Splits every 3-point span along the width (columns j, j+1, j+2) whose
-/// middle point is off the curve in any row, re-checking the same span after
-/// each split (de Casteljau: a, mid(a,b), curve point, mid(b,c), c).
-void subdivideWidth(Rows& rows, Real maxErrorSquared) {
-  for (int j = 0; j + 2 < width(rows); j += 2) {
-    bool split = false;
-    for (const auto& row : rows) {
-      const auto k = static_cast<std::size_t>(j);
-      if (spanNeedsSplit(row[k], row[k + 1], row[k + 2], maxErrorSquared)) {
-        split = true;
-        break;
-      }
-    }
-    if (!split) continue;
-    if (static_cast<long long>(width(rows) + 2) * height(rows) > tol::kMaxPatchGridPoints) continue;
-    for (auto& row : rows) {
-      const auto k = static_cast<std::size_t>(j);
-      const Vec3 prev = lerpHalf(row[k], row[k + 1]);
-      const Vec3 next = lerpHalf(row[k + 1], row[k + 2]);
-      const Vec3 mid = lerpHalf(prev, next);
-      row[k + 1] = prev;
-      row.insert(row.begin() + static_cast<std::ptrdiff_t>(k) + 2, {mid, next});
-    }
-    j -= 2;  // check the first half again
+/// The grid transposed: rows <-> columns.
+Lines transpose(const Lines& lines) {
+  if (lines.empty()) return {};
+  Lines out(lines[0].size(), std::vector<Vec3>(lines.size()));
+  for (std::size_t a = 0; a < lines.size(); ++a) {
+    for (std::size_t b = 0; b < lines[a].size(); ++b) out[b][a] = lines[a][b];
   }
+  return out;
 }
 
-/// As subdivideWidth, along the height (rows i, i+1, i+2).
-void subdivideHeight(Rows& rows, Real maxErrorSquared) {
-  for (int i = 0; i + 2 < height(rows); i += 2) {
-    const auto k = static_cast<std::size_t>(i);
-    bool split = false;
-    for (int j = 0; j < width(rows); ++j) {
-      const auto c = static_cast<std::size_t>(j);
-      if (spanNeedsSplit(rows[k][c], rows[k + 1][c], rows[k + 2][c], maxErrorSquared)) {
-        split = true;
-        break;
+/// Splits every 3-line span (lines k, k+1, k+2) whose middle line is off the
+/// curve at any point, re-checking the first half after each split, then
+/// the second (de Casteljau: a, mid(a,b), curve point, mid(b,c), c). An
+/// explicit stack replaces the original's "back up and re-check" index
+/// arithmetic: same decisions in the same order, in linear time.
+void subdivideLines(Lines& lines, Real maxErrorSquared) {
+  if (lines.size() < 3) return;
+  const std::size_t n = lines[0].size();
+  std::size_t count = lines.size();  // the line count the original would have now
+  Lines out;
+  out.push_back(lines[0]);
+  struct Span {
+    std::vector<Vec3> a, b, c;
+  };
+  std::vector<Span> pending;
+  for (std::size_t k = 0; k + 2 < lines.size(); k += 2) {
+    pending.push_back({lines[k], lines[k + 1], lines[k + 2]});
+    while (!pending.empty()) {
+      Span span = std::move(pending.back());
+      pending.pop_back();
+      bool split = false;
+      for (std::size_t i = 0; i < n && !split; ++i) {
+        split = spanNeedsSplit(span.a[i], span.b[i], span.c[i], maxErrorSquared);
+      }
+      if (split &&
+          static_cast<long long>(count + 2) * static_cast<long long>(n) <= tol::kMaxPatchGridPoints) {
+        count += 2;
+        Span left{std::move(span.a), std::vector<Vec3>(n), std::vector<Vec3>(n)};
+        Span right{std::vector<Vec3>(n), std::vector<Vec3>(n), std::move(span.c)};
+        for (std::size_t i = 0; i < n; ++i) {
+          left.b[i] = lerpHalf(left.a[i], span.b[i]);    // prev
+          right.b[i] = lerpHalf(span.b[i], right.c[i]);  // next
+          left.c[i] = lerpHalf(left.b[i], right.b[i]);   // on the curve
+          right.a[i] = left.c[i];
+        }
+        pending.push_back(std::move(right));
+        pending.push_back(std::move(left));
+      } else {
+        out.push_back(std::move(span.b));
+        out.push_back(std::move(span.c));
       }
     }
-    if (!split) continue;
-    if (static_cast<long long>(height(rows) + 2) * width(rows) > tol::kMaxPatchGridPoints) continue;
-    std::vector<Vec3> prevRow(rows[k].size());
-    std::vector<Vec3> midRow(rows[k].size());
-    std::vector<Vec3> nextRow(rows[k].size());
-    for (std::size_t c = 0; c < rows[k].size(); ++c) {
-      prevRow[c] = lerpHalf(rows[k][c], rows[k + 1][c]);
-      nextRow[c] = lerpHalf(rows[k + 1][c], rows[k + 2][c]);
-      midRow[c] = lerpHalf(prevRow[c], nextRow[c]);
-    }
-    rows[k + 1] = std::move(prevRow);
-    rows.insert(rows.begin() + static_cast<std::ptrdiff_t>(k) + 2, {std::move(midRow), std::move(nextRow)});
-    i -= 2;
   }
+  lines = std::move(out);
 }
 
 /// The point on the curve for the off-curve control point `it` between
-/// `before` and `after`: the midpoint of the two half-way points.
+/// `before` and `after`: the midpoint of the two half-way points (the
+/// original's order of operations, not (before + 2 it + after) / 4).
 Vec3 onCurve(const Vec3& before, const Vec3& it, const Vec3& after) {
   const Vec3 towardAfter = lerpHalf(it, after);
   const Vec3 towardBefore = lerpHalf(it, before);
   return lerpHalf(towardAfter, towardBefore);
 }
 
-/// Moves every odd-indexed point onto the curve: odd rows first (along the
-/// height), then odd columns (along the width, using the moved rows).
-void putOnCurve(Rows& rows) {
-  const int w = width(rows);
-  const int h = height(rows);
-  for (int j = 0; j < w; ++j) {
-    const auto c = static_cast<std::size_t>(j);
-    for (int i = 1; i + 1 < h; i += 2) {
-      const auto r = static_cast<std::size_t>(i);
-      rows[r][c] = onCurve(rows[r - 1][c], rows[r][c], rows[r + 1][c]);
-    }
-  }
-  for (auto& row : rows) {
-    for (int j = 1; j + 1 < w; j += 2) {
-      const auto c = static_cast<std::size_t>(j);
-      row[c] = onCurve(row[c - 1], row[c], row[c + 1]);
+/// Moves every point of every odd line onto the curve across the lines.
+void putOnCurve(Lines& lines) {
+  for (std::size_t k = 1; k + 1 < lines.size(); k += 2) {
+    for (std::size_t i = 0; i < lines[k].size(); ++i) {
+      lines[k][i] = onCurve(lines[k - 1][i], lines[k][i], lines[k + 1][i]);
     }
   }
 }
@@ -125,34 +115,29 @@ Real distanceFromLineSquared(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - projected).lengthSquared();
 }
 
-/// Removes interior columns, then rows, whose points all lie within
-/// tol::kPatchStraightEpsilon of the line through their two neighbours.
-void removeStraightColumnsAndRows(Rows& rows) {
+/// Removes every interior line whose points all lie within
+/// tol::kPatchStraightEpsilon of the line through the same points of its
+/// neighbours. As in the original, a removed line is gone when its successor
+/// is checked (its left neighbour is the last line kept).
+void removeStraightLines(Lines& lines) {
+  if (lines.size() < 3) return;
   const Real limit = tol::kPatchStraightEpsilon * tol::kPatchStraightEpsilon;
-  for (int j = 1; j + 1 < width(rows); ++j) {
-    const auto c = static_cast<std::size_t>(j);
+  std::vector<std::size_t> kept{0};
+  for (std::size_t k = 1; k + 1 < lines.size(); ++k) {
+    const auto& left = lines[kept.back()];
+    const auto& right = lines[k + 1];
     Real worst = 0;
-    for (const auto& row : rows) {
-      const Real d = distanceFromLineSquared(row[c], row[c - 1], row[c + 1]);
+    for (std::size_t i = 0; i < lines[k].size(); ++i) {
+      const Real d = distanceFromLineSquared(lines[k][i], left[i], right[i]);
       if (d > worst) worst = d;
     }
-    if (worst < limit) {
-      for (auto& row : rows) row.erase(row.begin() + j);
-      --j;
-    }
+    if (!(worst < limit)) kept.push_back(k);
   }
-  for (int i = 1; i + 1 < height(rows); ++i) {
-    const auto r = static_cast<std::size_t>(i);
-    Real worst = 0;
-    for (std::size_t c = 0; c < rows[r].size(); ++c) {
-      const Real d = distanceFromLineSquared(rows[r][c], rows[r - 1][c], rows[r + 1][c]);
-      if (d > worst) worst = d;
-    }
-    if (worst < limit) {
-      rows.erase(rows.begin() + i);
-      --i;
-    }
-  }
+  kept.push_back(lines.size() - 1);
+  Lines out;
+  out.reserve(kept.size());
+  for (std::size_t k : kept) out.push_back(std::move(lines[k]));
+  lines = std::move(out);
 }
 
 /// One quadratic Bézier coordinate, in the original's float order:
@@ -163,8 +148,8 @@ Real quadratic(Real a, Real b, Real c, Real u) {
   return qa * u * u + qb * u + a;
 }
 
-Rows toRows(const MapPatch& patch) {
-  Rows rows(static_cast<std::size_t>(patch.height));
+Lines toRows(const MapPatch& patch) {
+  Lines rows(static_cast<std::size_t>(patch.height));
   for (int i = 0; i < patch.height; ++i) {
     auto& row = rows[static_cast<std::size_t>(i)];
     const auto begin = patch.points.begin() + static_cast<std::ptrdiff_t>(i) * patch.width;
@@ -175,12 +160,12 @@ Rows toRows(const MapPatch& patch) {
 
 /// patchDef3: every 3x3 block sampled at (horz+1) x (vert+1) parameter
 /// values; blocks share their border points, the later block's value wins.
-Rows subdivideExplicit(const MapPatch& patch) {
+Lines subdivideExplicit(const MapPatch& patch) {
   const int horz = patch.horzSubdivisions;
   const int vert = patch.vertSubdivisions;
   const int outWidth = (patch.width - 1) / 2 * horz + 1;
   const int outHeight = (patch.height - 1) / 2 * vert + 1;
-  Rows rows(static_cast<std::size_t>(outHeight), std::vector<Vec3>(static_cast<std::size_t>(outWidth)));
+  Lines rows(static_cast<std::size_t>(outHeight), std::vector<Vec3>(static_cast<std::size_t>(outWidth)));
   auto at = [&](int column, int row) {
     return patch.points[static_cast<std::size_t>(row) * static_cast<std::size_t>(patch.width) +
                         static_cast<std::size_t>(column)];
@@ -229,22 +214,29 @@ PatchGrid subdividePatchForCollision(const MapPatch& patch) {
       patch.points.size() != static_cast<std::size_t>(patch.width) * static_cast<std::size_t>(patch.height)) {
     return grid;  // the parser never produces these; an empty grid is safe
   }
-  Rows rows;
+  Lines rows;
   if (patch.explicitSubdivisions && patch.horzSubdivisions > 0 && patch.vertSubdivisions > 0) {
     const long long outWidth = static_cast<long long>((patch.width - 1) / 2) * patch.horzSubdivisions + 1;
     const long long outHeight = static_cast<long long>((patch.height - 1) / 2) * patch.vertSubdivisions + 1;
     if (outWidth * outHeight > tol::kMaxPatchGridPoints) return grid;
     rows = subdivideExplicit(patch);
   } else {
-    rows = toRows(patch);
     const Real maxErrorSquared = tol::kCurveMaxErrorCollision * tol::kCurveMaxErrorCollision;
-    subdivideWidth(rows, maxErrorSquared);
-    subdivideHeight(rows, maxErrorSquared);
-    putOnCurve(rows);
+    Lines columns = transpose(toRows(patch));
+    subdivideLines(columns, maxErrorSquared);  // along the width first
+    rows = transpose(columns);
+    subdivideLines(rows, maxErrorSquared);  // then along the height
+    putOnCurve(rows);                       // odd rows first
+    columns = transpose(rows);
+    putOnCurve(columns);  // then odd columns
+    rows = transpose(columns);
   }
-  removeStraightColumnsAndRows(rows);
-  grid.width = width(rows);
-  grid.height = height(rows);
+  Lines columns = transpose(rows);
+  removeStraightLines(columns);  // columns first
+  rows = transpose(columns);
+  removeStraightLines(rows);  // then rows
+  grid.height = static_cast<int>(rows.size());
+  grid.width = rows.empty() ? 0 : static_cast<int>(rows[0].size());
   grid.points.reserve(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
   for (const auto& row : rows) grid.points.insert(grid.points.end(), row.begin(), row.end());
   return grid;
