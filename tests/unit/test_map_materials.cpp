@@ -1,0 +1,214 @@
+// Material names -> contents: canonical names, default rules, .mtr files.
+#include <filesystem>
+#include <fstream>
+
+#include "cmkit/contents.h"
+#include "cmkit/materials.h"
+#include "test_support.h"
+
+namespace {
+
+using cmkit::MaterialTable;
+namespace c = cmkit::contents;
+
+TEST(Material, CanonicalNames) {
+  EXPECT_EQ(MaterialTable::canonicalName("Textures\\Base_Wall\\LfWall27d.TGA"),
+            "textures/base_wall/lfwall27d");
+  EXPECT_EQ(MaterialTable::canonicalName("textures/common/clip"), "textures/common/clip");
+  EXPECT_EQ(MaterialTable::canonicalName("a.b.c"), "a.b");  // the last dot only
+  EXPECT_EQ(MaterialTable::canonicalName(""), "");
+}
+
+TEST(Material, EveryDefaultRuleRow) {
+  struct Row {
+    const char* name;
+    std::uint32_t contents;
+  };
+  const Row rows[] = {
+      {"textures/common/clip", c::kPlayerClip | c::kMonsterClip | c::kMoveableClip},
+      {"textures/common/player_clip", c::kPlayerClip},
+      {"textures/common/monster_clip", c::kMonsterClip},
+      {"textures/common/nodraw", c::kSolid | c::kOpaque},
+      {"textures/common/caulk", c::kSolid | c::kOpaque},
+      {"textures/common/nodrawsolid", c::kSolid},
+      {"textures/common/trigger", c::kTrigger},
+      {"textures/common/trigmulti", c::kSolid | c::kOpaque},  // not "trigger..."
+      {"textures/common/triggerwater", c::kTrigger},          // trigger row comes before water
+      {"textures/common/trigger_hurt", c::kTrigger},
+      {"textures/common/noclip", 0},
+      {"textures/common/noclipwater", 0},  // noclip row comes before water
+      {"textures/editor/entityGui", 0},
+      {"textures/editor/water", 0},
+      {"textures/liquids/water1", c::kWater},
+      {"textures/base/dirtywaterfall", c::kWater},
+      {"water", c::kWater},
+      {"textures/common/clipx", c::kSolid | c::kOpaque},  // "exactly" rows are exact
+      {"textures/common/clip/more", c::kSolid | c::kOpaque},
+      {"textures/base_wall/lfwall27d", c::kSolid | c::kOpaque},
+      {"", c::kSolid | c::kOpaque},
+  };
+  MaterialTable table;
+  for (const Row& r : rows) {
+    SCOPED_TRACE(r.name);
+    EXPECT_EQ(MaterialTable::defaultInfo(MaterialTable::canonicalName(r.name)).contents, r.contents);
+    EXPECT_FALSE(MaterialTable::defaultInfo(MaterialTable::canonicalName(r.name)).twoSided);
+    EXPECT_EQ(table.contents(r.name), r.contents);
+  }
+  // Lookups canonicalise first.
+  EXPECT_EQ(table.contents("TEXTURES\\COMMON\\CLIP.tga"),
+            c::kPlayerClip | c::kMonsterClip | c::kMoveableClip);
+  EXPECT_EQ(table.contents("textures/Editor/x"), 0u);
+}
+
+constexpr const char* kMtr = R"mtr(
+// A comment, then a table (skipped) and a material.
+table sinTable { snap { 0, 1, 0, -1 } }
+table   flat { { 1 } }
+
+textures/test/glass
+{
+  qer_editorimage textures/test/glass.tga
+  translucent
+  twosided
+  {
+    blend blend
+    map textures/test/glass_d.tga
+    // 'nonsolid' inside a stage does not count:
+    nonsolid
+  }
+}
+
+material textures/test/Clip_Player {
+  NonSolid
+  playerclip
+}
+
+sound test_sound { wave.wav }
+particle test_fx { { count 3 } }
+skin test_skin { model x.lwo }
+
+textures/test/pool {
+  water
+  translucent
+  { map x }
+}
+
+textures/test/broken {
+  solid
+  { map x
+}
+)mtr";
+
+TEST(Material, MtrKeywordsStagesTablesAndOtherDecls) {
+  MaterialTable table;
+  table.addMtrText(kMtr, "test.mtr");
+  // glass, clip_player, pool; "broken" is unterminated and swallowed the
+  // rest of the file, so it is skipped with a warning.
+  EXPECT_EQ(table.numDeclared(), 3u);
+  const auto glass = table.info("textures/test/glass");
+  EXPECT_EQ(glass.contents, c::kSolid);  // translucent removes opaque
+  EXPECT_TRUE(glass.twoSided);
+  EXPECT_EQ(table.contents("textures/test/clip_player.tga"), c::kOpaque | c::kPlayerClip);
+  EXPECT_EQ(table.contents("textures/test/pool"), c::kWater);       // water clears solid
+  EXPECT_EQ(table.contents("test_sound"), c::kSolid | c::kOpaque);  // not a material: default
+  EXPECT_EQ(table.contents("sinTable"), c::kSolid | c::kOpaque);
+  EXPECT_EQ(table.contents("textures/test/broken"), c::kSolid | c::kOpaque);
+  ASSERT_FALSE(table.warnings().empty());
+  EXPECT_NE(table.warnings()[0].find("test.mtr:34:1:"), std::string::npos) << table.warnings()[0];
+  EXPECT_NE(table.warnings()[0].find("missing '}'"), std::string::npos) << table.warnings()[0];
+  // Declared materials win over the default rules.
+  MaterialTable clip;
+  clip.addMtrText("textures/common/clip { nonsolid monsterclip }", "c.mtr");
+  EXPECT_EQ(clip.contents("textures/common/clip"), c::kOpaque | c::kMonsterClip);
+}
+
+TEST(Material, EveryContentKeyword) {
+  struct K {
+    const char* keyword;
+    std::uint32_t contents;
+  };
+  const std::uint32_t so = c::kSolid | c::kOpaque;
+  const K keywords[] = {
+      {"solid", so},
+      {"nonsolid", c::kOpaque},
+      {"water", c::kOpaque | c::kWater},
+      {"playerclip", so | c::kPlayerClip},
+      {"monsterclip", so | c::kMonsterClip},
+      {"moveableclip", so | c::kMoveableClip},
+      {"ikclip", so | c::kIkClip},
+      {"blood", so | c::kBlood},
+      {"trigger", so | c::kTrigger},
+      {"aassolid", so | c::kAasSolid},
+      {"aasobstacle", so | c::kAasObstacle},
+      {"flashlight_trigger", so | c::kFlashlightTrigger},
+      {"areaportal", c::kOpaque | c::kAreaPortal},
+      {"nocsg", c::kOpaque | c::kNoCsg},
+      {"qer_nocarve", c::kOpaque | c::kNoCsg},
+      {"translucent", c::kSolid},
+      {"twosided", so},
+      {"diffusemap", so},
+  };
+  for (const K& k : keywords) {
+    SCOPED_TRACE(k.keyword);
+    MaterialTable table;
+    table.addMtrText(std::string("m { ") + k.keyword + " }", "k.mtr");
+    EXPECT_TRUE(table.warnings().empty());
+    EXPECT_EQ(table.contents("m"), k.contents);
+  }
+}
+
+TEST(Material, SyntaxErrorsAreWarningsAndTheRestIsRead) {
+  MaterialTable table;
+  table.addMtrText(
+      "textures/a { playerclip }\n"
+      "} // stray brace\n"
+      "textures/b nonsolid\n"       // no '{' after the name
+      "textures/c { nonsolid }\n"   // still read
+      "\"textures/d\" { 12abc }\n"  // a bad token: this declaration is skipped
+      "textures/e { water }\n"
+      "textures/a { nonsolid }\n"     // a second declaration: the first wins
+      "table { }\n"                   // a table without a name
+      "textures/f { trigger } 42\n",  // a number where a name should be
+      "bad.mtr");
+  EXPECT_EQ(table.contents("textures/a"), c::kSolid | c::kOpaque | c::kPlayerClip);
+  EXPECT_EQ(table.contents("textures/c"), c::kOpaque);
+  EXPECT_EQ(table.contents("textures/d"), c::kSolid | c::kOpaque);  // default rules
+  EXPECT_EQ(table.contents("textures/e"), c::kOpaque | c::kWater);
+  EXPECT_EQ(table.contents("textures/f"), c::kSolid | c::kOpaque | c::kTrigger);
+  std::string all;
+  for (const auto& w : table.warnings()) all += w + "\n";
+  EXPECT_NE(all.find("bad.mtr:2:1: expected a declaration name, found '}'"), std::string::npos) << all;
+  EXPECT_NE(all.find("bad.mtr:3:1: expected '{' after the declaration name 'textures/b'"), std::string::npos)
+      << all;
+  EXPECT_NE(all.find("bad.mtr:5:16: bad number '12abc'"), std::string::npos) << all;
+  EXPECT_NE(all.find("bad.mtr:5:1: declaration \"textures/d\" skipped"), std::string::npos) << all;
+  EXPECT_NE(all.find("bad.mtr:7:1: material 'textures/a' is declared again"), std::string::npos) << all;
+  EXPECT_NE(all.find("bad.mtr:8:1: expected a name after 'table'"), std::string::npos) << all;
+  EXPECT_NE(all.find("bad.mtr:9:24: expected a declaration name, found '42'"), std::string::npos) << all;
+}
+
+TEST(Material, FilesAndDirectories) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() /
+      ("cmkit_mtr_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "b.mtr") << "textures/x { water }\n";
+  std::ofstream(dir / "sub" / "a.MTR") << "textures/y { nonsolid }\n";
+  std::ofstream(dir / "ignored.txt") << "textures/z { nonsolid }\n";
+  MaterialTable table;
+  ASSERT_TRUE(table.addMtrDirectory(dir.string()).ok());
+  EXPECT_EQ(table.numDeclared(), 2u);
+  EXPECT_EQ(table.contents("textures/x"), c::kOpaque | c::kWater);
+  EXPECT_EQ(table.contents("textures/y"), c::kOpaque);
+  EXPECT_EQ(table.contents("textures/z"), c::kSolid | c::kOpaque);
+  MaterialTable one;
+  ASSERT_TRUE(one.addMtrFile((dir / "b.mtr").string()).ok());
+  EXPECT_EQ(one.numDeclared(), 1u);
+  EXPECT_FALSE(one.addMtrFile((dir / "missing.mtr").string()).ok());
+  EXPECT_FALSE(one.addMtrDirectory((dir / "missing").string()).ok());
+  fs::remove_all(dir);
+}
+
+}  // namespace
