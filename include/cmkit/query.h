@@ -1,0 +1,182 @@
+// query.h: moving trace models through collision models.
+//
+// CONTRACT
+// - Units are map units; angles in degrees. A model is placed in the world at
+//   `modelOrigin` with orientation `modelAxis` (rows = the model's axes); a
+//   trace model at a position with orientation `trmAxis`. Results are in world
+//   space unless stated.
+// - translate(): the trace model's centre moves from `start` to `end`; the
+//   result's `fraction` in [0, 1] says how far it got before the first
+//   surface whose contents match `contentMask`. Collision is exact and
+//   continuous (Plücker-coordinate tests of trace-model vertices against model
+//   polygons, trace-model edges against model edges, model vertices against
+//   trace-model polygons), and the move stops tol::kClipEpsilon (0.25 units)
+//   in front of the surface along its normal, so that the next move starts
+//   free. Only the front faces of polygons collide; internal edges (concave
+//   creases, edges lying on other faces) are never hit.
+// - start == end is a POSITION TEST: it reports whether the trace model
+//   overlaps anything (fraction 0) or not (fraction 1). Position tests and
+//   contentsTest() have no epsilon: exactly touching is not stuck.
+// - Starting inside solid: translations follow the original's rules (a move
+//   that starts in solid is not necessarily stopped), so fractions stay
+//   comparable with it; `startSolid` on the result tells that the start
+//   position overlaps solid (when TranslationQuery::detectStartSolid), and
+//   penetration() tells how deep and which way out.
+// - Any translation length works (the original refused trace-model moves
+//   over 4096 units).
+// - Cost order (cheapest first): pointContents, contentsTest, translate with a
+//   point, translate with a trace model, contacts.
+// THREAD SAFETY
+// - A CollisionModel is immutable; all queries are const functions of it.
+//   Per-query scratch state (visited marks, cached sidedness bits) lives in a
+//   QueryWork that the caller owns. Use one QueryWork per thread; reuse it
+//   across queries and models (it grows to the largest model and never
+//   shrinks). Results are deterministic: the same query gives the same bits on
+//   any thread.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cmkit/contents.h"
+#include "cmkit/math.h"
+#include "cmkit/model.h"
+#include "cmkit/trace_model.h"
+
+namespace cmkit {
+
+/// Which features touched.
+enum class ContactType : std::uint8_t {
+  None,         ///< no contact
+  Edge,         ///< a trace-model edge hit a model edge
+  ModelVertex,  ///< a model vertex hit a trace-model polygon
+  TrmVertex,    ///< a trace-model vertex hit a model polygon
+};
+
+/// Name used in results: "none", "edge", "modelvertex", "trmvertex".
+const char* toString(ContactType type);
+
+/// The contact of a trace. Every field is defined on every path; on a miss
+/// everything is zero, material -1.
+struct ContactInfo {
+  ContactType type = ContactType::None;
+  Vec3 point;                  ///< contact point (see the per-type notes in docs/fidelity.md)
+  Vec3 normal;                 ///< normal of the contact plane, facing the trace model
+  Real dist = 0;               ///< normal . p = dist on the contact plane
+  std::uint32_t contents = 0;  ///< contents of the surface hit
+  std::int32_t material = -1;  ///< index into the model's materials, -1 = none
+  /// Model feature: polygon index (TrmVertex), signed edge number (Edge) or
+  /// vertex index (ModelVertex). Position tests: see docs/fidelity.md.
+  std::int32_t modelFeature = 0;
+  /// Trace-model feature: vertex index (TrmVertex), edge number (Edge) or
+  /// polygon index (ModelVertex).
+  std::int32_t trmFeature = 0;
+};
+
+/// The result of a translation, rotation or position test.
+struct TraceResult {
+  Real fraction = 1;  ///< fraction of the movement completed, 1 = no contact
+  Vec3 endPos;        ///< position of the trace model after the move
+  Mat3 endAxis;       ///< orientation of the trace model after the move
+  ContactInfo contact;
+  /// True when the start position overlaps a brush or polygon matching the
+  /// mask (only computed when the query asks for it).
+  bool startSolid = false;
+};
+
+/// Caller-owned scratch memory for queries (one per thread; reusable).
+class QueryWork {
+ public:
+  QueryWork();
+  ~QueryWork();
+  QueryWork(QueryWork&&) noexcept;
+  QueryWork& operator=(QueryWork&&) noexcept;
+  QueryWork(const QueryWork&) = delete;
+  QueryWork& operator=(const QueryWork&) = delete;
+
+  struct Scratch;
+  Scratch& scratch() { return *scratch_; }
+
+ private:
+  std::unique_ptr<Scratch> scratch_;
+};
+
+/// Where a model is placed in the world.
+struct Placement {
+  Vec3 origin;
+  Mat3 axis;  ///< rows = the model's axes in world space
+};
+
+/// A translation (or, with start == end, a position test).
+struct TranslationQuery {
+  const TraceModel* trm = nullptr;  ///< nullptr or a point shape: a point trace
+  Mat3 trmAxis;
+  Vec3 start;
+  Vec3 end;
+  std::uint32_t contentMask = contents::kMaskSolid;
+  Placement model;
+  /// Also run a position test at the start and set TraceResult::startSolid.
+  bool detectStartSolid = false;
+};
+
+/// Moves a trace model (or a point) from start to end through a placed model.
+TraceResult translate(const CollisionModel& model, const TranslationQuery& query, QueryWork& work);
+
+/// A position test: what does a placed trace model overlap?
+struct ContentsQuery {
+  const TraceModel* trm = nullptr;  ///< nullptr or a point shape: point contents
+  Mat3 trmAxis;
+  Vec3 position;
+  std::uint32_t contentMask = contents::kMaskSolid;
+  Placement model;
+};
+
+/// Result of contentsTest(): the contents of the first brush or polygon found
+/// overlapping (not the OR of all, not masked; 0 when free), and the trace
+/// describing that contact (fraction 0 when stuck, 1 when free).
+struct ContentsResult {
+  std::uint32_t contents = 0;
+  TraceResult trace;
+};
+
+/// The original's Contents: what the placed trace model overlaps.
+ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& query, QueryWork& work);
+
+/// The contents of the brushes containing a world point (no mask). Unlike the
+/// original, brushes stored at interior tree nodes are seen, and a rotated
+/// model is handled correctly.
+std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement = {});
+
+/// All contacts of a trace model moved up to `depth` along `dir`.
+struct ContactsQuery {
+  const TraceModel* trm = nullptr;
+  Mat3 trmAxis;
+  Vec3 start;
+  Vec3 dir;  ///< direction of the move (need not be unit: end = start + dir * depth)
+  Real depth = 0;
+  std::uint32_t contentMask = contents::kMaskSolid;
+  Placement model;
+  int maxContacts = 16;
+};
+
+/// The original's Contacts: every surface the trace model touches when moved
+/// from start up to start + dir * depth, at most maxContacts of them,
+/// appended to `out` (which is cleared first). Returns the count.
+int contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work,
+             std::vector<ContactInfo>& out);
+
+/// How a trace model overlapping solid can get out.
+struct Penetration {
+  bool stuck = false;          ///< the trace model overlaps a matching brush
+  Real depth = 0;              ///< distance to move along `direction` to be free of that brush
+  Vec3 direction;              ///< unit direction out (a brush plane normal, world space)
+  std::uint32_t contents = 0;  ///< contents of the deepest brush
+};
+
+/// Estimates the way out of solid: for every matching brush the trace model
+/// overlaps, the brush plane along which the shortest move separates them
+/// (separating-plane test on the brush planes); the deepest brush decides.
+Penetration penetration(const CollisionModel& model, const ContentsQuery& query, QueryWork& work);
+
+}  // namespace cmkit

@@ -1,0 +1,240 @@
+// Position tests (the original's TestTrmVertsInBrush, TestTrmInPolygon and
+// the position-test set-up of ContentsTrm).
+#include <cmath>
+
+#include "query/trace_work.h"
+
+namespace cmkit {
+
+bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
+  QueryWork::Scratch& s = tw.scratch;
+  if (s.testAndMark(s.brushChecked, std::size_t(brushNum))) return false;
+  const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
+  if (!(b.contents & tw.contentMask)) return false;
+  if (!b.bounds.intersects(tw.bounds)) return false;
+  const auto planes = tw.model.planesOf(b);
+  const int numVerts = tw.pointTrace ? 1 : tw.numVerts;
+  for (int j = 0; j < numVerts; ++j) {
+    const Vec3& p = tw.vertices[std::size_t(j)].p;
+    // Inside when behind every plane; remember the nearest plane.
+    std::size_t bestPlane = 0;
+    Real bestd = -tol::kBoundsInfinity;
+    std::size_t i = 0;
+    for (; i < planes.size(); ++i) {
+      const Real d = planes[i].distance(p);
+      if (d >= 0) break;
+      if (d > bestd) {
+        bestd = d;
+        bestPlane = i;
+      }
+    }
+    if (i < planes.size() || planes.empty()) continue;
+    tw.fraction = 0;
+    tw.c.type = ContactType::TrmVertex;
+    tw.c.normal = planes[bestPlane].normal;
+    tw.c.dist = planes[bestPlane].dist;
+    tw.c.contents = b.contents;
+    tw.c.material = b.material;
+    tw.c.point = p;
+    tw.c.modelFeature = 0;
+    tw.c.trmFeature = j;
+    return true;
+  }
+  return false;
+}
+
+bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
+  const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
+  if (!(poly.contents & tw.contentMask)) return false;
+  if (!poly.bounds.intersects(tw.bounds)) return false;
+  switch (tw.bounds.planeSide(poly.plane)) {
+    case Side::Cross:
+      break;
+    case Side::Front:
+      if (m.isConvex) {
+        tw.quickExit = true;
+        return true;
+      }
+      return false;
+    default:
+      return false;
+  }
+  const auto edges = m.edgesOf(poly);
+  auto stuck = [&](ContactType type, const Vec3& normal, Real dist, const Vec3& point,
+                   std::int32_t modelFeature, int trmFeature) {
+    tw.fraction = 0;
+    tw.c.type = type;
+    tw.c.normal = normal;
+    tw.c.dist = dist;
+    tw.c.contents = poly.contents;
+    tw.c.material = poly.material;
+    tw.c.point = point;
+    tw.c.modelFeature = modelFeature;
+    tw.c.trmFeature = trmFeature;
+    return true;
+  };
+
+  // 1. (convex trm) a polygon vertex strictly behind every trm polygon plane.
+  if (tw.isConvex) {
+    for (std::int32_t edgeNum : edges) {
+      const std::size_t e = std::size_t(std::abs(edgeNum));
+      if (s.edgeChecked[e] == s.generation) continue;
+      for (int j = 0; j < 2; ++j) {
+        const std::size_t vn = std::size_t(m.edges[e].vertex[j]);
+        if (s.vertexChecked[vn] == s.generation) continue;
+        const Vec3& p = m.vertices[vn];
+        int bestPlane = 0;
+        Real bestd = -tol::kBoundsInfinity;
+        int k = 0;
+        for (; k < tw.numPolys; ++k) {
+          const Real d = tw.polys[std::size_t(k)].plane.distance(p);
+          if (d >= 0) break;
+          if (d > bestd) {
+            bestd = d;
+            bestPlane = k;
+          }
+        }
+        if (k >= tw.numPolys) {
+          const Plane& pl = tw.polys[std::size_t(bestPlane)].plane;
+          return stuck(ContactType::ModelVertex, -pl.normal, -pl.dist, p, std::int32_t(vn), 0);
+        }
+      }
+    }
+  }
+  if (s.polygonEdgeLines.size() < edges.size() + 1) {
+    s.polygonEdgeLines.resize(edges.size() + 1);
+    s.polygonVertexRays.resize(edges.size() + 1);
+  }
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
+    s.polygonEdgeLines[i] =
+        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
+    s.vertexChecked[std::size_t(m.edgeStart(edges[i]))] = s.generation;
+  }
+
+  // 2. a trm edge crossing the polygon plane inside all polygon edges.
+  int sides[kMaxTrmVertices];
+  for (int i = 0; i < tw.numVerts; ++i)
+    sides[i] = poly.plane.distance(tw.vertices[std::size_t(i)].p) < 0 ? -1 : 1;
+  for (int i = 1; i <= tw.numEdges; ++i) {
+    const WorkEdge& te = tw.edges[std::size_t(i)];
+    if (sides[te.vertexNum[0]] == sides[te.vertexNum[1]]) continue;
+    const unsigned flip = sides[te.vertexNum[0]] < 0 ? 1u : 0u;
+    std::size_t j = 0;
+    for (; j < edges.size(); ++j) {
+      const std::int32_t edgeNum = edges[j];
+      const unsigned side = s.edgeSideBit(std::size_t(std::abs(edgeNum)), unsigned(i),
+                                          [&] { return te.pl.permutedInnerProduct(s.polygonEdgeLines[j]); });
+      if (unsigned(edgeNum < 0) ^ side ^ flip) break;
+    }
+    if (j >= edges.size()) {
+      return stuck(ContactType::Edge, poly.plane.normal, poly.plane.dist,
+                   tw.vertices[std::size_t(te.vertexNum[flip ? 0 : 1])].p, polyNum, i);
+    }
+  }
+
+  // 3. a polygon edge crossing a trm polygon plane inside that polygon's edges.
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const std::int32_t edgeNum = edges[i];
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    if (s.testAndMark(s.edgeChecked, e)) continue;
+    const CmEdge& edge = m.edges[e];
+    const std::size_t v1 = std::size_t(edge.vertex[0]), v2 = std::size_t(edge.vertex[1]);
+    for (int j = 0; j < tw.numPolys; ++j) {
+      const WorkPolygon& tp = tw.polys[std::size_t(j)];
+      // side = distance < 0 (not the sign bit: -0 counts as in front)
+      const unsigned s1 = s.vertexSideBit(
+          v1, unsigned(j), [&] { return tp.plane.distance(m.vertices[v1]) < 0 ? Real(-1) : Real(1); });
+      const unsigned s2 = s.vertexSideBit(
+          v2, unsigned(j), [&] { return tp.plane.distance(m.vertices[v2]) < 0 ? Real(-1) : Real(1); });
+      if (s1 == s2) continue;
+      const unsigned flip = s1;
+      int k = 0;
+      for (; k < tp.numEdges; ++k) {
+        const int trmEdgeNum = tp.edges[std::size_t(k)];
+        const WorkEdge& te = tw.edges[std::size_t(std::abs(trmEdgeNum))];
+        const unsigned side = s.edgeSideBit(e, unsigned(std::abs(trmEdgeNum)), [&] {
+          return te.pl.permutedInnerProduct(s.polygonEdgeLines[i]);
+        });
+        if (unsigned(trmEdgeNum < 0) ^ side ^ flip) break;
+      }
+      if (k >= tp.numEdges) {
+        return stuck(ContactType::Edge, -tp.plane.normal, -tp.plane.dist, m.vertices[flip ? v2 : v1], edgeNum,
+                     j);
+      }
+    }
+  }
+  return false;
+}
+
+void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                       std::uint32_t mask, const Placement& placement) {
+  tw.fraction = 1;
+  tw.c = ContactInfo{};
+  tw.contentMask = mask;
+  tw.isConvex = trm.isConvex();
+  tw.positionTest = true;
+  tw.pointTrace = false;
+  tw.quickExit = false;
+  tw.start = position - placement.origin;
+  tw.end = tw.start;
+  const bool modelRotated = isRotated(placement.axis);
+  const bool trmRotated = isRotated(trmAxis);
+
+  tw.numVerts = trm.numVertices();
+  tw.numEdges = trm.numEdges();
+  tw.numPolys = trm.numPolygons();
+  for (int i = 0; i < tw.numVerts; ++i) {
+    Vec3 p = trm.vertex(i);
+    if (trmRotated) p = p * trmAxis;
+    p += tw.start;
+    if (modelRotated) p = placement.axis * p;  // into the model's frame
+    tw.vertices[std::size_t(i)].p = p;
+    tw.vertices[std::size_t(i)].used = true;
+  }
+  const Vec3 offset = trmRotated ? trm.offset() * trmAxis : trm.offset();
+  tw.start += offset;
+  tw.end += offset;
+  if (modelRotated) {
+    tw.start = placement.axis * tw.start;
+    tw.end = placement.axis * tw.end;
+  }
+  tw.size.clear();
+  for (int i = 0; i < tw.numVerts; ++i) tw.size.addPoint(tw.vertices[std::size_t(i)].p - tw.start);
+  for (int i = 1; i <= tw.numEdges; ++i) {
+    WorkEdge& e = tw.edges[std::size_t(i)];
+    e.vertexNum[0] = trm.edge(i).v[0];
+    e.vertexNum[1] = trm.edge(i).v[1];
+    e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
+    e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+    e.pl = Pluecker::fromLine(e.start, e.end);
+    e.used = true;
+  }
+  const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * placement.axis.transposed() : trmAxis;
+  for (int i = 0; i < tw.numPolys; ++i) {
+    const TrmPolygon& tp = trm.polygon(i);
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    wp.numEdges = tp.numEdges;
+    wp.edges = tp.edges;
+    wp.used = true;
+    Vec3 n = tp.normal;
+    if (trmRotated)
+      n = n * planeAxis;
+    else if (modelRotated)
+      n = placement.axis * n;
+    wp.plane.normal = n;
+    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(tp.edges[0]))].start);
+  }
+  for (int i = 0; i < 3; ++i) {
+    tw.extents[i] = (std::fabs(tw.size.min[i]) > std::fabs(tw.size.max[i]) ? std::fabs(tw.size.min[i])
+                                                                           : std::fabs(tw.size.max[i])) +
+                    tol::kBoxEpsilon;
+    tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
+    tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
+  }
+}
+
+}  // namespace cmkit

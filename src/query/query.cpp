@@ -1,0 +1,346 @@
+// The public queries: translate, contents, pointContents, contacts,
+// penetration. Set-up of the trace work (the original's Translation and
+// ContentsTrm) and the transformation of results back to world space.
+#include <cmath>
+
+#include "query/trace_work.h"
+
+namespace cmkit {
+
+const char* toString(ContactType type) {
+  switch (type) {
+    case ContactType::None:
+      return "none";
+    case ContactType::Edge:
+      return "edge";
+    case ContactType::ModelVertex:
+      return "modelvertex";
+    case ContactType::TrmVertex:
+      return "trmvertex";
+  }
+  return "?";
+}
+
+namespace {
+
+// Heart planes: two planes containing the movement, for culling polygons far
+// to the side of the swept volume.
+void setupTranslationHeartPlanes(TraceWork& tw) {
+  Vec3 dir = tw.dir;
+  dir.normalize();
+  Vec3 n1, n2;
+  normalVectors(dir, n1, n2);
+  tw.heartPlane1 = Plane{n1, n1.dot(tw.start)};
+  tw.heartPlane2 = Plane{n2, n2.dot(tw.start)};
+}
+
+// Moves a contact from the model's frame to the world.
+void contactToWorld(ContactInfo& c, const Placement& placement, bool modelRotated) {
+  if (modelRotated) {
+    c.normal = c.normal * placement.axis;
+    c.point = c.point * placement.axis;
+  }
+  c.point += placement.origin;
+  c.dist += placement.origin.dot(c.normal);
+}
+
+// Point trace set-up (no trace model).
+void setupPointTrace(TraceWork& tw) {
+  for (int i = 0; i < 3; ++i) {
+    tw.bounds.min[i] = std::min(tw.start[i], tw.end[i]) - tol::kBoxEpsilon;
+    tw.bounds.max[i] = std::max(tw.start[i], tw.end[i]) + tol::kBoxEpsilon;
+  }
+  tw.extents = {tol::kBoxEpsilon, tol::kBoxEpsilon, tol::kBoxEpsilon};
+  tw.size = Bounds{{0, 0, 0}, {0, 0, 0}};
+  setupTranslationHeartPlanes(tw);
+  tw.maxDistFromHeartPlane1 = tol::kBoxEpsilon;
+  tw.maxDistFromHeartPlane2 = tol::kBoxEpsilon;
+  tw.numVerts = 1;
+  tw.vertices[0].p = tw.start;
+  tw.vertices[0].endp = tw.start + tw.dir;
+  tw.vertices[0].pl = Pluecker::fromRay(tw.start, tw.dir);
+  tw.vertices[0].used = true;
+  tw.numEdges = tw.numPolys = 0;
+  tw.pointTrace = true;
+}
+
+// Trace-model translation set-up: the trace model at the start, only the
+// features facing the movement used.
+void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
+                         const Mat3& modelAxis) {
+  const bool trmRotated = isRotated(trmAxis);
+  tw.numVerts = trm.numVertices();
+  tw.numEdges = trm.numEdges();
+  tw.numPolys = trm.numPolygons();
+  for (int i = 0; i < tw.numVerts; ++i) {
+    Vec3 p = trm.vertex(i);
+    if (trmRotated) p = p * trmAxis;
+    p += tw.start;
+    if (modelRotated) p = modelAxis * p;
+    tw.vertices[std::size_t(i)] = WorkVertex{p, {}, {}, false};
+  }
+  const Vec3 offset = trmRotated ? trm.offset() * trmAxis : trm.offset();
+  tw.start += offset;
+  tw.end += offset;
+  if (modelRotated) {
+    tw.start = modelAxis * tw.start;
+    tw.end = modelAxis * tw.end;
+    tw.dir = modelAxis * tw.dir;
+  }
+  for (int i = 1; i <= tw.numEdges; ++i) {
+    WorkEdge& e = tw.edges[std::size_t(i)];
+    e.vertexNum[0] = trm.edge(i).v[0];
+    e.vertexNum[1] = trm.edge(i).v[1];
+    e.used = false;
+  }
+  const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * modelAxis.transposed() : trmAxis;
+  for (int i = 0; i < tw.numPolys; ++i) {
+    const TrmPolygon& tp = trm.polygon(i);
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    wp.numEdges = tp.numEdges;
+    wp.edges = tp.edges;
+    Vec3 n = tp.normal;
+    if (trmRotated)
+      n = n * planeAxis;
+    else if (modelRotated)
+      n = modelAxis * n;
+    wp.plane.normal = n;
+    // Polygons facing the movement (or, for a flat trm, along it) collide.
+    const Real d = n.dot(tw.dir);
+    wp.used = d > 0 || (!trm.isConvex() && d == 0);
+    if (!wp.used) continue;
+    for (int j = 0; j < tp.numEdges; ++j) {
+      WorkEdge& e = tw.edges[std::size_t(std::abs(tp.edges[std::size_t(j)]))];
+      e.used = true;
+      tw.vertices[std::size_t(e.vertexNum[0])].used = true;
+      tw.vertices[std::size_t(e.vertexNum[1])].used = true;
+    }
+  }
+  tw.size.clear();
+  for (int i = 0; i < tw.numVerts; ++i) {
+    WorkVertex& v = tw.vertices[std::size_t(i)];
+    if (!v.used) continue;
+    tw.size.addPoint(v.p - tw.start);
+    v.endp = v.p + tw.dir;
+    v.pl = Pluecker::fromRay(v.p, tw.dir);
+  }
+  for (int i = 1; i <= tw.numEdges; ++i) {
+    WorkEdge& e = tw.edges[std::size_t(i)];
+    if (!e.used) continue;
+    e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
+    e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+    e.pl = Pluecker::fromLine(e.start, e.end);
+    const Vec3 a = e.start - e.end;
+    e.cross = {a[0] * tw.dir[1] - a[1] * tw.dir[0], a[0] * tw.dir[2] - a[2] * tw.dir[0],
+               a[1] * tw.dir[2] - a[2] * tw.dir[1]};
+  }
+  for (int i = 0; i < tw.numPolys; ++i) {
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    if (wp.used) wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (tw.start[i] < tw.end[i]) {
+      tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
+      tw.bounds.max[i] = tw.end[i] + tw.size.max[i] + tol::kBoxEpsilon;
+    } else {
+      tw.bounds.min[i] = tw.end[i] + tw.size.min[i] - tol::kBoxEpsilon;
+      tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
+    }
+    tw.extents[i] = (std::fabs(tw.size.min[i]) > std::fabs(tw.size.max[i]) ? std::fabs(tw.size.min[i])
+                                                                           : std::fabs(tw.size.max[i])) +
+                    tol::kBoxEpsilon;
+  }
+  setupTranslationHeartPlanes(tw);
+  tw.maxDistFromHeartPlane1 = tw.maxDistFromHeartPlane2 = 0;
+  for (int i = 0; i < tw.numVerts; ++i) {
+    const WorkVertex& v = tw.vertices[std::size_t(i)];
+    if (!v.used) continue;
+    tw.maxDistFromHeartPlane1 = std::max(tw.maxDistFromHeartPlane1, std::fabs(tw.heartPlane1.distance(v.p)));
+    tw.maxDistFromHeartPlane2 = std::max(tw.maxDistFromHeartPlane2, std::fabs(tw.heartPlane2.distance(v.p)));
+  }
+  tw.maxDistFromHeartPlane1 += tol::kBoxEpsilon;
+  tw.maxDistFromHeartPlane2 += tol::kBoxEpsilon;
+}
+
+// Runs a translation (start != end) into tw; contacts mode when `out` set.
+void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<ContactInfo>* out,
+                    int maxContacts) {
+  tw.fraction = 1;
+  tw.c = ContactInfo{};
+  tw.contentMask = q.contentMask;
+  tw.isConvex = true;
+  tw.positionTest = false;
+  tw.quickExit = false;
+  tw.contacts = out;
+  tw.maxContacts = maxContacts;
+  tw.start = q.start - q.model.origin;
+  tw.end = q.end - q.model.origin;
+  tw.dir = q.end - q.start;
+  const bool modelRotated = isRotated(q.model.axis);
+  if (isPointTrm(q.trm)) {
+    if (modelRotated) {
+      tw.start = q.model.axis * tw.start;
+      tw.end = q.model.axis * tw.end;
+      tw.dir = q.model.axis * tw.dir;
+    }
+    setupPointTrace(tw);
+  } else {
+    tw.pointTrace = false;
+    tw.isConvex = q.trm->isConvex();
+    setupTrmTranslation(tw, *q.trm, q.trmAxis, modelRotated, q.model.axis);
+  }
+  traceThroughModel(tw);
+}
+
+}  // namespace
+
+ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
+  ContentsResult r;
+  r.trace.endPos = q.position;
+  r.trace.endAxis = q.trmAxis;
+  if (isPointTrm(q.trm)) {
+    r.contents = pointContents(model, q.position, q.model);
+    r.trace.contact.contents = r.contents;
+    r.trace.fraction = r.contents == 0 ? 1 : 0;
+    return r;
+  }
+  QueryWork::Scratch& s = work.scratch();
+  s.begin(model);
+  TraceWork tw(model, s);
+  setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.model);
+  traceThroughModel(tw);
+  r.contents = tw.c.contents;
+  r.trace.contact = tw.c;
+  r.trace.fraction = r.contents == 0 ? 1 : 0;
+  r.trace.startSolid = r.contents != 0;
+  return r;
+}
+
+TraceResult translate(const CollisionModel& model, const TranslationQuery& q, QueryWork& work) {
+  if (q.start == q.end) {
+    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    TraceResult r = contentsTest(model, cq, work).trace;
+    r.startSolid = r.fraction == 0;
+    return r;
+  }
+  TraceResult r;
+  if (q.detectStartSolid) {
+    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    r.startSolid = contentsTest(model, cq, work).contents != 0;
+  }
+  QueryWork::Scratch& s = work.scratch();
+  s.begin(model);
+  TraceWork tw(model, s);
+  runTranslation(tw, q, nullptr, 0);
+  r.fraction = tw.fraction;
+  r.contact = tw.c;
+  r.endPos = q.start + (q.end - q.start) * r.fraction;
+  r.endAxis = isPointTrm(q.trm) ? Mat3::identity() : q.trmAxis;
+  if (r.fraction < 1) {
+    // A tiny fraction whose movement rounds to nothing is no movement.
+    if (r.fraction > 0 && r.endPos == q.start) r.fraction = 0;
+    contactToWorld(r.contact, q.model, isRotated(q.model.axis));
+  }
+  return r;
+}
+
+int contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work,
+             std::vector<ContactInfo>& out) {
+  out.clear();
+  const Vec3 end = q.start + q.dir * q.depth;
+  if (end == q.start || q.maxContacts <= 0) return 0;  // a position test finds no contacts
+  QueryWork::Scratch& s = work.scratch();
+  s.begin(model);
+  TraceWork tw(model, s);
+  const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.model, false};
+  runTranslation(tw, tq, &out, q.maxContacts);
+  // Unlike the original, point contacts are moved to world space too.
+  const bool modelRotated = isRotated(q.model.axis);
+  for (ContactInfo& c : out) contactToWorld(c, q.model, modelRotated);
+  return int(out.size());
+}
+
+std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement) {
+  if (model.nodes.empty()) return 0;
+  Vec3 p = point - placement.origin;
+  if (isRotated(placement.axis)) p = placement.axis * p;  // world -> model frame
+  auto inside = [&](std::int32_t brushNum) {
+    const CmBrush& b = model.brushes[std::size_t(brushNum)];
+    if (!b.bounds.containsPoint(p)) return false;
+    for (const Plane& plane : model.planesOf(b))
+      if (plane.distance(p) >= 0) return false;
+    return b.numPlanes > 0;
+  };
+  // Walk to the leaf, remembering the path: brushes straddling a split are
+  // stored at interior nodes and must be seen too (the original missed
+  // them). The leaf is searched first so that where the original finds a
+  // brush, the same brush is found.
+  std::int32_t path[256];
+  int depth = 0;
+  std::int32_t n = 0;
+  while (true) {
+    if (depth < 256) path[depth++] = n;
+    const CmNode& node = model.nodes[std::size_t(n)];
+    if (node.isLeaf()) break;
+    n = p[node.planeType] > node.planeDist ? node.children[0] : node.children[1];
+  }
+  for (int i = depth - 1; i >= 0; --i) {
+    for (std::int32_t b : model.brushesAt(model.nodes[std::size_t(path[i])]))
+      if (inside(b)) return model.brushes[std::size_t(b)].contents;
+  }
+  return 0;
+}
+
+Penetration penetration(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
+  Penetration result;
+  // The trace model's vertices in the model frame.
+  Vec3 verts[kMaxTrmVertices];
+  int numVerts = 1;
+  const bool modelRotated = isRotated(q.model.axis);
+  if (isPointTrm(q.trm)) {
+    verts[0] = q.position;
+  } else {
+    numVerts = q.trm->numVertices();
+    for (int i = 0; i < numVerts; ++i) verts[i] = q.trm->vertex(i) * q.trmAxis + q.position;
+  }
+  Bounds tb;
+  for (int i = 0; i < numVerts; ++i) {
+    verts[i] = verts[i] - q.model.origin;
+    if (modelRotated) verts[i] = q.model.axis * verts[i];
+    tb.addPoint(verts[i]);
+  }
+  (void)work;
+  // Every brush whose bounds meet the trace model: separating-plane test on
+  // its planes. The trace model is outside the brush along a plane when all
+  // its vertices are in front; the depth along that plane is how far the
+  // deepest vertex is behind it.
+  for (std::size_t bi = 0; bi < model.brushes.size(); ++bi) {
+    const CmBrush& b = model.brushes[bi];
+    if (!(b.contents & q.contentMask) || !b.bounds.intersects(tb) || b.numPlanes == 0) continue;
+    Real best = tol::kBoundsInfinity;
+    Vec3 bestNormal;
+    bool separated = false;
+    for (const Plane& plane : model.planesOf(b)) {
+      Real minDist = tol::kBoundsInfinity;
+      for (int i = 0; i < numVerts; ++i) minDist = std::min(minDist, plane.distance(verts[i]));
+      if (minDist >= 0) {
+        separated = true;
+        break;
+      }
+      if (-minDist < best) {
+        best = -minDist;
+        bestNormal = plane.normal;
+      }
+    }
+    if (separated) continue;
+    if (!result.stuck || best > result.depth) {
+      result.stuck = true;
+      result.depth = best;
+      result.direction = modelRotated ? bestNormal * q.model.axis : bestNormal;
+      result.contents = b.contents;
+    }
+  }
+  return result;
+}
+
+}  // namespace cmkit

@@ -1,0 +1,176 @@
+// Internal: the state of one query (the original's cm_traceWork_t) and the
+// caller-owned scratch memory it uses (the original kept those marks and
+// caches inside the shared model).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "cmkit/query.h"
+
+namespace cmkit {
+
+/// Per-model-feature marks and caches, valid for one query. A mark or cache
+/// entry is valid when its generation equals the current one, so starting a
+/// query costs nothing but a counter increment.
+struct QueryWork::Scratch {
+  std::uint32_t generation = 0;
+  std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
+  std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
+  std::vector<std::uint32_t> edgeChecked;     ///< edge tested this query
+  std::vector<std::uint32_t> vertexChecked;   ///< vertex tested this query
+  std::vector<std::uint32_t> edgeCacheGen;    ///< edgeSide/edgeSideSet valid
+  std::vector<std::uint32_t> vertexCacheGen;  ///< vertexSide/vertexSideSet valid
+  std::vector<std::uint64_t> edgeSide, edgeSideSet;
+  std::vector<std::uint64_t> vertexSide, vertexSideSet;
+  std::vector<Pluecker> polygonEdgeLines;   ///< per edge of the current polygon
+  std::vector<Pluecker> polygonVertexRays;  ///< per start vertex of the current polygon's edges
+
+  /// Starts a query on `model`: sizes the arrays and invalidates all marks.
+  void begin(const CollisionModel& model);
+
+  bool testAndMark(std::vector<std::uint32_t>& marks, std::size_t i) {
+    if (marks[i] == generation) return true;
+    marks[i] = generation;
+    return false;
+  }
+  /// Side bits of an edge for this query (zeroed on first use).
+  void touchEdgeCache(std::size_t e) {
+    if (edgeCacheGen[e] != generation) {
+      edgeCacheGen[e] = generation;
+      edgeSide[e] = edgeSideSet[e] = 0;
+    }
+  }
+  void touchVertexCache(std::size_t v) {
+    if (vertexCacheGen[v] != generation) {
+      vertexCacheGen[v] = generation;
+      vertexSide[v] = vertexSideSet[v] = 0;
+    }
+  }
+  /// Returns the cached side bit `bit` of model edge e, computing it with
+  /// `product()` (side = sign bit of the product) when not yet known.
+  template <class F>
+  unsigned edgeSideBit(std::size_t e, unsigned bit, F product) {
+    touchEdgeCache(e);
+    const std::uint64_t m = std::uint64_t(1) << bit;
+    if (!(edgeSideSet[e] & m)) {
+      if (signBitSet(product()))
+        edgeSide[e] |= m;
+      else
+        edgeSide[e] &= ~m;
+      edgeSideSet[e] |= m;
+    }
+    return unsigned(edgeSide[e] >> bit) & 1u;
+  }
+  template <class F>
+  unsigned vertexSideBit(std::size_t v, unsigned bit, F product) {
+    touchVertexCache(v);
+    const std::uint64_t m = std::uint64_t(1) << bit;
+    if (!(vertexSideSet[v] & m)) {
+      if (signBitSet(product()))
+        vertexSide[v] |= m;
+      else
+        vertexSide[v] &= ~m;
+      vertexSideSet[v] |= m;
+    }
+    return unsigned(vertexSide[v] >> bit) & 1u;
+  }
+};
+
+/// A trace-model vertex during a query (model space).
+struct WorkVertex {
+  Vec3 p;       ///< position at the start
+  Vec3 endp;    ///< position at the end of the full move
+  Pluecker pl;  ///< the line of its movement
+  bool used = false;
+};
+
+/// A trace-model edge during a query.
+struct WorkEdge {
+  Vec3 start, end;
+  int vertexNum[2] = {0, 0};
+  Pluecker pl;  ///< the edge line start -> end
+  Vec3 cross;   ///< normal of the plane swept by the edge (translation)
+  bool used = false;
+};
+
+/// A trace-model polygon during a query.
+struct WorkPolygon {
+  Plane plane;
+  int numEdges = 0;
+  std::array<int, kMaxTrmPolygonEdges> edges{};
+  bool used = false;
+};
+
+/// The state of one translation / position test / contacts query.
+struct TraceWork {
+  TraceWork(const CollisionModel& m, QueryWork::Scratch& s) : model(m), scratch(s) {}
+
+  const CollisionModel& model;
+  QueryWork::Scratch& scratch;
+
+  int numVerts = 0, numEdges = 0, numPolys = 0;
+  std::array<WorkVertex, kMaxTrmVertices> vertices{};
+  std::array<WorkEdge, kMaxTrmEdges + 1> edges{};
+  std::array<WorkPolygon, kMaxTrmPolygons> polys{};
+
+  Vec3 start, end, dir;  ///< of the trace model's centre, model space
+  Bounds bounds;         ///< of the whole move, padded
+  Bounds size;           ///< trace-model bounds relative to start
+  Vec3 extents;          ///< per-axis half size for the tree walk
+  std::uint32_t contentMask = 0;
+  bool isConvex = true;
+  bool positionTest = false;
+  bool pointTrace = false;
+  bool quickExit = false;
+
+  // the result so far
+  Real fraction = 1;
+  ContactInfo c;
+
+  // heart planes: along the movement, for culling far polygons
+  Plane heartPlane1, heartPlane2;
+  Real maxDistFromHeartPlane1 = 0, maxDistFromHeartPlane2 = 0;
+
+  // contacts mode
+  std::vector<ContactInfo>* contacts = nullptr;
+  int maxContacts = 0;
+
+  bool gettingContacts() const { return contacts != nullptr; }
+  /// Records the current contact (contacts mode) and resets the fraction so
+  /// that the walk finds every other one.
+  void addContact() {
+    if (int(contacts->size()) >= maxContacts) return;
+    contacts->push_back(c);
+    fraction = 1;
+  }
+};
+
+// ---- shared steps (tree_walk.cpp, translate.cpp, contents.cpp) -------------
+
+/// Walks the model's tree along tw.start -> tw.end and tests the items met.
+void traceThroughModel(TraceWork& tw);
+
+/// Translation tests of one polygon; true when it blocks completely.
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
+
+/// Position tests (contents.cpp); true when stuck.
+bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);
+bool testTrmInPolygon(TraceWork& tw, std::int32_t polygon);
+
+/// Sets up tw for a position test of `trm` (not a point) at `position`.
+void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                       std::uint32_t mask, const Placement& placement);
+
+/// True when the axis differs from identity.
+inline bool isRotated(const Mat3& axis) { return !axis.isIdentity(); }
+
+/// True for a missing trace model or one with zero size on every axis.
+inline bool isPointTrm(const TraceModel* trm) {
+  if (!trm || trm->isPoint()) return true;
+  const Vec3 s = trm->bounds().size();
+  return s.x <= 0 && s.y <= 0 && s.z <= 0;
+}
+
+}  // namespace cmkit

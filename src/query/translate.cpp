@@ -1,0 +1,290 @@
+// Translation tests of one model polygon (the original's
+// TranslateTrmThroughPolygon and the tests it runs): trace-model vertex
+// through polygon, trace-model edge through polygon edge, model vertex
+// through trace-model polygon. Model space throughout.
+#include <cmath>
+
+#include "query/trace_work.h"
+
+namespace cmkit {
+namespace {
+
+/// Fraction of the move a-> b at which a point first gets within
+/// tol::kClipEpsilon of the plane, approaching from the front; 1 when it
+/// does not (ends farther than the epsilon, starts behind, or moves away).
+/// May be negative when the start is already within the epsilon.
+Real translationPlaneFraction(const Plane& plane, const Vec3& a, const Vec3& b) {
+  const Real d2 = plane.distance(b);
+  if (!signBitSet(d2 - tol::kClipEpsilon)) return 1;
+  const Real d1 = plane.distance(a);
+  if (signBitSet(d1)) return 1;  // behind (or -0)
+  if (d1 - d2 <= 0) return 1;    // not approaching
+  return (d1 - tol::kClipEpsilon) / (d1 - d2);
+}
+
+/// Fraction at which the trace-model edge line l1, moving along the
+/// direction encoded in `cross`, meets the line l2. False when the moving
+/// line stays parallel to l2.
+bool translateEdgeThroughEdge(const Vec3& cross, const Pluecker& l1, const Pluecker& l2, Real& fraction) {
+  const Real d = l2[4] * cross[0] + l2[5] * cross[1] + l2[2] * cross[2];
+  if (d == 0) {
+    fraction = 0;
+    return false;
+  }
+  const Real t = -l1.permutedInnerProduct(l2);
+  if (t == 0) {  // the lines meet at the start already
+    fraction = 0;
+    return true;
+  }
+  fraction = t / d;
+  return true;
+}
+
+void setContact(TraceWork& tw, const CmPolygon& poly, ContactType type, std::int32_t modelFeature,
+                int trmFeature) {
+  tw.c.contents = poly.contents;
+  tw.c.material = poly.material;
+  tw.c.type = type;
+  tw.c.modelFeature = modelFeature;
+  tw.c.trmFeature = trmFeature;
+}
+
+// A point trace (no edges, no polygons) through a polygon.
+void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  WorkVertex& v = tw.vertices[0];
+  const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
+  if (!(f < tw.fraction)) return;
+  for (std::int32_t edgeNum : m.edgesOf(poly)) {
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    const CmEdge& edge = m.edges[e];
+    const unsigned side = s.edgeSideBit(e, 0, [&] {
+      return Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])],
+                                m.vertices[std::size_t(edge.vertex[1])])
+          .permutedInnerProduct(v.pl);
+    });
+    if (unsigned(edgeNum < 0) ^ side) return;  // passes the edge on the outside
+  }
+  tw.fraction = f < 0 ? Real(0) : f;
+  tw.c.normal = poly.plane.normal;
+  tw.c.dist = poly.plane.dist;
+  tw.c.point = v.p + (v.endp - v.p) * tw.fraction;
+  setContact(tw, poly, ContactType::TrmVertex, polyNum, 0);
+  if (tw.gettingContacts()) tw.addContact();
+}
+
+void translateTrmVertexThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                      int vertexNum) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
+  const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
+  if (!(f < tw.fraction)) return;
+  // The vertex's path must pass inside every polygon edge.
+  const auto edges = m.edgesOf(poly);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const std::int32_t edgeNum = edges[i];
+    const unsigned side = s.edgeSideBit(std::size_t(std::abs(edgeNum)), unsigned(vertexNum),
+                                        [&] { return s.polygonEdgeLines[i].permutedInnerProduct(v.pl); });
+    if (unsigned(edgeNum < 0) ^ side) return;
+  }
+  tw.fraction = f < 0 ? Real(0) : f;
+  tw.c.normal = poly.plane.normal;
+  tw.c.dist = poly.plane.dist;
+  tw.c.point = v.p + (v.endp - v.p) * tw.fraction;
+  setContact(tw, poly, ContactType::TrmVertex, polyNum, vertexNum);
+  if (tw.gettingContacts()) {
+    tw.addContact();
+    v.used = false;  // one contact per trace-model vertex is enough
+  }
+}
+
+void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
+  const auto edges = m.edgesOf(poly);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const std::int32_t edgeNum = edges[i];
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    if (tw.scratch.edgeChecked[e] == s.generation) continue;  // tested with an earlier polygon
+    const CmEdge& edge = m.edges[e];
+    if (edge.internal) continue;
+    const Pluecker& pl = s.polygonEdgeLines[i];
+    // The trm edge's two vertices must pass the polygon edge on different sides...
+    const unsigned a0 = s.edgeSideBit(e, unsigned(te.vertexNum[0]), [&] {
+      return pl.permutedInnerProduct(tw.vertices[std::size_t(te.vertexNum[0])].pl);
+    });
+    const unsigned a1 = s.edgeSideBit(e, unsigned(te.vertexNum[1]), [&] {
+      return pl.permutedInnerProduct(tw.vertices[std::size_t(te.vertexNum[1])].pl);
+    });
+    if (a0 == a1) continue;
+    // ... and the polygon edge's two vertices must pass the trm edge on different sides.
+    const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
+    const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
+    const unsigned bit = unsigned(trmEdgeNum);
+    const unsigned b1 =
+        s.vertexSideBit(v1, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i]); });
+    const unsigned b2 =
+        s.vertexSideBit(v2, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i + 1]); });
+    if (b1 == b2) continue;
+
+    Real f1;
+    if (!translateEdgeThroughEdge(te.cross, te.pl, pl, f1)) continue;
+    if (f1 < 0) continue;  // moving away from the edge
+    // The same against the edge moved out along its normal by the clip epsilon.
+    const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
+    const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
+    const Pluecker epsPl =
+        Pluecker::fromLine(start + edge.normal * tol::kClipEpsilon, end + edge.normal * tol::kClipEpsilon);
+    Real f2;
+    if (!translateEdgeThroughEdge(te.cross, te.pl, epsPl, f2)) continue;
+    if (f2 > 1 || f1 < f2) continue;
+    if (f2 < 0) f2 = 0;
+    if (!(f2 < tw.fraction)) continue;
+
+    tw.fraction = f2;
+    // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
+    Vec3 normal = (end - start).cross(te.end - te.start);
+    normal.normalize();
+    Real dist = normal.dot(start);
+    if (normal.dot(te.start) - dist < 0) {
+      normal = -normal;
+      dist = -dist;
+    }
+    tw.c.normal = normal;
+    tw.c.dist = dist;
+    // Contact point on the model edge: where the plane swept by the trm edge cuts it.
+    const Vec3 sweepNormal{te.cross[2], -te.cross[1], te.cross[0]};
+    const Real sweepDist = sweepNormal.dot(te.start);
+    const Real d1 = sweepNormal.dot(start) - sweepDist;
+    const Real d2 = sweepNormal.dot(end) - sweepDist;
+    const Real t = std::fabs(d1 - d2) > std::numeric_limits<Real>::epsilon() ? d1 / (d1 - d2) : Real(0);
+    tw.c.point = start + (end - start) * t;
+    setContact(tw, poly, ContactType::Edge, edgeNum, trmEdgeNum);
+    if (tw.gettingContacts()) tw.addContact();
+  }
+}
+
+void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
+                                      std::size_t vertexNum, const Vec3& p, const Vec3& endp,
+                                      const Pluecker& pl) {
+  QueryWork::Scratch& s = tw.scratch;
+  const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
+  const Real f = translationPlaneFraction(tp.plane, p, endp);
+  if (!(f < tw.fraction)) return;
+  for (int i = 0; i < tp.numEdges; ++i) {
+    const int edgeNum = tp.edges[std::size_t(i)];
+    const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
+    const unsigned side = s.vertexSideBit(vertexNum, unsigned(std::abs(edgeNum)),
+                                          [&] { return pl.permutedInnerProduct(te.pl); });
+    if (unsigned(edgeNum < 0) ^ side) return;
+  }
+  tw.fraction = f < 0 ? Real(0) : f;
+  tw.c.normal = -tp.plane.normal;
+  tw.c.dist = -tp.plane.dist;
+  // The original reports the vertex moved back by the fraction: the model
+  // vertex relative to the trace model at its start (see docs/fidelity.md).
+  tw.c.point = p + (endp - p) * tw.fraction;
+  setContact(tw, poly, ContactType::ModelVertex, std::int32_t(vertexNum), trmPolyNum);
+  if (tw.gettingContacts()) tw.addContact();
+}
+
+// Distance of a box to a plane: 0 when it straddles the plane.
+Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
+  const Vec3 c = b.center();
+  const Real d1 = plane.distance(c);
+  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
+                  std::fabs((b.max.z - c.z) * plane.normal.z);
+  if (d1 - d2 > 0) return d1 - d2;
+  if (d1 + d2 < 0) return d1 + d2;
+  return 0;
+}
+
+}  // namespace
+
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
+  const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
+
+  // Culling: contents, bounds, back faces, distance from the heart planes.
+  if (!(poly.contents & tw.contentMask)) return false;
+  if (!tw.bounds.intersects(poly.bounds)) return false;
+  if (poly.plane.normal.dot(tw.dir) > 0) return false;  // only front faces collide
+  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
+  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2) return false;
+
+  if (tw.pointTrace) {
+    translatePointThroughPolygon(tw, polyNum, poly);
+  } else {
+    switch (tw.bounds.planeSide(poly.plane)) {
+      case Side::Cross:
+        break;
+      case Side::Front:
+        if (m.isConvex) {
+          tw.quickExit = true;
+          return true;
+        }
+        return false;
+      default:
+        return false;
+    }
+    // Lines of the polygon's edges (stored direction) and of its vertices'
+    // movement relative to the trace model (-dir).
+    const auto edges = m.edgesOf(poly);
+    if (s.polygonEdgeLines.size() < edges.size() + 1) {
+      s.polygonEdgeLines.resize(edges.size() + 1);
+      s.polygonVertexRays.resize(edges.size() + 1);
+    }
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
+      s.polygonEdgeLines[i] = Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])],
+                                                 m.vertices[std::size_t(edge.vertex[1])]);
+      s.polygonVertexRays[i] = Pluecker::fromRay(m.vertices[std::size_t(m.edgeStart(edges[i]))], -tw.dir);
+    }
+    s.polygonVertexRays[edges.size()] = s.polygonVertexRays[0];
+
+    for (int i = 0; i < tw.numVerts; ++i)
+      if (tw.vertices[std::size_t(i)].used) translateTrmVertexThroughPolygon(tw, polyNum, poly, i);
+    for (int i = 1; i <= tw.numEdges; ++i)
+      if (tw.edges[std::size_t(i)].used) translateTrmEdgeThroughPolygon(tw, poly, i);
+    // Model vertices through the trace model's front polygons; every edge and
+    // vertex once per query.
+    for (std::int32_t edgeNum : edges) {
+      const std::size_t e = std::size_t(std::abs(edgeNum));
+      if (s.testAndMark(s.edgeChecked, e)) continue;
+      const CmEdge& edge = m.edges[e];
+      if (edge.internal) continue;
+      for (int k = 0; k < 2; ++k) {
+        const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
+        if (s.testAndMark(s.vertexChecked, vn)) continue;
+        const Vec3& p = m.vertices[vn];
+        if (!tw.bounds.containsPoint(p)) continue;
+        const Vec3 endp = p - tw.dir;
+        const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
+        for (int j = 0; j < tw.numPolys; ++j)
+          if (tw.polys[std::size_t(j)].used) translateVertexThroughTrmPolygon(tw, poly, j, vn, p, endp, pl);
+      }
+    }
+  }
+
+  // A nearer hit shrinks the trace bounds (not when collecting contacts).
+  if (tw.fraction < 1 && !tw.gettingContacts()) {
+    const Vec3 endp = tw.start + tw.dir * tw.fraction;
+    for (int i = 0; i < 3; ++i) {
+      if (tw.start[i] < endp[i]) {
+        tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
+        tw.bounds.max[i] = endp[i] + tw.size.max[i] + tol::kBoxEpsilon;
+      } else {
+        tw.bounds.min[i] = endp[i] + tw.size.min[i] - tol::kBoxEpsilon;
+        tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
+      }
+    }
+  }
+  return tw.fraction == 0;
+}
+
+}  // namespace cmkit

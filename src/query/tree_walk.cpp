@@ -1,0 +1,121 @@
+// Walking the axial BSP tree along a movement (the original's
+// TraceThroughAxialBSPTree_r and TraceTrmThroughNode), and the scratch set-up.
+#include <algorithm>
+
+#include "query/trace_work.h"
+
+namespace cmkit {
+
+QueryWork::QueryWork() : scratch_(std::make_unique<Scratch>()) {}
+QueryWork::~QueryWork() = default;
+QueryWork::QueryWork(QueryWork&&) noexcept = default;
+QueryWork& QueryWork::operator=(QueryWork&&) noexcept = default;
+
+void QueryWork::Scratch::begin(const CollisionModel& model) {
+  auto grow = [](auto& v, std::size_t n) {
+    if (v.size() < n) v.resize(n);
+  };
+  const std::size_t np = model.polygons.size(), nb = model.brushes.size();
+  const std::size_t ne = model.edges.size(), nv = model.vertices.size();
+  grow(polygonChecked, np);
+  grow(brushChecked, nb);
+  grow(edgeChecked, ne);
+  grow(edgeCacheGen, ne);
+  grow(edgeSide, ne);
+  grow(edgeSideSet, ne);
+  grow(vertexChecked, nv);
+  grow(vertexCacheGen, nv);
+  grow(vertexSide, nv);
+  grow(vertexSideSet, nv);
+  if (++generation == 0) {  // wrapped: clear every mark once every 2^32 queries
+    for (auto* v :
+         {&polygonChecked, &brushChecked, &edgeChecked, &vertexChecked, &edgeCacheGen, &vertexCacheGen})
+      std::fill(v->begin(), v->end(), 0u);
+    generation = 1;
+  }
+}
+
+namespace {
+
+// Tests the items referenced at one node.
+void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
+  const CollisionModel& m = tw.model;
+  if (tw.positionTest) {
+    if (tw.fraction == 0) return;  // already stuck
+    for (std::int32_t b : m.brushesAt(node))
+      if (testTrmVertsInBrush(tw, b)) return;
+    if (tw.pointTrace) return;
+    for (std::int32_t p : m.polygonsAt(node))
+      if (testTrmInPolygon(tw, p)) return;
+    return;
+  }
+  for (std::int32_t p : m.polygonsAt(node))
+    if (translateTrmThroughPolygon(tw, p)) return;
+}
+
+void traceThroughTree(TraceWork& tw, std::int32_t nodeNum, Real p1f, Real p2f, const Vec3& p1,
+                      const Vec3& p2) {
+  while (nodeNum >= 0) {
+    if (tw.quickExit) return;
+    if (tw.fraction <= p1f) return;  // something nearer was hit already
+    const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+    if (node.numPolygonRefs || (tw.positionTest && node.numBrushRefs)) traceTrmThroughNode(tw, node);
+    if (tw.positionTest && tw.fraction == 0) return;
+    if (node.isLeaf()) return;
+
+    // Distances of the segment ends to the split plane, and the trace model's
+    // extent along its axis: both ends farther than the extent on one side
+    // visit that side only.
+    const int axis = node.planeType;
+    const Real t1 = p1[axis] - node.planeDist;
+    const Real t2 = p2[axis] - node.planeDist;
+    const Real offset = tw.extents[axis];
+    if (t1 >= offset && t2 >= offset) {
+      nodeNum = node.children[0];
+      continue;
+    }
+    if (t1 < -offset && t2 < -offset) {
+      nodeNum = node.children[1];
+      continue;
+    }
+    // The segment crosses the slab around the plane: visit the near side up
+    // to where the trace leaves the slab's far face, then the far side from
+    // where it enters the near face.
+    int side;
+    Real frac, frac2;
+    if (t1 < t2) {
+      const Real idist = Real(1) / (t1 - t2);
+      side = 1;
+      frac2 = (t1 + offset) * idist;
+      frac = (t1 - offset) * idist;
+    } else if (t1 > t2) {
+      const Real idist = Real(1) / (t1 - t2);
+      side = 0;
+      frac2 = (t1 - offset) * idist;
+      frac = (t1 + offset) * idist;
+    } else {
+      side = 0;
+      frac = 1;
+      frac2 = 0;
+    }
+    frac = std::clamp(frac, Real(0), Real(1));
+    Real midf = p1f + (p2f - p1f) * frac;
+    Vec3 mid{p1.x + frac * (p2.x - p1.x), p1.y + frac * (p2.y - p1.y), p1.z + frac * (p2.z - p1.z)};
+    traceThroughTree(tw, node.children[side], p1f, midf, p1, mid);
+
+    frac2 = std::clamp(frac2, Real(0), Real(1));
+    midf = p1f + (p2f - p1f) * frac2;
+    mid = {p1.x + frac2 * (p2.x - p1.x), p1.y + frac2 * (p2.y - p1.y), p1.z + frac2 * (p2.z - p1.z)};
+    traceThroughTree(tw, node.children[side ^ 1], midf, p2f, mid, p2);
+    return;
+  }
+}
+
+}  // namespace
+
+void traceThroughModel(TraceWork& tw) {
+  if (tw.model.nodes.empty()) return;
+  traceThroughTree(tw, 0, 0, 1, tw.start, tw.end);
+}
+
+}  // namespace cmkit

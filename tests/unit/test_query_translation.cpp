@@ -1,0 +1,346 @@
+// Hand-computed translations: fractions, end positions, normals and feature
+// types, derived by hand from the geometry and the 0.25 clip epsilon.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cmkit/query.h"
+#include "model_fixtures.h"
+
+using namespace cmkit;
+using cmkit::test::ModelMaker;
+
+namespace {
+
+const Bounds kPlayer{{-16, -16, 0}, {16, 16, 72}};
+
+void expectVecNear(const Vec3& a, const Vec3& b, float eps) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+CollisionModel floorModel() { return ModelMaker().addBox({{-256, -256, -16}, {256, 256, 0}}).build(); }
+
+}  // namespace
+
+TEST(Translation, BoxDroppedOnAFloorStopsAQuarterUnitAbove) {
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box(kPlayer);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, 100};
+  q.end = {0, 0, -100};
+  const TraceResult r = translate(m, q, work);
+  // The box's bottom (z = start.z) reaches 0.25 after 99.75 of 200 units.
+  EXPECT_NEAR(r.fraction, 99.75f / 200, 1e-6f);
+  expectVecNear(r.endPos, {0, 0, 0.25f}, 1e-4f);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));
+  EXPECT_EQ(r.contact.dist, 0.0f);
+  EXPECT_EQ(r.contact.contents, contents::kSolid | contents::kOpaque);
+  EXPECT_NEAR(r.contact.point.z, 0.25f, 1e-4f);
+  EXPECT_EQ(r.contact.modelFeature, 1);  // the box's top polygon (index 1)
+  EXPECT_LT(r.contact.trmFeature, 4);    // a bottom vertex (0..3)
+  EXPECT_EQ(r.endAxis, Mat3::identity());
+  EXPECT_FALSE(r.startSolid);
+}
+
+TEST(Translation, MissIsFractionOneWithEveryFieldDefined) {
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box(kPlayer);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, 100};
+  q.end = {0, 0, 50};
+  const TraceResult r = translate(m, q, work);
+  EXPECT_EQ(r.fraction, 1.0f);
+  EXPECT_EQ(r.endPos, Vec3(0, 0, 50));
+  EXPECT_EQ(r.contact.type, ContactType::None);
+  EXPECT_EQ(r.contact.point, Vec3());
+  EXPECT_EQ(r.contact.normal, Vec3());
+  EXPECT_EQ(r.contact.material, -1);
+  EXPECT_EQ(r.contact.contents, 0u);
+}
+
+TEST(Translation, BackFacesDoNotCollide) {
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box(kPlayer);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, -200};  // below the slab, moving up through its bottom face
+  q.end = {0, 0, -50};
+  const TraceResult r = translate(m, q, work);
+  // The bottom face (normal -z) faces the box: it stops 0.25 below it.
+  EXPECT_NEAR(r.endPos.z + 72, -16.25f, 1e-3f);
+  q.start = {0, 0, -8};  // starting inside: the top face is seen from behind
+  q.end = {0, 0, 50};
+  EXPECT_EQ(translate(m, q, work).fraction, 1.0f);
+}
+
+TEST(Translation, PointThroughAThinWall) {
+  const CollisionModel m = ModelMaker().addBox({{-1, -100, -100}, {1, 100, 100}}).build();
+  QueryWork work;
+  TranslationQuery q;  // no trm: a point
+  q.start = {-50, 0, 0};
+  q.end = {50, 0, 0};
+  const TraceResult r = translate(m, q, work);
+  EXPECT_NEAR(r.fraction, 48.75f / 100, 1e-6f);
+  expectVecNear(r.endPos, {-1.25f, 0, 0}, 1e-4f);
+  EXPECT_EQ(r.contact.normal, Vec3(-1, 0, 0));
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  EXPECT_EQ(r.contact.dist, 1.0f);
+}
+
+TEST(Translation, EdgeAgainstEdge) {
+  // A block whose top edge runs along y at x = 0, z = 0; a wedge whose lowest
+  // edge slopes from (15,0,0) up to (-5,0,4) falls onto it. The edges cross
+  // above the block edge; the wedge's vertices stay clear of the faces.
+  const CollisionModel m = ModelMaker().addBox({{-100, -100, -100}, {0, 100, 0}}).build();
+  const Vec3 pts[4] = {{15, 0, 0}, {-5, 0, 4}, {5, -5, 20}, {5, 5, 20}};
+  const TraceModel wedge = *TraceModel::convexHull(pts);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &wedge;
+  q.start = {0, 0, 50};
+  q.end = {0, 0, -50};
+  const TraceResult r = translate(m, q, work);
+  // The block edge's epsilon edge lies at x = z = 0.25 (edge normal (1,0,1));
+  // the wedge edge meets it at s = 14.75/20 along, height h + 2.95 = 0.25.
+  EXPECT_NEAR(r.fraction, (50 + 2.7f) / 100, 1e-5f);
+  EXPECT_NEAR(r.endPos.z, -2.7f, 1e-3f);
+  EXPECT_EQ(r.contact.type, ContactType::Edge);
+  expectVecNear(r.contact.normal, Vec3{4, 0, 20}.normalized(), 1e-5f);
+  expectVecNear(r.contact.point, {0, 0, 0}, 1e-4f);
+}
+
+TEST(Translation, CylinderIntoAStairRiser) {
+  // A step: riser face at x = 0, tread at z = 16. An 8-sided cylinder moving
+  // +x with its bottom below the tread: vertex 0 (angle 0, x = +16) hits.
+  const CollisionModel m = ModelMaker().addBox({{0, -100, -100}, {100, 100, 16}}).build();
+  const TraceModel cyl = *TraceModel::cylinder(kPlayer, 8);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &cyl;
+  q.start = {-100, 0, 0};
+  q.end = {100, 0, 0};
+  const TraceResult r = translate(m, q, work);
+  EXPECT_NEAR(r.fraction, (100 - 16.25f) / 200, 1e-5f);
+  EXPECT_NEAR(r.endPos.x, -16.25f, 1e-3f);
+  EXPECT_EQ(r.contact.normal, Vec3(-1, 0, 0));
+  // Its vertical edge at angle 0 touches the face and, at the same moment,
+  // the riser's top edge: both are the same contact plane.
+  if (r.contact.type == ContactType::TrmVertex) {
+    EXPECT_TRUE(r.contact.trmFeature == 0 || r.contact.trmFeature == 8);
+  } else {
+    EXPECT_EQ(r.contact.type, ContactType::Edge);
+    EXPECT_EQ(r.contact.trmFeature, 17);  // vertical edge 2n+1 from vertex 0
+  }
+  // Lifted above the tread it passes over the step.
+  q.start.z = q.end.z = 16.5f;
+  EXPECT_EQ(translate(m, q, work).fraction, 1.0f);
+}
+
+TEST(Translation, ModelVertexHitsATraceModelFace) {
+  // A spike with its apex at (0,0,10) under a wide flat box falling onto it.
+  const Vec3 spike[5] = {{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}, {0, 0, 10}};
+  const CollisionModel m = ModelMaker().addConvex(*TraceModel::convexHull(spike)).build();
+  const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, 100};
+  q.end = {0, 0, -100};
+  const TraceResult r = translate(m, q, work);
+  EXPECT_NEAR(r.fraction, 89.75f / 200, 1e-6f);
+  EXPECT_NEAR(r.endPos.z, 10.25f, 1e-4f);
+  EXPECT_EQ(r.contact.type, ContactType::ModelVertex);
+  EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));  // the box's bottom face, negated
+  EXPECT_EQ(r.contact.modelFeature, 4);        // the apex
+  EXPECT_EQ(r.contact.trmFeature, 0);          // the box's bottom polygon
+  // The original reports the vertex relative to the trace model's start.
+  expectVecNear(r.contact.point, {0, 0, 10 + 200 * r.fraction}, 1e-3f);
+}
+
+TEST(Translation, RotatedTraceModel) {
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, -16}, {16, 16, 16}});
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.trmAxis = Mat3::fromAngles(0, 0, 45);  // roll 45: lowest feature an edge at -16*sqrt2
+  q.start = {0, 0, 100};
+  q.end = {0, 0, -100};
+  const TraceResult r = translate(m, q, work);
+  const float lowest = 16 * std::sqrt(2.0f);
+  EXPECT_NEAR(r.endPos.z, lowest + 0.25f, 1e-3f);
+  EXPECT_EQ(r.endAxis, q.trmAxis);
+  EXPECT_NEAR(r.contact.normal.z, 1, 1e-6f);
+}
+
+TEST(Translation, RotatedAndOffsetModel) {
+  // The wall of PointThroughAThinWall, turned 90 degrees about z (its x axis
+  // now points along world y) and placed at (0, 10, 5).
+  const CollisionModel m = ModelMaker().addBox({{-1, -100, -100}, {1, 100, 100}}).build();
+  QueryWork work;
+  TranslationQuery q;
+  q.model.origin = {0, 10, 5};
+  q.model.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
+  q.start = {0, -40, 0};
+  q.end = {0, 60, 0};
+  const TraceResult r = translate(m, q, work);
+  // The wall spans world y in [9, 11]: stop at 8.75.
+  EXPECT_NEAR(r.endPos.y, 8.75f, 1e-4f);
+  expectVecNear(r.contact.normal, {0, -1, 0}, 1e-6f);
+  EXPECT_NEAR(r.contact.dist, -9.0f, 1e-4f);  // n . p = dist on the world plane y = 9
+  // the same with a box trace model
+  const TraceModel box = *TraceModel::box({{-4, -4, -4}, {4, 4, 4}});
+  q.trm = &box;
+  const TraceResult rb = translate(m, q, work);
+  EXPECT_NEAR(rb.endPos.y, 8.75f - 4, 1e-3f);
+  expectVecNear(rb.contact.normal, {0, -1, 0}, 1e-6f);
+}
+
+TEST(Translation, StartInsideSolidIsFlagged) {
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box(kPlayer);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, -8};
+  q.end = {0, 0, 40};
+  q.detectStartSolid = true;
+  const TraceResult r = translate(m, q, work);
+  EXPECT_TRUE(r.startSolid);
+  EXPECT_EQ(r.fraction, 1.0f);  // the original's rule: the top face is seen from behind
+  const Penetration pen = penetration(m, {&box, {}, q.start, contents::kMaskSolid, {}}, work);
+  ASSERT_TRUE(pen.stuck);
+  EXPECT_NEAR(pen.depth, 8, 1e-5f);
+  EXPECT_EQ(pen.direction, Vec3(0, 0, 1));
+  q.start = {0, 0, 8};
+  EXPECT_FALSE(translate(m, q, work).startSolid);
+  EXPECT_FALSE(penetration(m, {&box, {}, q.start, contents::kMaskSolid, {}}, work).stuck);
+}
+
+TEST(PositionTest, ExactlyTouchingIsFreeOneUnitInIsStuck) {
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box(kPlayer);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = q.end = {0, 0, 0};  // resting exactly on the floor
+  TraceResult r = translate(m, q, work);
+  EXPECT_EQ(r.fraction, 1.0f);
+  EXPECT_FALSE(r.startSolid);
+  q.start = q.end = {0, 0, -1};
+  r = translate(m, q, work);
+  EXPECT_EQ(r.fraction, 0.0f);
+  EXPECT_TRUE(r.startSolid);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));  // the nearest brush plane
+  const ContentsResult c = contentsTest(m, {&box, {}, {0, 0, -1}, contents::kMaskSolid, {}}, work);
+  EXPECT_EQ(c.contents, contents::kSolid | contents::kOpaque);
+  // Masked out: water only.
+  EXPECT_EQ(contentsTest(m, {&box, {}, {0, 0, -1}, contents::kWater, {}}, work).contents, 0u);
+}
+
+TEST(PositionTest, PolygonPiercingWithoutVerticesInside) {
+  // A thin plate pierced by a tall thin box: no box vertex is inside the
+  // plate's brush... but the plate's vertices are not inside the box either;
+  // the box's vertical edges go through the plate's top polygon.
+  const CollisionModel m = ModelMaker().addBox({{-100, -100, -1}, {100, 100, 1}}).build();
+  const TraceModel pole = *TraceModel::box({{-2, -2, -50}, {2, 2, 50}});
+  QueryWork work;
+  const ContentsResult c = contentsTest(m, {&pole, {}, {0, 0, 0}, contents::kMaskSolid, {}}, work);
+  EXPECT_NE(c.contents, 0u);
+  EXPECT_EQ(c.trace.fraction, 0.0f);
+  EXPECT_EQ(c.trace.contact.type, ContactType::Edge);
+}
+
+TEST(Translation, InternalEdgesAreNeverReported) {
+  // Two floor slabs side by side; the top edges along the seam (x = 0) are
+  // internal. A wedge whose lowest edge crosses the seam falls on it.
+  ModelMaker maker;
+  maker.addBox({{-100, -100, -16}, {0, 100, 0}}).addBox({{0, -100, -16}, {100, 100, 0}});
+  CollisionModel& raw = maker.model();
+  std::vector<std::int32_t> seam;
+  for (std::size_t e = 1; e < raw.edges.size(); ++e) {
+    const Vec3& a = raw.vertices[std::size_t(raw.edges[e].vertex[0])];
+    const Vec3& b = raw.vertices[std::size_t(raw.edges[e].vertex[1])];
+    if (a.x == 0 && b.x == 0 && a.z == 0 && b.z == 0) seam.push_back(std::int32_t(e));
+  }
+  ASSERT_EQ(seam.size(), 2u);
+  for (std::int32_t e : seam) maker.markInternal(e);
+  const CollisionModel m = maker.build();
+  const Vec3 pts[4] = {{15, 0, 0}, {-5, 0, 4}, {5, -5, 20}, {5, 5, 20}};
+  const TraceModel wedge = *TraceModel::convexHull(pts);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &wedge;
+  q.start = {0, 0, 50};
+  q.end = {0, 0, -50};
+  const TraceResult r = translate(m, q, work);
+  // The wedge's low vertex (15,0,0) lands on the floor.
+  EXPECT_NEAR(r.endPos.z, 0.25f, 1e-3f);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  for (std::int32_t e : seam) EXPECT_NE(std::abs(r.contact.modelFeature), e);
+}
+
+TEST(Translation, AnyLengthWorks) {
+  // The original refused trace-model moves over 4096 units.
+  const CollisionModel m = floorModel();
+  const TraceModel box = *TraceModel::box(kPlayer);
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, 10000};
+  q.end = {0, 0, -10000};
+  const TraceResult r = translate(m, q, work);
+  EXPECT_NEAR(r.endPos.z, 0.25f, 2e-3f);
+}
+
+TEST(Contacts, AllSurfacesAlongTheMove) {
+  // A box in a corner: floor and a wall at x = 20; moving down and into +x.
+  const CollisionModel m =
+      ModelMaker().addBox({{-100, -100, -16}, {100, 100, 0}}).addBox({{20, -100, 0}, {40, 100, 100}}).build();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
+  QueryWork work;
+  std::vector<ContactInfo> found;
+  ContactsQuery q;
+  q.trm = &box;
+  q.start = {3.9f, 0, 0.1f};
+  q.dir = {1, 0, -1};
+  q.depth = 1;
+  q.maxContacts = 32;
+  const int n = contacts(m, q, work, found);
+  ASSERT_EQ(n, int(found.size()));
+  bool floor = false, wall = false;
+  for (const ContactInfo& c : found) {
+    floor |= c.normal == Vec3(0, 0, 1);
+    wall |= c.normal == Vec3(-1, 0, 0);
+  }
+  EXPECT_TRUE(floor);
+  EXPECT_TRUE(wall);
+  q.maxContacts = 1;
+  EXPECT_EQ(contacts(m, q, work, found), 1);
+  q.depth = 0;
+  EXPECT_EQ(contacts(m, q, work, found), 0);
+}
+
+TEST(PointContents, SeesBrushesAndHandlesRotation) {
+  const CollisionModel m = ModelMaker()
+                               .addBox({{0, 0, 0}, {10, 10, 10}})
+                               .addBox({{20, 0, 0}, {30, 10, 10}}, contents::kWater)
+                               .build();
+  EXPECT_EQ(pointContents(m, {5, 5, 5}), contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(pointContents(m, {25, 5, 5}), contents::kWater);
+  EXPECT_EQ(pointContents(m, {15, 5, 5}), 0u);
+  EXPECT_EQ(pointContents(m, {10, 5, 5}), 0u);  // on a plane is outside
+  // Turned 90 degrees about z: model x points along world y.
+  const Placement turned{{0, 0, 0}, Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}};
+  EXPECT_EQ(pointContents(m, {-5, 25, 5}, turned), contents::kWater);
+  EXPECT_EQ(pointContents(m, {25, 5, 5}, turned), 0u);
+}
