@@ -63,6 +63,23 @@ inline constexpr Real kSplitterMinDistance = 32.0f;
 inline constexpr Real kMaxWorldCoord = 131072.0f;
 /// original: polygons with more edges are truncated (with a warning).
 inline constexpr int kMaxPolygonEdges = 64;
+/// original: base windings of brush planes are squares this wide (twice
+/// kMaxWorldCoord), so that clipping by the other brush planes cuts them down.
+inline constexpr Real kMaxWorldSize = 262144.0f;
+/// original: at most this many fragments while chopping a polygon by one
+/// brush; beyond it the polygon is kept unchopped (with a warning).
+inline constexpr int kMaxWindingList = 128;
+/// original: a patch grid cell becomes one quad when its fourth point is
+/// closer than this to the plane of the first three, else two triangles.
+inline constexpr Real kPatchQuadPlanarEpsilon = 0.1f;
+/// original (dhewm3): the vertex weld hash puts a vertex in the 4-unit cell of
+/// coordinate - modelMin + this offset ...
+inline constexpr double kVertexHashOffset = 0.38;
+/// ... and searches the cells of offset -+ this spread too, so that vertices
+/// within kVertexEpsilon across a cell border are found.
+inline constexpr double kVertexHashSpread = 0.1;
+/// original: vertex hash bounds (+-) of a model without brushes.
+inline constexpr Real kDefaultHashBounds = 256.0f;
 
 // ---- Geometry helpers ------------------------------------------------------
 
