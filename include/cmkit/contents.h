@@ -73,7 +73,7 @@ std::string contentsToString(std::uint32_t flags);
 std::string contentsToStringExact(std::uint32_t flags);
 
 /// Parses a mask the way the query format writes it: comma-separated names,
-/// or an integer in decimal or 0x hexadecimal.
+/// or an integer in decimal (negative: two's complement, -1 = all) or 0x hex.
 Result<std::uint32_t> parseContentsMask(std::string_view text);
 
 }  // namespace cmkit

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 
 namespace cmkit {
@@ -91,6 +92,15 @@ std::string contentsToStringExact(std::uint32_t flags) {
 
 Result<std::uint32_t> parseContentsMask(std::string_view text) {
   const std::string_view t = trim(text);
+  if (!t.empty() && t.front() == '-') {
+    // A negative decimal is taken as its 32-bit two's complement (-1 = all).
+    std::int64_t value = 0;
+    auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+    if (ec != std::errc() || ptr != t.data() + t.size() || value < INT32_MIN) {
+      return Error{"bad content mask '" + std::string(t) + "': not a 32-bit integer"};
+    }
+    return std::uint32_t(std::int32_t(value));
+  }
   if (!t.empty() && t.front() >= '0' && t.front() <= '9') {
     std::uint32_t value = 0;
     const bool hex = t.size() > 2 && t[0] == '0' && (t[1] == 'x' || t[1] == 'X');

@@ -79,6 +79,9 @@ TEST(Contents, MaskParsing) {
   EXPECT_EQ(*parseContentsMask("0x10"), 16u);
   EXPECT_EQ(*parseContentsMask("4294967295"), 0xFFFFFFFFu);
   EXPECT_FALSE(parseContentsMask("4294967296").ok());
+  EXPECT_EQ(*parseContentsMask("-1"), 0xFFFFFFFFu);
+  EXPECT_EQ(*parseContentsMask("-2147483648"), 0x80000000u);
+  EXPECT_FALSE(parseContentsMask("-2147483649").ok());
   EXPECT_FALSE(parseContentsMask("12abc").ok());
   EXPECT_FALSE(parseContentsMask("0xZZ").ok());
 }

@@ -1,0 +1,285 @@
+// The query format: parsing query lines, running them, formatting results.
+#include "cmkit/query_file.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace cmkit {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r' || s.back() == '\n'))
+    s.remove_suffix(1);
+  return s;
+}
+
+// Thrown inside this file only, turned into an "error=" line.
+struct LineError {
+  std::string reason;
+};
+
+bool parseFloat(std::string_view text, Real& out) {
+  const std::string s(text);
+  if (s.empty()) return false;
+  char* end = nullptr;
+  const float v = std::strtof(s.c_str(), &end);
+  if (end != s.c_str() + s.size() || !std::isfinite(v)) return false;
+  out = v;
+  return true;
+}
+
+std::vector<Real> parseFloats(std::string_view text, std::size_t count, const char* key) {
+  std::vector<Real> values;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', pos);
+    Real v;
+    if (!parseFloat(text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos),
+                    v))
+      throw LineError{std::string("bad number in ") + key};
+    values.push_back(v);
+    if (comma == std::string_view::npos) break;
+    pos = comma + 1;
+  }
+  if (values.size() != count)
+    throw LineError{std::string(key) + " needs " + std::to_string(count) + " numbers"};
+  return values;
+}
+
+Vec3 parseVec(std::string_view text, const char* key) {
+  const auto v = parseFloats(text, 3, key);
+  return {v[0], v[1], v[2]};
+}
+
+Mat3 parseAxis(std::string_view text, const char* key) {
+  const auto v = parseFloats(text, 9, key);
+  const Mat3 m{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}};
+  auto checked = validateAxis(m);
+  if (!checked) throw LineError{std::string(key) + ": " + checked.error().message};
+  return *checked;
+}
+
+// %.9g, which prints -0 as "-0" as the reference files do.
+void appendReal(std::string& out, Real v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", double(v));
+  out += buf;
+}
+void appendVec(std::string& out, const Vec3& v) {
+  appendReal(out, v.x);
+  out += ',';
+  appendReal(out, v.y);
+  out += ',';
+  appendReal(out, v.z);
+}
+
+void appendContact(std::string& out, const CollisionModel& model, const ContactInfo& c,
+                   const std::string& suffix) {
+  out += "type" + suffix + "=";
+  out += toString(c.type);
+  out += " point" + suffix + "=";
+  appendVec(out, c.point);
+  out += " normal" + suffix + "=";
+  appendVec(out, c.normal);
+  out += " dist" + suffix + "=";
+  appendReal(out, c.dist);
+  out += " contents" + suffix + "=" + std::to_string(c.contents);
+  out += " material" + suffix + "=";
+  const std::string_view mat = model.materialName(c.material);
+  out += mat.empty() ? std::string_view("-") : mat;
+  out += " modelfeature" + suffix + "=" + std::to_string(c.modelFeature);
+  out += " trmfeature" + suffix + "=" + std::to_string(c.trmFeature);
+}
+
+void appendTrace(std::string& out, const CollisionModel& model, const TraceResult& r) {
+  out += "fraction=";
+  appendReal(out, r.fraction);
+  out += " endpos=";
+  appendVec(out, r.endPos);
+  out += " endaxis=";
+  for (int i = 0; i < 3; ++i) {
+    if (i) out += ',';
+    appendVec(out, r.endAxis[i]);
+  }
+  out += ' ';
+  appendContact(out, model, r.contact, "");
+}
+
+// The key=value pairs of a line.
+class Fields {
+ public:
+  explicit Fields(std::string_view rest) {
+    std::size_t pos = 0;
+    while (pos < rest.size()) {
+      while (pos < rest.size() && (rest[pos] == ' ' || rest[pos] == '\t')) ++pos;
+      if (pos >= rest.size()) break;
+      std::size_t end = pos;
+      while (end < rest.size() && rest[end] != ' ' && rest[end] != '\t') ++end;
+      const std::string_view tok = rest.substr(pos, end - pos);
+      const std::size_t eq = tok.find('=');
+      if (eq == std::string_view::npos || eq == 0)
+        throw LineError{"expected key=value, got '" + std::string(tok) + "'"};
+      map_[std::string(tok.substr(0, eq))] = tok.substr(eq + 1);
+      pos = end;
+    }
+  }
+  std::optional<std::string_view> get(const std::string& key) {
+    auto it = map_.find(key);
+    if (it == map_.end()) return std::nullopt;
+    used_.push_back(key);
+    return it->second;
+  }
+  std::string_view require(const std::string& key) {
+    auto v = get(key);
+    if (!v) throw LineError{"missing " + key};
+    return *v;
+  }
+  /// Errors on keys the operation does not take.
+  void checkAllUsed() const {
+    for (const auto& [k, v] : map_) {
+      bool used = false;
+      for (const auto& u : used_) used |= u == k;
+      if (!used) throw LineError{"unknown key " + k};
+    }
+  }
+
+ private:
+  std::unordered_map<std::string, std::string_view> map_;
+  std::vector<std::string> used_;
+};
+
+const CollisionModel& selectModel(std::span<const ModelPtr> models, Fields& f) {
+  if (models.empty()) throw LineError{"no models loaded"};
+  const auto name = f.get("model");
+  if (!name) return *models[0];
+  if (!name->empty() && name->front() == '#') {
+    const std::string digits(name->substr(1));
+    char* end = nullptr;
+    const long n = std::strtol(digits.c_str(), &end, 10);
+    if (digits.empty() || *end || n < 0 || std::size_t(n) >= models.size())
+      throw LineError{"unknown model " + std::string(*name)};
+    return *models[std::size_t(n)];
+  }
+  for (const ModelPtr& m : models)
+    if (m->name == *name) return *m;
+  throw LineError{"unknown model " + std::string(*name)};
+}
+
+std::uint32_t parseMask(Fields& f) {
+  const auto text = f.get("mask");
+  if (!text) return contents::kMaskSolid;
+  auto mask = parseContentsMask(*text);
+  if (!mask) throw LineError{"bad mask"};
+  return *mask;
+}
+
+std::optional<TraceModel> parseTrm(Fields& f) {
+  auto trm = TraceModel::parse(f.require("trm"));
+  if (!trm) {
+    std::string why = trm.error().message;
+    if (why.rfind("degenerate trm", 0) != 0) why = "bad trm (" + why + ")";
+    throw LineError{why};
+  }
+  if (trm->isPoint()) return std::nullopt;
+  return std::move(trm).value();
+}
+
+Placement parsePlacement(Fields& f) {
+  Placement p;
+  if (auto o = f.get("origin")) p.origin = parseVec(*o, "origin");
+  if (auto a = f.get("modelaxis")) p.axis = parseAxis(*a, "modelaxis");
+  return p;
+}
+
+std::string runLine(std::span<const ModelPtr> models, std::string_view line, QueryWork& work) {
+  const std::size_t sp = line.find_first_of(" \t");
+  const std::string_view op = line.substr(0, sp);
+  Fields f(sp == std::string_view::npos ? std::string_view() : line.substr(sp));
+  std::string out;
+  if (op == "pointcontents") {
+    const Vec3 pos = parseVec(f.require("pos"), "pos");
+    const CollisionModel& m = selectModel(models, f);
+    const Placement placement = parsePlacement(f);
+    f.checkAllUsed();
+    return "contents=" + std::to_string(pointContents(m, pos, placement));
+  }
+  if (op != "translation" && op != "contents" && op != "contacts" && op != "rotation")
+    throw LineError{"unknown operation '" + std::string(op) + "'"};
+  const std::optional<TraceModel> trm = parseTrm(f);
+  const TraceModel* trmPtr = trm ? &*trm : nullptr;
+  const Vec3 start = parseVec(f.require("start"), "start");
+  Mat3 trmAxis;
+  if (auto a = f.get("trmaxis")) trmAxis = parseAxis(*a, "trmaxis");
+  const std::uint32_t mask = parseMask(f);
+  const CollisionModel& m = selectModel(models, f);
+  const Placement placement = parsePlacement(f);
+  if (op == "translation") {
+    const Vec3 end = parseVec(f.require("end"), "end");
+    f.checkAllUsed();
+    TranslationQuery q{trmPtr, trmAxis, start, end, mask, placement, false};
+    appendTrace(out, m, translate(m, q, work));
+    return out;
+  }
+  if (op == "contents") {
+    f.checkAllUsed();
+    const ContentsResult r = contentsTest(m, {trmPtr, trmAxis, start, mask, placement}, work);
+    out = "result=" + std::to_string(r.contents) + " ";
+    appendTrace(out, m, r.trace);
+    return out;
+  }
+  if (op == "contacts") {
+    ContactsQuery q;
+    q.trm = trmPtr;
+    q.trmAxis = trmAxis;
+    q.start = start;
+    q.dir = parseVec(f.require("dir"), "dir");
+    if (!parseFloat(f.require("depth"), q.depth)) throw LineError{"bad number in depth"};
+    q.contentMask = mask;
+    q.model = placement;
+    if (auto mx = f.get("max")) {
+      Real v;
+      if (!parseFloat(*mx, v) || v < 0 || v != std::floor(v) || v > 1e6f) throw LineError{"bad max"};
+      q.maxContacts = int(v);
+    }
+    f.checkAllUsed();
+    std::vector<ContactInfo> found;
+    const int n = contacts(m, q, work, found);
+    out = "count=" + std::to_string(n);
+    for (int i = 0; i < n; ++i) {
+      out += ' ';
+      appendContact(out, m, found[std::size_t(i)], "." + std::to_string(i));
+    }
+    return out;
+  }
+  // rotation
+  const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
+  parseVec(f.require("rotorigin"), "rotorigin");
+  Real angle;
+  if (!parseFloat(f.require("angle"), angle)) throw LineError{"bad number in angle"};
+  if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
+  f.checkAllUsed();
+  throw LineError{"unsupported"};
+}
+
+}  // namespace
+
+bool isQueryLine(std::string_view line) {
+  const std::string_view t = trim(line);
+  return !t.empty() && t.front() != '#';
+}
+
+std::string answerQueryLine(std::span<const ModelPtr> models, std::string_view line, QueryWork& work) {
+  try {
+    return runLine(models, trim(line), work);
+  } catch (const LineError& e) {
+    return "error=" + e.reason;
+  }
+}
+
+}  // namespace cmkit
