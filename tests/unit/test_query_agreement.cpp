@@ -1,0 +1,210 @@
+// Agreement with the original implementation: every query file in
+// shared/reference is answered and compared with the original's results by
+// the rules of shared/tools/agree.py. Where the original is known to be wrong
+// (shared/reference/README.md), the difference must be explained by an
+// independent re-implementation of the original's mistake.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "cmkit/build.h"
+#include "cmkit/cm_file.h"
+#include "cmkit/map.h"
+#include "cmkit/query_file.h"
+#include "test_support.h"
+
+using namespace cmkit;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Fields = std::map<std::string, std::string>;
+
+Fields fieldsOf(const std::string& line) {
+  Fields f;
+  std::istringstream in(line);
+  for (std::string tok; in >> tok;) {
+    const auto eq = tok.find('=');
+    if (eq != std::string::npos) f[tok.substr(0, eq)] = tok.substr(eq + 1);
+  }
+  return f;
+}
+
+std::vector<double> numbers(const std::string& s) {
+  std::vector<double> v;
+  std::istringstream in(s);
+  for (std::string tok; std::getline(in, tok, ',');) v.push_back(std::strtod(tok.c_str(), nullptr));
+  return v;
+}
+
+bool close(const std::string& a, const std::string& b, double eps) {
+  const auto x = numbers(a), y = numbers(b);
+  if (x.size() != y.size() || x.empty()) return false;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!(std::fabs(x[i] - y[i]) <= eps)) return false;
+  return true;
+}
+
+// agree.py's verdict: "agree", "tie?" or a reason.
+std::string judge(const std::string& op, const Fields& ref, const Fields& got) {
+  if (ref.count("error") || got.count("error"))
+    return ref.count("error") && got.count("error") ? "agree" : "error";
+  if (op == "pointcontents") return ref.at("contents") == got.at("contents") ? "agree" : "contents";
+  if (op == "contacts") return ref.at("count") == got.at("count") ? "agree" : "count";
+  if (!close(ref.at("fraction"), got.at("fraction"), 1e-4)) return "fraction";
+  if (!close(ref.at("endpos"), got.at("endpos"), 1e-2)) return "endpos";
+  if (op == "contents" && ref.at("result") != got.at("result")) return "result";
+  if (numbers(ref.at("fraction"))[0] < 1 && !close(ref.at("normal"), got.at("normal"), 1e-3)) return "tie?";
+  return "agree";
+}
+
+bool refusedByOriginal(const std::string& op, const Fields& q) {
+  if (op != "translation" || q.at("trm") == "point") return false;
+  const auto s = numbers(q.at("start")), e = numbers(q.at("end"));
+  return std::hypot(s[0] - e[0], s[1] - e[1], s[2] - e[2]) > 4096.0;
+}
+
+// The original's PointContents, reproduced independently with its two
+// mistakes: only the leaf's brushes are looked at, and the model axis is
+// applied the wrong way round (row vector times axis, not axis times vector).
+std::uint32_t originalPointContents(const CollisionModel& m, const Fields& q, const std::string& posKey) {
+  const auto pos = numbers(q.at(posKey));
+  double p[3] = {pos[0], pos[1], pos[2]};
+  if (q.count("origin")) {
+    const auto o = numbers(q.at("origin"));
+    for (int i = 0; i < 3; ++i) p[i] -= o[i];
+  }
+  float fp[3] = {float(p[0]), float(p[1]), float(p[2])};
+  if (q.count("modelaxis")) {
+    const auto a = numbers(q.at("modelaxis"));
+    float r[3];
+    for (int j = 0; j < 3; ++j)
+      r[j] = fp[0] * float(a[0 + j]) + fp[1] * float(a[3 + j]) + fp[2] * float(a[6 + j]);
+    for (int j = 0; j < 3; ++j) fp[j] = r[j];
+  }
+  std::size_t n = 0;
+  while (m.nodes[n].planeType >= 0)
+    n = std::size_t(m.nodes[n].children[fp[m.nodes[n].planeType] > m.nodes[n].planeDist ? 0 : 1]);
+  for (std::int32_t b : m.brushesAt(m.nodes[n])) {
+    const CmBrush& brush = m.brushes[std::size_t(b)];
+    bool inside = true;
+    for (int i = 0; i < 3 && inside; ++i)
+      inside = fp[i] >= brush.bounds.min[i] && fp[i] <= brush.bounds.max[i];
+    for (const Plane& pl : m.planesOf(brush))
+      inside = inside && pl.normal.x * fp[0] + pl.normal.y * fp[1] + pl.normal.z * fp[2] - pl.dist < 0;
+    if (inside) return brush.contents;
+  }
+  return 0;
+}
+
+const CollisionModel& modelFor(const std::vector<ModelPtr>& models, const Fields& q) {
+  if (!q.count("model")) return *models[0];
+  const std::string& name = q.at("model");
+  if (name[0] == '#') return *models[std::size_t(std::stoi(name.substr(1)))];
+  for (const auto& m : models)
+    if (m->name == name) return *m;
+  return *models[0];
+}
+
+struct Tally {
+  int lines = 0, agree = 0, tie = 0, explained = 0;
+  std::vector<std::string> examples;
+};
+
+// Loads the models the reference results were made from.
+std::vector<ModelPtr> referenceModels(const std::string& name) {
+  const fs::path maps = test::sharedDir() / "maps";
+  const fs::path cm = maps / "rbdoom-unittests" / (name + ".cm");
+  if (fs::exists(cm)) {  // the reference ran these .cm files directly
+    auto file = loadCmFile(cm.string(), MaterialTable{});
+    EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().toString());
+    return file.ok() ? file->models : std::vector<ModelPtr>{};
+  }
+  for (const auto& dir : fs::directory_iterator(maps)) {
+    const fs::path map = dir.path() / (name + ".map");
+    if (!fs::exists(map)) continue;
+    auto parsed = loadMapFile(map.string());
+    EXPECT_TRUE(parsed.ok()) << (parsed.ok() ? "" : parsed.error().toString());
+    if (!parsed.ok()) return {};
+    auto built = buildCollisionModels(*parsed, MaterialTable{});
+    EXPECT_TRUE(built.ok());
+    return built.ok() ? *built : std::vector<ModelPtr>{};
+  }
+  ADD_FAILURE() << "no map or .cm for reference " << name;
+  return {};
+}
+
+}  // namespace
+
+TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
+  CMKIT_REQUIRE_SHARED();
+  std::map<std::string, Tally> total;
+  for (const auto& entry : fs::directory_iterator(test::sharedDir() / "reference")) {
+    const std::string file = entry.path().filename().string();
+    if (file.size() < 12 || file.substr(file.size() - 12) != ".queries.txt") continue;
+    const std::string name = file.substr(0, file.size() - 12);
+    SCOPED_TRACE(name);
+    const std::vector<ModelPtr> models = referenceModels(name);
+    ASSERT_FALSE(models.empty());
+    std::istringstream queries(test::readFile(entry.path()));
+    std::istringstream results(test::readFile(test::sharedDir() / "reference" / (name + ".results.txt")));
+    QueryWork work;
+    std::map<std::string, Tally> tally;
+    for (std::string q; std::getline(queries, q);) {
+      if (!isQueryLine(q)) continue;
+      std::string refLine;
+      std::getline(results, refLine);
+      const std::string op = q.substr(0, q.find(' '));
+      if (op == "rotation") continue;  // judged by the rotation tests
+      const Fields qf = fieldsOf(q);
+      if (refusedByOriginal(op, qf)) continue;
+      const std::string got = answerQueryLine(models, q, work);
+      const Fields ref = fieldsOf(refLine), ours = fieldsOf(got);
+      Tally& t = tally[op];
+      ++t.lines;
+      const std::string verdict = judge(op, ref, ours);
+      if (verdict == "agree") {
+        ++t.agree;
+        continue;
+      }
+      if (verdict == "tie?") {
+        ++t.tie;
+        continue;
+      }
+      // Point contents (pointcontents lines, and contents with a point) go
+      // through the original's PointContents: a difference is explained when
+      // the original's algorithm, mistakes included, gives the reference.
+      const bool pointQuery = op == "pointcontents" || (op == "contents" && qf.at("trm") == "point");
+      if (pointQuery && !ref.count("error")) {
+        const std::uint32_t original =
+            originalPointContents(modelFor(models, qf), qf, op == "pointcontents" ? "pos" : "start");
+        const std::string key = op == "pointcontents" ? "contents" : "result";
+        if (std::to_string(original) == ref.at(key)) {
+          ++t.explained;
+          continue;
+        }
+      }
+      if (t.examples.size() < 3)
+        t.examples.push_back(verdict + ": " + q + "\n  ref:  " + refLine + "\n  ours: " + got);
+    }
+    for (auto& [op, t] : tally) {
+      Tally& all = total[op];
+      all.lines += t.lines;
+      all.agree += t.agree;
+      all.tie += t.tie;
+      all.explained += t.explained;
+      const double rate = 100.0 * (t.agree + t.tie + t.explained) / std::max(1, t.lines);
+      EXPECT_GE(rate, 99.0) << op << " on " << name;
+      for (const auto& ex : t.examples) std::cout << "[" << name << "] " << ex << "\n";
+    }
+  }
+  for (const auto& [op, t] : total) {
+    const double rate = 100.0 * (t.agree + t.tie + t.explained) / std::max(1, t.lines);
+    std::cout << op << ": " << t.lines << " lines, agree " << t.agree << ", tie? " << t.tie
+              << ", original's documented bug " << t.explained << " -> " << rate << "%\n";
+    EXPECT_GE(rate, 99.5) << op << " over all reference maps";
+  }
+}
