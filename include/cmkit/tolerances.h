@@ -110,6 +110,23 @@ inline constexpr Real kAxisRejectTolerance = 0.05f;
 inline constexpr Real kTrmPointEpsilon = 1e-3f;
 /// A trace-model polygon vertex may be this far from the polygon's plane.
 inline constexpr Real kTrmPlanarEpsilon = 1e-2f;
+/// TrmFromModel: a model is convex when no vertex is farther than this in
+/// front of any polygon plane (.cm coordinates carry ~1e-3 of print noise).
+inline constexpr Real kTrmFromModelConvexEpsilon = 1e-2f;
+
+// ---- Validation (cmkit validate) -------------------------------------------
+
+/// A normal is "unit" when its squared length is within this of 1 (.cm
+/// files print normals with 10 decimals).
+inline constexpr Real kValidateUnitEpsilon = 1e-3f;
+/// A polygon vertex may lie this far off the polygon's plane: vertex
+/// welding (kVertexEpsilon) and integral snapping move built vertices (the
+/// shared .cm files reach 0.109).
+inline constexpr Real kValidatePlanarEpsilon = 0.25f;
+/// Bounds (polygon, brush, node region, model) are checked grown by this:
+/// the original takes polygon bounds from the winding before welding moves
+/// its vertices by up to kVertexEpsilon (the shared .cm files reach 0.096).
+inline constexpr Real kValidateBoundsEpsilon = 0.25f;
 
 // ---- Patches (map parser and tessellation) ---------------------------------
 

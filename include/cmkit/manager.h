@@ -1,0 +1,162 @@
+// manager.h: a collection of collision models addressed by handles (the
+// original's collision model manager, without its global state).
+//
+// A ModelManager owns models and hands out ModelHandles, small integers that
+// index its table. After loadMap, handle 0 is the world model (the map's
+// first model) and the others follow in entity order. Handles are never
+// reused while the manager lives, except that loadMap() and clear() start
+// the table again: freeing one model leaves every other handle valid.
+//
+// Thread safety: every member function may be called from any thread at any
+// time. Models are immutable and handed out as shared_ptrs, so a model being
+// queried stays alive even if another thread frees it or loads a new map;
+// loading (parsing and building) happens outside the manager's lock, so
+// queries on already loaded models never wait for a load.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <shared_mutex>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "cmkit/build.h"
+#include "cmkit/contents.h"
+#include "cmkit/materials.h"
+#include "cmkit/model.h"
+#include "cmkit/result.h"
+#include "cmkit/trace_model.h"
+
+namespace cmkit {
+
+/// A handle to a model of a ModelManager: an index into its table.
+struct ModelHandle {
+  std::int32_t index = -1;  ///< -1: no model
+
+  constexpr bool valid() const { return index >= 0; }
+  constexpr auto operator<=>(const ModelHandle&) const = default;
+};
+
+/// The world model's handle after ModelManager::loadMap.
+inline constexpr ModelHandle kWorldModelHandle{0};
+
+/// How ModelManager::loadMap gets its models.
+struct LoadMapOptions {
+  /// Build from the map even if NAME.cm next to it matches the map's CRC.
+  bool forceRebuild = false;
+  /// After building, write NAME.cm next to the map, as the original does
+  /// (off by default: a library should not write files unasked).
+  bool writeCmFile = false;
+  /// Passed to buildCollisionModels.
+  BuildOptions build;
+};
+
+/// What loadMap did.
+struct LoadMapResult {
+  std::vector<ModelHandle> handles;  ///< one per model, world first
+  bool fromCmFile = false;           ///< true: NAME.cm was loaded instead of building
+  std::string cmPath;                ///< the .cm file loaded or written, if any
+  std::uint32_t geometryCrc = 0;     ///< the map's geometry CRC
+};
+
+/// One line of ModelManager::list.
+struct ModelListEntry {
+  ModelHandle handle;
+  std::string name;
+  ModelPtr model;
+};
+
+/// A set of collision models addressed by handles. See the file comment for
+/// the handle and threading rules.
+class ModelManager {
+ public:
+  ModelManager() = default;
+  ModelManager(const ModelManager&) = delete;
+  ModelManager& operator=(const ModelManager&) = delete;
+
+  /// Loads a map's models, replacing every model of the manager: NAME.cm
+  /// next to the map when its CRC equals the map's geometry CRC (or is 0)
+  /// and options.forceRebuild is off, else built with buildCollisionModels.
+  /// On error the manager is unchanged.
+  Result<LoadMapResult> loadMap(const std::string& mapPath, const MaterialTable& materials,
+                                const LoadMapOptions& options = {});
+  /// Loads every model of a .cm file and adds them (handles in file order).
+  /// On error nothing is added.
+  Result<std::vector<ModelHandle>> loadCm(const std::string& path, const MaterialTable& materials);
+  /// Adds a model built elsewhere.
+  ModelHandle add(ModelPtr model);
+  /// Adds the collision model of a trace model (the original's
+  /// SetupTrmModel): any number may exist at once. See
+  /// collisionModelFromTraceModel.
+  ModelHandle addTraceModel(const TraceModel& trm, std::uint32_t contents = contents::kSolid,
+                            std::string material = {});
+
+  /// The handle of the first model with this name (case-sensitive), or
+  /// "#N" for handle N. An unknown name is an error (never the world).
+  Result<ModelHandle> find(std::string_view name) const;
+  /// The model, or nullptr for a handle that is out of range or freed.
+  ModelPtr get(ModelHandle handle) const;
+  /// The model, or an error naming the bad handle.
+  Result<ModelPtr> require(ModelHandle handle) const;
+
+  /// Frees one model; its handle becomes invalid, all others stay valid.
+  Status free(ModelHandle handle);
+  /// Frees every model (handles start at 0 again).
+  void clear();
+  /// The live models in handle order.
+  std::vector<ModelListEntry> list() const;
+  /// Number of live models.
+  std::size_t size() const;
+
+  /// Name, bounds and contents of a model.
+  Result<std::string> name(ModelHandle handle) const;
+  Result<Bounds> bounds(ModelHandle handle) const;
+  Result<std::uint32_t> contents(ModelHandle handle) const;
+  /// The model's vertex positions.
+  Result<std::vector<Vec3>> vertices(ModelHandle handle) const;
+  /// Edge e (1-based, as in the model) as its two end points.
+  Result<std::array<Vec3, 2>> edge(ModelHandle handle, std::size_t e) const;
+  /// Polygon p as its winding (vertex loop, counter-clockwise seen from the
+  /// front).
+  Result<std::vector<Vec3>> polygonWinding(ModelHandle handle, std::size_t p) const;
+  /// The original's PrintModel text for a model (see modelStatistics).
+  Result<std::string> printModel(ModelHandle handle) const;
+  /// A convex model back as a trace model (see traceModelFromCollisionModel).
+  Result<TraceModel> trmFromModel(ModelHandle handle) const;
+
+ private:
+  std::string handleError(ModelHandle handle) const;  // call with the lock held
+
+  mutable std::shared_mutex mutex_;
+  std::vector<ModelPtr> models_;  // nullptr: freed
+  std::unordered_map<std::string, std::vector<std::int32_t>> byName_;
+};
+
+/// The collision model of a trace model (the original's SetupTrmModel): its
+/// vertices, edges (with the trace model's edge normals and numbering) and
+/// polygons, every polygon with `contents` and `material`, one leaf holding
+/// all polygons in order, no brushes, isConvex = true, named "trace model".
+ModelPtr collisionModelFromTraceModel(const TraceModel& trm, std::uint32_t contents = contents::kSolid,
+                                      std::string material = {});
+
+/// A convex collision model as a trace model (the original's TrmFromModel):
+/// the convex hull of its polygons' vertices. Errors: the model has no
+/// polygons, is not closed (an edge not used by exactly two polygons), is
+/// concave (a vertex more than tol::kTrmFromModelConvexEpsilon in front of a
+/// polygon), or exceeds the trace model limits (vertices, edges, polygons,
+/// edges per polygon).
+Result<TraceModel> traceModelFromCollisionModel(const CollisionModel& model);
+
+/// A polygon's vertex loop, in edge order.
+std::vector<Vec3> polygonWinding(const CollisionModel& model, std::size_t polygon);
+
+/// The original's PrintModel lines for one model: its name, then vertices,
+/// edges, polygons, brushes, nodes, polygon refs, brush refs (each with the
+/// memory the original's 64-bit structures take, in KB), internal and sharp
+/// edges, contained polygons removed, polygons merged, total memory in KB.
+std::string modelStatistics(const CollisionModel& model);
+
+}  // namespace cmkit

@@ -1,0 +1,46 @@
+// validate.h: checking the invariants of a collision model (for `cmkit
+// validate`, tests, and anyone loading models from untrusted files).
+//
+// Checks, each violation reported with the model name and item number:
+//  - vertices: finite coordinates;
+//  - edges: vertex numbers in range, two different vertices, used by at most
+//    two polygons (and by two only in opposite directions);
+//  - polygons: at least 3 edges, edge numbers in range and not 0, no edge
+//    twice, the edge loop continuous (each edge starts where the previous
+//    one ends), a unit normal, every vertex within tol::kValidatePlanarEpsilon
+//    of the plane, the bounds containing the vertices (within
+//    tol::kValidateBoundsEpsilon), a material index in range;
+//  - brushes: unit normals, the planes enclosing a bounded, non-empty
+//    volume whose corners lie inside the brush bounds (within
+//    tol::kValidateBoundsEpsilon), plane ranges in range;
+//  - tree: nodes[0] the root, children and parents consistent, pre-order
+//    storage, plane types 0..2, reference ranges and item numbers in range,
+//    every polygon and brush referenced at least once, every referenced
+//    item's bounds touching its node's region, the model bounds containing
+//    every item.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cmkit/model.h"
+
+namespace cmkit {
+
+/// One broken invariant.
+struct Violation {
+  std::string model;     ///< model name
+  std::string itemKind;  ///< "vertex", "edge", "polygon", "brush", "node" or "model"
+  std::int64_t item = -1;
+  std::string message;
+
+  /// "model "NAME" polygon 12: message".
+  std::string toString() const;
+};
+
+/// Every violation of the model's invariants (empty: all hold). At most
+/// `maxViolations` are reported.
+std::vector<Violation> validateModel(const CollisionModel& model, std::size_t maxViolations = 1000);
+
+}  // namespace cmkit

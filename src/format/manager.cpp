@@ -1,0 +1,224 @@
+// The model manager: a handle table of shared, immutable models guarded by a
+// shared mutex. Loading and building happen outside the lock.
+#include "cmkit/manager.h"
+
+#include <charconv>
+#include <filesystem>
+#include <mutex>
+
+#include "cmkit/cm_file.h"
+
+namespace cmkit {
+
+namespace {
+
+// NAME.map -> NAME.cm (any extension replaced; none: appended).
+std::string cmPathForMap(const std::string& mapPath) {
+  std::filesystem::path p(mapPath);
+  p.replace_extension(".cm");
+  return p.string();
+}
+
+}  // namespace
+
+std::string ModelManager::handleError(ModelHandle handle) const {
+  if (!handle.valid() || std::size_t(handle.index) >= models_.size())
+    return "no model with handle " + std::to_string(handle.index);
+  return "model " + std::to_string(handle.index) + " has been freed";
+}
+
+Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const MaterialTable& materials,
+                                            const LoadMapOptions& options) {
+  Result<MapFile> map = loadMapFile(mapPath);
+  if (!map) return map.error();
+  LoadMapResult result;
+  result.geometryCrc = map->geometryCrc;
+  std::vector<ModelPtr> models;
+  const std::string cmPath = cmPathForMap(mapPath);
+  // The original's LoadMap: a .cm written for exactly this geometry is used
+  // instead of building. A .cm that fails to parse is ignored (rebuilt).
+  if (!options.forceRebuild && std::filesystem::exists(cmPath)) {
+    Result<std::uint32_t> crc = readCmFileCrc(cmPath);
+    if (crc && (*crc == map->geometryCrc || *crc == 0)) {
+      Result<CmFile> cm = loadCmFile(cmPath, materials);
+      if (cm) {
+        models = std::move(cm->models);
+        result.fromCmFile = true;
+        result.cmPath = cmPath;
+      }
+    }
+  }
+  if (!result.fromCmFile) {
+    Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, options.build);
+    if (!built) return built.error();
+    models = std::move(*built);
+    if (options.writeCmFile) {
+      Status saved = saveCmFile(cmPath, models, map->geometryCrc);
+      if (!saved) return saved.error();
+      result.cmPath = cmPath;
+    }
+  }
+  std::unique_lock lock(mutex_);
+  models_.clear();
+  byName_.clear();
+  for (ModelPtr& m : models) {
+    const auto index = std::int32_t(models_.size());
+    byName_[m->name].push_back(index);
+    models_.push_back(std::move(m));
+    result.handles.push_back(ModelHandle{index});
+  }
+  return result;
+}
+
+Result<std::vector<ModelHandle>> ModelManager::loadCm(const std::string& path,
+                                                      const MaterialTable& materials) {
+  Result<CmFile> cm = loadCmFile(path, materials);
+  if (!cm) return cm.error();
+  std::vector<ModelHandle> handles;
+  std::unique_lock lock(mutex_);
+  for (ModelPtr& m : cm->models) {
+    const auto index = std::int32_t(models_.size());
+    byName_[m->name].push_back(index);
+    models_.push_back(std::move(m));
+    handles.push_back(ModelHandle{index});
+  }
+  return handles;
+}
+
+ModelHandle ModelManager::add(ModelPtr model) {
+  if (!model) return {};
+  std::unique_lock lock(mutex_);
+  const auto index = std::int32_t(models_.size());
+  byName_[model->name].push_back(index);
+  models_.push_back(std::move(model));
+  return ModelHandle{index};
+}
+
+ModelHandle ModelManager::addTraceModel(const TraceModel& trm, std::uint32_t contents, std::string material) {
+  return add(collisionModelFromTraceModel(trm, contents, std::move(material)));
+}
+
+Result<ModelHandle> ModelManager::find(std::string_view name) const {
+  std::shared_lock lock(mutex_);
+  if (auto it = byName_.find(std::string(name)); it != byName_.end()) {
+    for (const std::int32_t index : it->second)
+      if (models_[std::size_t(index)]) return ModelHandle{index};
+  }
+  if (name.size() > 1 && name[0] == '#') {  // "#N": handle N
+    std::int32_t index = -1;
+    const auto r = std::from_chars(name.data() + 1, name.data() + name.size(), index);
+    if (r.ec == std::errc() && r.ptr == name.data() + name.size() && index >= 0 &&
+        std::size_t(index) < models_.size() && models_[std::size_t(index)])
+      return ModelHandle{index};
+  }
+  return Error("no model named \"" + std::string(name) + "\"");
+}
+
+ModelPtr ModelManager::get(ModelHandle handle) const {
+  std::shared_lock lock(mutex_);
+  if (!handle.valid() || std::size_t(handle.index) >= models_.size()) return nullptr;
+  return models_[std::size_t(handle.index)];
+}
+
+Result<ModelPtr> ModelManager::require(ModelHandle handle) const {
+  std::shared_lock lock(mutex_);
+  if (handle.valid() && std::size_t(handle.index) < models_.size() && models_[std::size_t(handle.index)])
+    return models_[std::size_t(handle.index)];
+  return Error(handleError(handle));
+}
+
+Status ModelManager::free(ModelHandle handle) {
+  ModelPtr released;  // destroyed after the lock is released
+  std::unique_lock lock(mutex_);
+  if (!handle.valid() || std::size_t(handle.index) >= models_.size() || !models_[std::size_t(handle.index)])
+    return Error(handleError(handle));
+  released = std::move(models_[std::size_t(handle.index)]);
+  auto it = byName_.find(released->name);
+  if (it != byName_.end()) {
+    std::erase(it->second, handle.index);
+    if (it->second.empty()) byName_.erase(it);
+  }
+  return Ok{};
+}
+
+void ModelManager::clear() {
+  std::vector<ModelPtr> released;
+  std::unique_lock lock(mutex_);
+  released.swap(models_);
+  byName_.clear();
+}
+
+std::vector<ModelListEntry> ModelManager::list() const {
+  std::shared_lock lock(mutex_);
+  std::vector<ModelListEntry> out;
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    if (models_[i]) out.push_back({ModelHandle{std::int32_t(i)}, models_[i]->name, models_[i]});
+  }
+  return out;
+}
+
+std::size_t ModelManager::size() const {
+  std::shared_lock lock(mutex_);
+  std::size_t n = 0;
+  for (const ModelPtr& m : models_) n += m != nullptr;
+  return n;
+}
+
+Result<std::string> ModelManager::name(ModelHandle handle) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  return (*m)->name;
+}
+
+Result<Bounds> ModelManager::bounds(ModelHandle handle) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  return (*m)->bounds;
+}
+
+Result<std::uint32_t> ModelManager::contents(ModelHandle handle) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  return (*m)->contents;
+}
+
+Result<std::vector<Vec3>> ModelManager::vertices(ModelHandle handle) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  return (*m)->vertices;
+}
+
+Result<std::array<Vec3, 2>> ModelManager::edge(ModelHandle handle, std::size_t e) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  const CollisionModel& model = **m;
+  if (e == 0 || e >= model.edges.size())
+    return Error("model \"" + model.name + "\" has no edge " + std::to_string(e) + " (edges are 1.." +
+                 std::to_string(model.numEdges()) + ")");
+  const CmEdge& edge = model.edges[e];
+  return std::array<Vec3, 2>{model.vertices[std::size_t(edge.vertex[0])],
+                             model.vertices[std::size_t(edge.vertex[1])]};
+}
+
+Result<std::vector<Vec3>> ModelManager::polygonWinding(ModelHandle handle, std::size_t p) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  if (p >= (*m)->polygons.size())
+    return Error("model \"" + (*m)->name + "\" has no polygon " + std::to_string(p) + " (it has " +
+                 std::to_string((*m)->polygons.size()) + ")");
+  return cmkit::polygonWinding(**m, p);
+}
+
+Result<std::string> ModelManager::printModel(ModelHandle handle) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  return modelStatistics(**m);
+}
+
+Result<TraceModel> ModelManager::trmFromModel(ModelHandle handle) const {
+  Result<ModelPtr> m = require(handle);
+  if (!m) return m.error();
+  return traceModelFromCollisionModel(**m);
+}
+
+}  // namespace cmkit
