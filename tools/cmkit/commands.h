@@ -9,6 +9,13 @@ namespace cmkit::cli {
 /// `cmkit trm SPEC`: builds a trace model and prints its features.
 void registerTrm(CLI::App& app);
 
+/// `cmkit compile MAP`: builds the collision models of a map, prints their
+/// statistics, optionally writes a .cm file.
+void registerCompile(CLI::App& app);
+
+/// `cmkit info FILE`: statistics of the collision models of a file.
+void registerInfo(CLI::App& app);
+
 /// Exit code for bad input (files, arguments) as opposed to 0 = success.
 inline constexpr int kExitBadInput = 2;
 

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", fmt::format("cmkit {}.{}.{}", cmkit::kVersionMajor, cmkit::kVersionMinor,
                                                 cmkit::kVersionPatch));
   cmkit::cli::registerTrm(app);
+  cmkit::cli::registerCompile(app);
+  cmkit::cli::registerInfo(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

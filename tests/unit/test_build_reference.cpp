@@ -1,0 +1,210 @@
+// The map builder against the original: for every map with a statistics
+// file in the shared reference data, every model's name, bounds, contents
+// and counts (vertices, edges, polygons, brushes, nodes, references,
+// internal and sharp edges, contained polygons removed, polygons merged)
+// equal the original's; the CLI's report equals the original's text.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cmkit/build.h"
+#include "cmkit/map.h"
+#include "test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace cmkit;
+using cmkit::test::sharedDir;
+
+/// One "model N "name": bounds (...)-(...) contents C" block of a stats file.
+struct RefModel {
+  std::string header;  ///< the model line after "model N "
+  std::map<std::string, long long> counts;
+};
+
+std::vector<RefModel> parseStats(const fs::path& p) {
+  std::vector<RefModel> models;
+  std::istringstream in(cmkit::test::readFile(p));
+  std::string line;
+  const std::regex modelLine(R"(^model \d+ (.*)$)");
+  const std::regex countLine(R"(^\s*(\d+) ([a-z ]+?)( \(\d+ KB\))?$)");
+  std::smatch m;
+  while (std::getline(in, line)) {
+    if (std::regex_match(line, m, modelLine)) {
+      models.push_back({m[1].str(), {}});
+    } else if (!models.empty() && std::regex_match(line, m, countLine)) {
+      models.back().counts[m[2].str()] = std::stoll(m[1].str());
+    }
+  }
+  return models;
+}
+
+std::string g(float v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", static_cast<double>(v));
+  return buf;
+}
+
+std::string header(const CollisionModel& m) {
+  return "\"" + m.name + "\": bounds (" + g(m.bounds.min.x) + " " + g(m.bounds.min.y) + " " +
+         g(m.bounds.min.z) + ")-(" + g(m.bounds.max.x) + " " + g(m.bounds.max.y) + " " + g(m.bounds.max.z) +
+         ") contents " + std::to_string(m.contents);
+}
+
+std::map<std::string, long long> counts(const CollisionModel& m) {
+  return {{"vertices", static_cast<long long>(m.vertices.size())},
+          {"edges", static_cast<long long>(m.edges.size())},
+          {"polygons", static_cast<long long>(m.polygons.size())},
+          {"brushes", static_cast<long long>(m.brushes.size())},
+          {"nodes", static_cast<long long>(m.nodes.size()) - 1},
+          {"polygon refs", static_cast<long long>(m.polygonRefs.size())},
+          {"brush refs", static_cast<long long>(m.brushRefs.size())},
+          {"internal edges", m.stats.internalEdges},
+          {"sharp edges", m.stats.sharpEdges},
+          {"contained polygons removed", m.stats.containedPolygonsRemoved},
+          {"polygons merged", m.stats.polygonsMerged}};
+}
+
+/// Maps that have a stats file, with the path of their .map.
+std::vector<std::pair<std::string, fs::path>> mapsWithStats() {
+  std::vector<std::pair<std::string, fs::path>> out;
+  std::map<std::string, fs::path> maps;
+  for (const auto& e : fs::recursive_directory_iterator(sharedDir() / "maps")) {
+    if (e.is_regular_file() && e.path().extension() == ".map") maps[e.path().stem().string()] = e.path();
+  }
+  for (const auto& e : fs::directory_iterator(sharedDir() / "reference")) {
+    const std::string f = e.path().filename().string();
+    const std::string suffix = ".stats.txt";
+    if (f.size() <= suffix.size() || f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string name = f.substr(0, f.size() - suffix.size());
+    if (maps.count(name)) out.emplace_back(name, maps[name]);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
+  CMKIT_REQUIRE_SHARED();
+  const auto maps = mapsWithStats();
+  ASSERT_GE(maps.size(), 15u);
+  for (const auto& [name, path] : maps) {
+    SCOPED_TRACE(name);
+    auto map = loadMapFile(path.string());
+    ASSERT_TRUE(map.ok()) << map.error().toString();
+    auto models = buildCollisionModels(*map, MaterialTable{});
+    ASSERT_TRUE(models.ok());
+    const auto ref = parseStats(sharedDir() / "reference" / (name + ".stats.txt"));
+    ASSERT_EQ(models->size(), ref.size());
+    int mismatches = 0;
+    for (std::size_t i = 0; i < ref.size() && mismatches < 10; ++i) {
+      const CollisionModel& m = *(*models)[i];
+      if (header(m) != ref[i].header) {
+        ++mismatches;
+        ADD_FAILURE() << "model " << i << ": " << header(m) << " vs the original's " << ref[i].header;
+      }
+      for (const auto& [key, value] : counts(m)) {
+        const auto it = ref[i].counts.find(key);
+        ASSERT_NE(it, ref[i].counts.end()) << key;
+        if (it->second != value) {
+          ++mismatches;
+          ADD_FAILURE() << "model " << i << " \"" << m.name << "\": " << key << " " << value
+                        << ", the original " << it->second;
+        }
+      }
+    }
+  }
+}
+
+std::string runCapture(const std::string& cmd, int& status) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) {
+    status = -1;
+    return out;
+  }
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  status = pclose(p);
+  return out;
+}
+
+/// The text without the timing line (msec differ).
+std::string withoutTiming(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::string out;
+  while (std::getline(in, line)) {
+    if (line.find(" msec to ") != std::string::npos) continue;
+    out += line + "\n";
+  }
+  return out;
+}
+
+#define CMKIT_REQUIRE_CLI() \
+  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built"
+
+TEST(BuildReference, CliReportEqualsTheOriginalsText) {
+  CMKIT_REQUIRE_SHARED();
+  CMKIT_REQUIRE_CLI();
+  for (const std::string name : {"test", "box_room", "altar", "inline_patch", "water_clip", "portalsky"}) {
+    SCOPED_TRACE(name);
+    fs::path mapPath;
+    for (const auto& [n, p] : mapsWithStats()) {
+      if (n == name) mapPath = p;
+    }
+    ASSERT_FALSE(mapPath.empty());
+    int status = 0;
+    const std::string out =
+        runCapture(std::string(CMKIT_CLI_PATH) + " info '" + mapPath.string() + "'", status);
+    EXPECT_EQ(status, 0);
+    EXPECT_EQ(withoutTiming(out),
+              withoutTiming(cmkit::test::readFile(sharedDir() / "reference" / (name + ".stats.txt"))));
+  }
+}
+
+TEST(BuildReference, CliRejectsBrokenMapsWithFileAndLine) {
+  CMKIT_REQUIRE_CLI();
+  const fs::path dir = fs::temp_directory_path() / "cmkit_build_cli_test";
+  fs::create_directories(dir);
+  const fs::path bad = dir / "bad.map";
+  {
+    std::ofstream f(bad);
+    f << "Version 2\n{\n\"classname\" \"worldspawn\"\n{\nbrushDef3\n{\n( 0 0 1 oops ) \n}\n}\n}\n";
+  }
+  int status = 0;
+  const std::string out =
+      runCapture(std::string(CMKIT_CLI_PATH) + " compile '" + bad.string() + "' 2>&1", status);
+  EXPECT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(out.find("bad.map:7"), std::string::npos) << out;
+  const std::string missing =
+      runCapture(std::string(CMKIT_CLI_PATH) + " info '" + (dir / "none.map").string() + "' 2>&1", status);
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  fs::remove_all(dir);
+}
+
+TEST(BuildReference, CliJsonHasTotalsAndModels) {
+  CMKIT_REQUIRE_SHARED();
+  CMKIT_REQUIRE_CLI();
+  int status = 0;
+  const fs::path map = sharedDir() / "maps" / "synthetic" / "water_clip.map";
+  const std::string out =
+      runCapture(std::string(CMKIT_CLI_PATH) + " compile --json '" + map.string() + "'", status);
+  EXPECT_EQ(status, 0);
+  EXPECT_NE(out.find("\"total\": {\"models\": 3,"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"name\": \"worldMap\""), std::string::npos);
+  EXPECT_EQ(out.front(), '{');
+}
+}  // namespace

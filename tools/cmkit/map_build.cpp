@@ -1,0 +1,109 @@
+// The shared part of `cmkit compile` and `cmkit info`.
+#include "map_build.h"
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cmkit/build.h"
+#include "cmkit/cm_file.h"
+#include "cmkit/map.h"
+#include "cmkit/materials.h"
+#include "commands.h"
+#include "stats_print.h"
+
+namespace cmkit::cli {
+
+namespace {
+
+/// Maps at least this large (bytes) get a progress bar on a terminal.
+constexpr std::uintmax_t kProgressMinFileSize = 1u << 20;
+constexpr int kProgressBarWidth = 40;
+
+/// A progress bar on stderr, redrawn only when it changes.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
+  ~ProgressBar() { finish(); }
+  void update(std::size_t done, std::size_t total) {
+    if (!enabled_ || total == 0) return;
+    const int filled = static_cast<int>(done * kProgressBarWidth / total);
+    if (filled == lastFilled_ && done != total) return;
+    lastFilled_ = filled;
+    fmt::print(stderr, "\rbuilding [{}{}] {}/{} entities", std::string(static_cast<std::size_t>(filled), '#'),
+               std::string(static_cast<std::size_t>(kProgressBarWidth - filled), ' '), done, total);
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  void finish() {
+    if (drawn_) fmt::print(stderr, "\r\033[K");
+    drawn_ = false;
+  }
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  int lastFilled_ = -1;
+};
+
+}  // namespace
+
+int runMapBuild(const MapBuildRequest& request) {
+  const std::string& cmd = request.command;
+  MaterialTable materials;
+  if (!request.materialsDir.empty()) {
+    if (const Status st = materials.addMtrDirectory(request.materialsDir); !st) {
+      fmt::print(stderr, "cmkit {}: {}\n", cmd, st.error().toString());
+      return kExitBadInput;
+    }
+    for (const std::string& w : materials.warnings()) fmt::print(stderr, "warning: {}\n", w);
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  auto map = loadMapFile(request.mapPath);
+  if (!map) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, map.error().toString());
+    return kExitBadInput;
+  }
+
+  std::error_code ec;
+  const std::uintmax_t fileSize = std::filesystem::file_size(request.mapPath, ec);
+  ProgressBar bar(!request.json && isatty(fileno(stderr)) && !ec && fileSize >= kProgressMinFileSize);
+  std::vector<std::string> warnings;
+  BuildOptions options;
+  options.warnings = &warnings;
+  options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  auto models = buildCollisionModels(*map, materials, options);
+  bar.finish();
+  if (!models) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, models.error().toString());
+    return kExitBadInput;
+  }
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
+
+  if (!request.outPath.empty()) {
+    if (const Status st = saveCmFile(request.outPath, *models, map->geometryCrc); !st) {
+      fmt::print(stderr, "cmkit {}: {}\n", cmd, st.error().toString());
+      return kExitBadInput;
+    }
+  }
+
+  StatsContext context;
+  context.source = request.mapPath;
+  context.milliseconds = std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count();
+  context.entities = static_cast<long long>(map->entities.size());
+  context.perModel = !request.quiet;
+  if (request.json) {
+    fmt::print("{}", statsJson(*models, context));
+  } else {
+    printStatsText(stdout, *models, context);
+    if (!request.outPath.empty()) fmt::print("wrote {} ({} models)\n", request.outPath, models->size());
+  }
+  return 0;
+}
+
+}  // namespace cmkit::cli
