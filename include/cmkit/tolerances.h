@@ -30,6 +30,10 @@ inline constexpr Real kCircleApproximationLength = 64.0f;
 /// original: default epsilon of the bounds/plane side test used to cull
 /// polygons whose plane the trace bounds do not cross.
 inline constexpr Real kOnEpsilon = 0.1f;
+/// cmkit: a rotation walks the tree with the exact boxes of arc pieces at
+/// most kCircleApproximationLength long, but with no more than this many
+/// pieces per part below 180 degrees (more pieces only make smaller boxes).
+inline constexpr int kMaxRotationWalkPieces = 16;
 
 // ---- Building models -------------------------------------------------------
 

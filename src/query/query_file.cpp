@@ -259,12 +259,14 @@ std::string runLine(std::span<const ModelPtr> models, std::string_view line, Que
   }
   // rotation
   const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
-  parseVec(f.require("rotorigin"), "rotorigin");
+  const Vec3 rotOrigin = parseVec(f.require("rotorigin"), "rotorigin");
   Real angle;
   if (!parseFloat(f.require("angle"), angle)) throw LineError{"bad number in angle"};
   if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
   f.checkAllUsed();
-  throw LineError{"unsupported"};
+  const RotationQuery q{trmPtr, trmAxis, start, Rotation(rotOrigin, axis, angle), mask, placement, false};
+  appendTrace(out, m, rotate(m, q, work));
+  return out;
 }
 
 }  // namespace

@@ -103,6 +103,8 @@ struct WorkPolygon {
   bool used = false;
 };
 
+struct RotationWork;
+
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
   TraceWork(const CollisionModel& m, QueryWork::Scratch& s) : model(m), scratch(s) {}
@@ -133,6 +135,9 @@ struct TraceWork {
   Plane heartPlane1, heartPlane2;
   Real maxDistFromHeartPlane1 = 0, maxDistFromHeartPlane2 = 0;
 
+  // rotations (rotate.cpp): the per-feature rotation data; null otherwise
+  RotationWork* rotation = nullptr;
+
   // contacts mode
   std::vector<ContactInfo>* contacts = nullptr;
   int maxContacts = 0;
@@ -154,6 +159,13 @@ void traceThroughModel(TraceWork& tw);
 
 /// Translation tests of one polygon; true when it blocks completely.
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
+
+/// Walks the model's tree with a box (every node the box touches) and tests
+/// the items met; used by rotations (the box of a part of the arc).
+void traceBoxThroughModel(TraceWork& tw, const Bounds& box);
+
+/// Rotation tests of one polygon (rotate.cpp); true when it blocks completely.
+bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
 
 /// Position tests (contents.cpp); true when stuck.
 bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);

@@ -49,8 +49,29 @@ void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
       if (testTrmInPolygon(tw, p)) return;
     return;
   }
+  if (tw.rotation) {
+    for (std::int32_t p : m.polygonsAt(node))
+      if (rotateTrmThroughPolygon(tw, p)) return;
+    return;
+  }
   for (std::int32_t p : m.polygonsAt(node))
     if (translateTrmThroughPolygon(tw, p)) return;
+}
+
+// Visits every node whose region the box touches (closed: a box touching a
+// split plane visits both sides), testing the items at each.
+void traceBoxThroughTree(TraceWork& tw, std::int32_t nodeNum, const Bounds& box) {
+  while (nodeNum >= 0) {
+    if (tw.quickExit || tw.fraction == 0) return;  // fraction 0: blocked completely
+    const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+    if (node.numPolygonRefs) traceTrmThroughNode(tw, node);
+    if (node.isLeaf() || tw.quickExit || tw.fraction == 0) return;
+    const int axis = node.planeType;
+    const bool front = box.max[axis] >= node.planeDist;
+    const bool back = box.min[axis] <= node.planeDist;
+    if (front && back) traceBoxThroughTree(tw, node.children[0], box);
+    nodeNum = back ? node.children[1] : node.children[0];
+  }
 }
 
 void traceThroughTree(TraceWork& tw, std::int32_t nodeNum, Real p1f, Real p2f, const Vec3& p1,
@@ -112,6 +133,11 @@ void traceThroughTree(TraceWork& tw, std::int32_t nodeNum, Real p1f, Real p2f, c
 }
 
 }  // namespace
+
+void traceBoxThroughModel(TraceWork& tw, const Bounds& box) {
+  if (tw.model.nodes.empty()) return;
+  traceBoxThroughTree(tw, 0, box);
+}
 
 void traceThroughModel(TraceWork& tw) {
   if (tw.model.nodes.empty()) return;

@@ -1,0 +1,484 @@
+// Rotation tests of one model polygon (the original's RotateTrmThroughPolygon
+// and the tests it runs): trace-model vertex through polygon, trace-model
+// edge through model edge, model vertex through trace-model polygon. Every
+// test is solved exactly in the tangent of half the angle (see
+// rotate_work.h); model frame throughout.
+//
+// Unlike the original, the edge-edge and model-vertex tests of a model edge
+// run with the first polygon that reaches it through culls that are valid for
+// the edge itself, so the result does not depend on polygon order.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "query/rotate_work.h"
+
+namespace cmkit {
+namespace {
+
+/// A double-precision vector for the equations (inputs are float).
+struct DVec {
+  double x = 0, y = 0, z = 0;
+  DVec() = default;
+  DVec(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+  explicit DVec(const Vec3& v) : x(v.x), y(v.y), z(v.z) {}
+  DVec operator+(const DVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  DVec operator-(const DVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
+  DVec operator*(double s) const { return {x * s, y * s, z * s}; }
+  double dot(const DVec& o) const { return x * o.x + y * o.y + z * o.z; }
+  DVec cross(const DVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
+  Vec3 toVec3() const { return {Real(x), Real(y), Real(z)}; }
+};
+
+/// The positive root of -v1 u^2 - 2 v2 u + v1 = 0 for v1 > 0: where the
+/// sinusoid v2 cos t + v1 sin t + v0 has its first extremum ahead (the two
+/// roots multiply to -1, so exactly one is positive).
+double firstExtremumTan(double v1, double v2) {
+  const double k = v2 / v1;
+  const double s = std::sqrt(k * k + 1);
+  return k >= 0 ? 1 / (k + s) : s - k;  // the cancellation-free form of -k + s
+}
+
+/// The sinusoid of the signed distance of point p (turning about the circle
+/// centre `ro`, direction `sign`) to the plane n.x = dist.
+Sinusoid pointPlaneSinusoid(const Vec3& p, const Vec3& ro, const Vec3& axis, double sign, const Vec3& n,
+                            double dist) {
+  const DVec nd(n), v = DVec(p) - DVec(ro);
+  Sinusoid s;
+  s.v0 = nd.dot(DVec(ro)) - dist;
+  s.v2 = nd.dot(v);
+  s.v1 = -sign * nd.dot(DVec(axis).cross(v));
+  return s;
+}
+
+/// Relative position of the lines s1->e1 and s2->e2 as the triple product
+/// ((e1 - s1) x (e2 - s2)) . (s2 - s1): zero when they are coplanar, its sign
+/// telling which way one passes the other (the Pluecker permuted product).
+double lineProduct(const DVec& s1, const DVec& e1, const DVec& s2, const DVec& e2) {
+  return (e1 - s1).cross(e2 - s2).dot(s2 - s1);
+}
+
+/// The trace-model edge (s, e) turned by +90 and +180 degrees about the axis.
+struct TurnedEdge {
+  DVec s0, e0, s90, e90, s180, e180;
+};
+TurnedEdge turnEdge(const RotationWork& rw, const Vec3& s, const Vec3& e) {
+  const DVec o(rw.origin), a(rw.axis);
+  auto turn = [&](const DVec& p, DVec& p90, DVec& p180) {
+    const DVec v = p - o;
+    const DVec proj = a * a.dot(v);
+    const DVec perp = v - proj;
+    p90 = o + proj - a.cross(perp);  // cos 90 = 0, sin 90 = 1 (positive direction)
+    p180 = o + proj - perp;
+  };
+  TurnedEdge t;
+  t.s0 = DVec(s);
+  t.e0 = DVec(e);
+  turn(t.s0, t.s90, t.s180);
+  turn(t.e0, t.e90, t.e180);
+  return t;
+}
+
+/// The line product of the turning trace-model edge and the fixed model edge
+/// (c, d) as a sinusoid of the angle: the product is linear in (cos t,
+/// sin t, 1), so three samples (0, 90, 180 degrees) determine it.
+Sinusoid edgeEdgeSinusoid(const TurnedEdge& t, const DVec& c, const DVec& d, double sign) {
+  const double f0 = lineProduct(t.s0, t.e0, c, d);
+  const double f90 = lineProduct(t.s90, t.e90, c, d);
+  const double f180 = lineProduct(t.s180, t.e180, c, d);
+  Sinusoid s;
+  s.v0 = 0.5 * (f0 + f180);
+  s.v2 = 0.5 * (f0 - f180);
+  s.v1 = sign * (f90 - s.v0);
+  return s;
+}
+
+/// First u in [lo, maxTan) where the sinusoid is zero.
+bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u) {
+  return firstQuadraticRoot(s.v0 - s.v2, s.v1, s.v0 + s.v2, lo, maxTan, u);
+}
+
+/// The original's RotatePointThroughEpsilonPlane: when does p (turning in
+/// direction `sign` about its circle centre `ro`) first get within
+/// tol::kClipEpsilon of the front of `plane`? Gives the tangent, the point
+/// there and its direction of motion.
+bool rotatePointThroughEpsilonPlane(const RotationWork& rw, const Vec3& p, const Vec3& endp, const Vec3& ro,
+                                    Real sign, const Plane& plane, double& u, Vec3& point, Vec3& dir) {
+  const double epsDist = double(plane.dist) + double(tol::kClipEpsilon);
+  const DVec n(plane.normal);
+  // The circle cannot reach the epsilon plane.
+  const double dOrigin = n.dot(DVec(ro)) - epsDist;
+  const DVec v = DVec(p) - DVec(ro);
+  if (dOrigin * dOrigin > v.dot(v)) return false;
+  // Moving away at the start, and ending in front or moving away at the end
+  // too: the distance (one hump below 180 degrees) never comes down through
+  // the epsilon plane.
+  const Vec3 startDir = (p - ro).cross(rw.axis) * sign;
+  if (startDir.dot(plane.normal) >= 0) {
+    if (double(plane.normal.dot(endp)) - epsDist >= 0) return false;
+    const Vec3 endDir = (endp - ro).cross(rw.axis) * sign;
+    if (endDir.dot(plane.normal) > 0) return false;
+  }
+  const Sinusoid s = pointPlaneSinusoid(p, ro, rw.axis, sign, plane.normal, epsDist);
+  if (s.v0 + s.v2 <= double(tol::kPluckerRangeEpsilon)) {
+    // Already within the epsilon range: moving toward the plane stops at
+    // once; moving away, the point can only come back after its furthest.
+    if (s.v1 <= 0) {
+      u = 0;
+    } else {
+      const double furthest = firstExtremumTan(s.v1, s.v2);
+      if (!(furthest < rw.maxTan)) return false;
+      if (!sinusoidRoot(s, furthest, rw.maxTan, u)) return false;
+    }
+  } else if (!sinusoidRoot(s, 0, rw.maxTan, u)) {
+    return false;
+  }
+  point = u == 0 ? p : rotateByTanHalf(p, rw.origin, rw.axis, double(sign) * u);
+  dir = (point - ro).cross(rw.axis) * sign;
+  return true;
+}
+
+/// True when the line through `point` along `dir` passes inside every edge
+/// line (forward edges: product not negative; reversed: not positive).
+template <class EdgeLine>
+bool rayInsideEdges(const Vec3& point, const Vec3& dir, int numEdges, EdgeLine edgeLine) {
+  const Pluecker ray = Pluecker::fromRay(point, dir);
+  for (int k = 0; k < numEdges; ++k) {
+    bool reversed;
+    const Real d = edgeLine(k, reversed).permutedInnerProduct(ray);
+    if (reversed ? d > 0 : d < 0) return false;
+  }
+  return true;
+}
+
+void setContact(TraceWork& tw, const CmPolygon& poly, ContactType type, const Vec3& normal, Real dist,
+                const Vec3& point, std::int32_t modelFeature, int trmFeature) {
+  ContactInfo& c = tw.c;
+  c.type = type;
+  c.normal = normal;
+  c.dist = dist;
+  c.point = point;
+  c.contents = poly.contents;
+  c.material = poly.material;
+  c.modelFeature = modelFeature;
+  c.trmFeature = trmFeature;
+}
+
+void rotateTrmVertexThroughPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum,
+                                   const CmPolygon& poly, int vertexNum) {
+  const WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
+  const RotVertex& rv = rw.vertices[std::size_t(vertexNum)];
+  double u;
+  Vec3 point, dir;
+  if (!rotatePointThroughEpsilonPlane(rw, v.p, v.endp, rv.rotationOrigin, rw.sign, poly.plane, u, point, dir))
+    return;
+  if (!(u < rw.maxTan)) return;
+  const auto edges = tw.model.edgesOf(poly);
+  const QueryWork::Scratch& s = tw.scratch;
+  if (!rayInsideEdges(point, dir, int(edges.size()), [&](int k, bool& reversed) -> const Pluecker& {
+        reversed = edges[std::size_t(k)] < 0;
+        return s.polygonEdgeLines[std::size_t(k)];
+      }))
+    return;
+  rw.maxTan = u;
+  setContact(tw, poly, ContactType::TrmVertex, poly.plane.normal, poly.plane.dist, point, polyNum, vertexNum);
+}
+
+/// The original's CollisionBetweenEdgeBounds: at tangent u, do the turned
+/// trace-model edge and the model edge (c, d) really meet within both
+/// segments (each edge's end points, moved along the motion, straddle the
+/// other edge's line)? Gives the contact point and the turned edge.
+bool collisionBetweenEdgeBounds(const RotationWork& rw, const Vec3& s, const Vec3& e, const Vec3& c,
+                                const Vec3& d, double u, Vec3& a, Vec3& b, Vec3& point) {
+  a = u == 0 ? s : rotateByTanHalf(s, rw.origin, rw.axis, double(rw.sign) * u);
+  b = u == 0 ? e : rotateByTanHalf(e, rw.origin, rw.axis, double(rw.sign) * u);
+  const Vec3 dirA = (a - rw.origin).cross(rw.axis);
+  const Vec3 dirB = (b - rw.origin).cross(rw.axis);
+  const Vec3 dir = (dirA.lengthSquared() > dirB.lengthSquared() ? dirA : dirB) * rw.sign;
+  auto sameSide = [](Real d1, Real d2) { return (d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0); };
+  const Pluecker trmLine = Pluecker::fromLine(a, b);
+  if (sameSide(trmLine.permutedInnerProduct(Pluecker::fromRay(c, dir)),
+               trmLine.permutedInnerProduct(Pluecker::fromRay(d, dir))))
+    return false;
+  const Pluecker modelLine = Pluecker::fromLine(c, d);
+  if (sameSide(modelLine.permutedInnerProduct(Pluecker::fromRay(a, dir)),
+               modelLine.permutedInnerProduct(Pluecker::fromRay(b, dir))))
+    return false;
+  // Where the turned edge cuts the plane through the model edge along the motion.
+  const DVec m = (DVec(d) - DVec(c)).cross(DVec(dir));
+  const double da = m.dot(DVec(a) - DVec(c));
+  const double db = m.dot(DVec(b) - DVec(c));
+  const double t = std::fabs(da - db) > 0 ? da / (da - db) : 0.0;
+  point = (DVec(a) + (DVec(b) - DVec(a)) * t).toVec3();
+  if (!point.isFinite()) return false;
+  // Points on the axis do not move: no collision there.
+  DVec w = DVec(point) - DVec(rw.origin);
+  w = w - DVec(rw.axis) * DVec(rw.axis).dot(w);
+  return w.dot(w) >= double(tol::kRotationAxisEpsilon) * double(tol::kRotationAxisEpsilon);
+}
+
+void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
+                              int trmEdgeNum) {
+  const CollisionModel& m = tw.model;
+  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
+  const Vec3& c0 = m.vertices[std::size_t(edge.vertex[0])];
+  const Vec3& d0 = m.vertices[std::size_t(edge.vertex[1])];
+  const TurnedEdge turned = turnEdge(rw, te.start, te.end);
+  const double sign = rw.sign;
+
+  // Is the trace-model edge line already between the model edge and the
+  // edge moved out by the epsilon (plus the range epsilon)?
+  const Vec3 shiftIn = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
+  const Vec3 c1 = c0 + shiftIn, d1 = d0 + shiftIn;
+  const double f1 = lineProduct(turned.s0, turned.e0, DVec(c0), DVec(d0));
+  const double f2 = lineProduct(turned.s0, turned.e0, DVec(c1), DVec(d1));
+  double u;
+  Vec3 c, d;
+  if ((f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0)) {
+    const Sinusoid real = edgeEdgeSinusoid(turned, DVec(c0), DVec(d0), sign);
+    // Moving toward the model edge line: |product| shrinking.
+    const double approach = real.v0 + real.v2 < 0 ? -real.v1 : real.v1;
+    c = c1;
+    d = d1;
+    if (approach <= 0) {
+      u = 0;
+    } else {
+      const double furthest = firstExtremumTan(approach, real.v0 + real.v2 < 0 ? -real.v2 : real.v2);
+      if (!(furthest < rw.maxTan)) return;
+      if (!sinusoidRoot(edgeEdgeSinusoid(turned, DVec(c1), DVec(d1), sign), furthest, rw.maxTan, u)) return;
+    }
+  } else {
+    const Vec3 shift = edge.normal * tol::kClipEpsilon;
+    c = c0 + shift;
+    d = d0 + shift;
+    if (!sinusoidRoot(edgeEdgeSinusoid(turned, DVec(c), DVec(d), sign), 0, rw.maxTan, u)) return;
+  }
+  if (!(u < rw.maxTan)) return;
+  Vec3 a, b, point;
+  if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c, d, u, a, b, point)) return;
+
+  rw.maxTan = u;
+  // Contact plane: through the model edge, containing both edge directions,
+  // facing out of the solid (the model edge's normal), else the trm edge.
+  Vec3 normal = (b - a).cross(d0 - c0);
+  normal.normalize();
+  const Real facing = normal.dot(edge.normal);
+  if (facing < 0 || (facing == 0 && normal.dot(a - c0) < 0)) normal = -normal;
+  setContact(tw, poly, ContactType::Edge, normal, normal.dot(c0), point, edgeNum, trmEdgeNum);
+}
+
+void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, int trmPolyNum,
+                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp, const Vec3& ro) {
+  const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
+  double u;
+  Vec3 point, dir;
+  // Relative to the trace model the model vertex turns the other way.
+  if (!rotatePointThroughEpsilonPlane(rw, p, endp, ro, -rw.sign, tp.plane, u, point, dir)) return;
+  if (!(u < rw.maxTan)) return;
+  if (!rayInsideEdges(point, dir, tp.numEdges, [&](int k, bool& reversed) -> const Pluecker& {
+        const int e = tp.edges[std::size_t(k)];
+        reversed = e < 0;
+        return tw.edges[std::size_t(std::abs(e))].pl;
+      }))
+    return;
+  rw.maxTan = u;
+  const Vec3 normal = -tp.plane.normal;
+  setContact(tw, poly, ContactType::ModelVertex, normal, normal.dot(p), p, std::int32_t(vertexNum),
+             trmPolyNum);
+}
+
+// Distance of a box to a plane: 0 when it straddles the plane.
+Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
+  const Vec3 c = b.center();
+  const Real d1 = plane.distance(c);
+  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
+                  std::fabs((b.max.z - c.z) * plane.normal.z);
+  if (d1 - d2 > 0) return d1 - d2;
+  if (d1 + d2 < 0) return d1 + d2;
+  return 0;
+}
+
+// A polygon's tests are done: a hit at the very start blocks completely.
+bool finishPolygon(TraceWork& tw, const RotationWork& rw) {
+  if (rw.maxTan != 0) return false;
+  tw.fraction = 0;
+  return true;
+}
+
+}  // namespace
+
+bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root) {
+  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
+  double r1, r2;
+  if (a == 0) {
+    if (b == 0) return false;
+    r1 = -c / (2 * b);
+    r2 = std::numeric_limits<double>::infinity();  // the other root is at 180 degrees
+  } else {
+    const double disc = b * b - a * c;
+    if (!(disc > 0)) return false;  // no crossing (a double root only touches)
+    // q has the sign of -b and |q| >= sqrt(disc) > 0: no cancellation, no 0/0.
+    const double q = b > 0 ? -b - std::sqrt(disc) : -b + std::sqrt(disc);
+    r1 = q / a;
+    r2 = c / q;
+  }
+  if (r2 < r1) std::swap(r1, r2);
+  if (r1 >= lo && r1 < hi && std::isfinite(r1)) {
+    root = r1;
+    return true;
+  }
+  if (r2 >= lo && r2 < hi && std::isfinite(r2)) {
+    root = r2;
+    return true;
+  }
+  return false;
+}
+
+Vec3 rotateByTanHalf(const Vec3& p, const Vec3& origin, const Vec3& axis, double tanHalf) {
+  const double t2 = tanHalf * tanHalf;
+  const double s = 2 * tanHalf / (1 + t2);
+  const double c = (1 - t2) / (1 + t2);
+  const DVec a(axis);
+  const DVec v = DVec(p) - DVec(origin);
+  const DVec proj = a * a.dot(v);
+  const DVec perp = v - proj;
+  return (DVec(origin) + proj + perp * c - a.cross(perp) * s).toVec3();
+}
+
+Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& end) {
+  Bounds b = Bounds::ofPoint(p);
+  b.addPoint(end);
+  const Vec3 m1 = (p - ro).cross(axis);
+  const Vec3 m2 = (end - ro).cross(axis);
+  const Real radiusSq = (p - ro).lengthSquared();
+  for (int i = 0; i < 3; ++i) {
+    // The motion along this axis changes sign: the arc passes the circle's
+    // extreme on the side of the chord's midpoint (arcs below 180 degrees).
+    if ((m1[i] > 0 && m2[i] < 0) || (m1[i] < 0 && m2[i] > 0)) {
+      const Real extent = std::sqrt(std::max(Real(0), radiusSq * (Real(1) - axis[i] * axis[i])));
+      if (Real(0.5) * (p[i] + end[i]) - ro[i] > 0)
+        b.max[i] = std::max(b.max[i], ro[i] + extent);
+      else
+        b.min[i] = std::min(b.min[i], ro[i] - extent);
+    }
+  }
+  return b;
+}
+
+bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  RotationWork& rw = *tw.rotation;
+  if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
+  const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
+
+  // Culls valid for the polygon and everything on it (its edges and vertices).
+  if (!(poly.contents & tw.contentMask)) return false;
+  if (!tw.bounds.intersects(poly.bounds)) return false;
+  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
+  switch (tw.bounds.planeSide(poly.plane)) {
+    case Side::Cross:
+      break;
+    case Side::Front:
+      if (m.isConvex) {
+        tw.quickExit = true;
+        return true;
+      }
+      return false;
+    default:
+      return false;
+  }
+
+  const auto edges = m.edgesOf(poly);
+  if (s.polygonEdgeLines.size() < edges.size() + 1) {
+    s.polygonEdgeLines.resize(edges.size() + 1);
+    s.polygonVertexRays.resize(edges.size() + 1);
+  }
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
+    s.polygonEdgeLines[i] =
+        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
+  }
+
+  // The original's back-face culls, for a convex trace model the axis passes
+  // through: the whole polygon when the trace-model centre is behind it, a
+  // feature when it is behind the polygon's plane.
+  const bool backCull = tw.isConvex && rw.axisIntersectsTrm;
+  if (backCull && poly.plane.distance(rw.centre) < 0) return false;
+  unsigned behind[kMaxTrmVertices];
+  for (int i = 0; i < tw.numVerts; ++i)
+    behind[i] = backCull && signBitSet(poly.plane.distance(tw.vertices[std::size_t(i)].p)) ? 1u : 0u;
+
+  // Trace-model vertices through the polygon.
+  for (int i = 0; i < tw.numVerts; ++i) {
+    const RotVertex& rv = rw.vertices[std::size_t(i)];
+    if (!rv.used || behind[i]) continue;
+    if (!rv.bounds.intersects(poly.bounds) || rv.bounds.planeSide(poly.plane) != Side::Cross) continue;
+    rotateTrmVertexThroughPolygon(tw, rw, polyNum, poly, i);
+  }
+  if (tw.pointTrace) return finishPolygon(tw, rw);
+
+  // Trace-model edges through the polygon's edges. A (model edge, trm edge)
+  // pair is tested once per query, with the first polygon of the edge whose
+  // culls let that trm edge through (the original marked the model edge
+  // tested with the first polygon even when its culls had skipped trm
+  // edges, so it depended on polygon order and missed collisions). The
+  // tested pairs are bits of the edge's side cache, unused by rotations.
+  std::uint64_t trmEdgesHere = 0;  // bit j: trm edge j passes this polygon's culls
+  for (int j = 1; j <= tw.numEdges; ++j) {
+    const RotEdge& re = rw.edges[std::size_t(j)];
+    const WorkEdge& te = tw.edges[std::size_t(j)];
+    if (!re.used || (behind[te.vertexNum[0]] && behind[te.vertexNum[1]])) continue;
+    if (!re.bounds.intersects(poly.bounds) || re.bounds.planeSide(poly.plane) != Side::Cross) continue;
+    trmEdgesHere |= std::uint64_t(1) << j;
+  }
+  for (std::size_t i = 0; i < edges.size() && trmEdgesHere; ++i) {
+    const std::int32_t edgeNum = edges[i];
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    const CmEdge& edge = m.edges[e];
+    if (edge.internal) continue;
+    s.touchEdgeCache(e);
+    const std::uint64_t todo = trmEdgesHere & ~s.edgeSide[e];
+    if (!todo) continue;
+    s.edgeSide[e] |= todo;
+    const Vec3& v0 = m.vertices[std::size_t(edge.vertex[0])];
+    const Vec3& v1 = m.vertices[std::size_t(edge.vertex[1])];
+    Bounds edgeBounds = Bounds::ofPoint(v0);
+    edgeBounds.addPoint(v1);
+    const Vec3 shift = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
+    edgeBounds.addPoint(v0 + shift);
+    edgeBounds.addPoint(v1 + shift);
+    for (int j = 1; j <= tw.numEdges; ++j) {
+      if (!(todo >> j & 1u) || !rw.edges[std::size_t(j)].bounds.intersects(edgeBounds)) continue;
+      rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, j);
+    }
+  }
+
+  // Model vertices through the trace model's polygons, once per query
+  // (these culls do not depend on the polygon).
+  for (const std::int32_t edgeNum : edges) {
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    if (s.testAndMark(s.edgeChecked, e)) continue;
+    const CmEdge& edge = m.edges[e];
+    if (edge.internal) continue;
+    for (int k = 0; k < 2; ++k) {
+      const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
+      if (s.testAndMark(s.vertexChecked, vn)) continue;
+      const Vec3& p = m.vertices[vn];
+      if (!tw.bounds.containsPoint(p)) continue;
+      const Vec3 ro = rw.origin + rw.axis * rw.axis.dot(p - rw.origin);
+      if ((p - ro).lengthSquared() <= tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon) continue;
+      const Vec3 endp = rw.origin + (p - rw.origin) * rw.backMatrix;
+      for (int j = 0; j < tw.numPolys; ++j) {
+        const WorkPolygon& tp = tw.polys[std::size_t(j)];
+        if (!tp.used || !rw.polygons[std::size_t(j)].bounds.containsPoint(p)) continue;
+        if (backCull && tp.plane.distance(p) < 0) continue;
+        rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
+      }
+    }
+  }
+  return finishPolygon(tw, rw);
+}
+
+}  // namespace cmkit
