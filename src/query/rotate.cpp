@@ -256,7 +256,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
-  if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c, d, u, a, b, point)) return;
+  if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c0, d0, u, a, b, point)) return;
 
   rw.maxTan = u;
   // Contact plane: through the model edge, containing both edge directions,
