@@ -212,3 +212,31 @@ TEST(Material, FilesAndDirectories) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Material, RandomCorruptionNeverCrashes) {
+  const std::string original = kMtr;
+  const std::string alphabet = "{}\"/*\n 1e.x";
+  std::uint32_t state = 777;
+  auto random = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  for (int round = 0; round < 2000; ++round) {
+    std::string text = original;
+    for (int e = 0; e < 3; ++e) {
+      const std::size_t at = random() % text.size();
+      if (random() % 2) {
+        text[at] = alphabet[random() % alphabet.size()];
+      } else {
+        text.erase(at, 1 + random() % 5);
+      }
+    }
+    MaterialTable table;
+    table.addMtrText(text, "fuzz.mtr");
+    EXPECT_LE(table.numDeclared(), 12u);  // mutations may turn other decls into materials
+  }
+}
+
+}  // namespace

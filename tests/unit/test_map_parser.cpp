@@ -325,3 +325,45 @@ TEST(MapParser, MissingFileIsAnError) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(MapParser, RandomCorruptionNeverCrashes) {
+  // Deterministic byte mutations of a real map: each gives an error or a map.
+  const std::string original = featuresMap();
+  const std::string alphabet = "{}()\"-.e0123456789 \n\r/*xbrushDef3patchDef";
+  std::uint32_t state = 12345;
+  auto random = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  int parsed = 0;
+  for (int round = 0; round < 3000; ++round) {
+    std::string text = original;
+    const int edits = 1 + static_cast<int>(random() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t at = random() % text.size();
+      switch (random() % 3) {
+        case 0:
+          text[at] = alphabet[random() % alphabet.size()];
+          break;
+        case 1:
+          text.erase(at, 1 + random() % 8);
+          break;
+        default:
+          text.insert(at, 1, alphabet[random() % alphabet.size()]);
+          break;
+      }
+      if (text.empty()) text = "{";
+    }
+    auto r = parseMapText(text, "fuzz.map");
+    if (r.ok()) {
+      ++parsed;
+    } else {
+      EXPECT_GT(r.error().line, 0) << r.error().toString();
+    }
+  }
+  EXPECT_GT(parsed, 0);
+}
+
+}  // namespace
