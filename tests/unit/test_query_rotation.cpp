@@ -1,0 +1,291 @@
+// Hand-computed rotations: fractions from trigonometry (with the 0.25 clip
+// epsilon along the surface normal), both directions, parts above 180 and
+// 360 degrees, axes through and far from the trace model, placed models,
+// points, angle 0; and regressions for the original's two rotation bugs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "cmkit/query.h"
+#include "model_fixtures.h"
+
+using namespace cmkit;
+using cmkit::test::ModelMaker;
+
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+void expectVecNear(const Vec3& a, const Vec3& b, float eps) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+// A wall filling x in [20, 40] (its face toward the origin at x = 20).
+CollisionModel wallModel() { return ModelMaker().addBox({{20, -200, -200}, {40, 200, 200}}).build(); }
+
+// The first angle (degrees, > 0) at which the corner of a 32x32 box turning
+// clockwise about its own vertical axis gets to x = 19.75: the corner at
+// 45 degrees has radius 16 sqrt 2 and x = r cos(45 - a).
+double boxCornerAngle() { return 45.0 - std::acos(19.75 / (16 * std::sqrt(2.0))) * kDeg; }
+
+RotationQuery boxQuery(const TraceModel& box, Real angle) {
+  RotationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, 0};
+  q.rotation = Rotation({0, 0, 0}, {0, 0, 1}, angle);
+  return q;
+}
+
+}  // namespace
+
+TEST(Rotation, BoxTurningIntoAWallStopsWhenItsCornerIsAQuarterUnitAway) {
+  const CollisionModel m = wallModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});
+  QueryWork work;
+  const TraceResult r = rotate(m, boxQuery(box, 90), work);
+  EXPECT_NEAR(r.fraction, boxCornerAngle() / 90, 1e-5);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  expectVecNear(r.contact.normal, {-1, 0, 0}, 1e-6f);
+  EXPECT_EQ(r.contact.dist, -20.0f);
+  EXPECT_NEAR(r.contact.point.x, 19.75f, 1e-3f);
+  // The corner that was at (16, 16) turned clockwise: y = r sin(45 - a) > 0.
+  EXPECT_GT(r.contact.point.y, 0);
+  // The end pose: the box's axes turned clockwise by fraction * 90 degrees.
+  const double a = r.fraction * 90 / kDeg;
+  expectVecNear(r.endAxis[0], {Real(std::cos(a)), Real(-std::sin(a)), 0}, 1e-5f);
+  expectVecNear(r.endPos, {0, 0, 0}, 1e-6f);
+  EXPECT_LT(r.endAxis.orthonormalityError(), 1e-5f);
+}
+
+TEST(Rotation, BothDirectionsGiveTheSameAngleBySymmetry) {
+  const CollisionModel m = wallModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});
+  QueryWork work;
+  const TraceResult neg = rotate(m, boxQuery(box, -90), work);
+  EXPECT_NEAR(neg.fraction, boxCornerAngle() / 90, 1e-5);
+  EXPECT_LT(neg.contact.point.y, 0);  // the corner at (16, -16) turned counter-clockwise
+  const double a = -neg.fraction * 90 / kDeg;
+  expectVecNear(neg.endAxis[0], {Real(std::cos(a)), Real(-std::sin(a)), 0}, 1e-5f);
+}
+
+TEST(Rotation, AnglesOf180AndMoreAreTracedInParts) {
+  const CollisionModel m = wallModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});
+  QueryWork work;
+  for (Real angle : {200.0f, 300.0f, 400.0f, -250.0f, -720.0f}) {
+    const TraceResult r = rotate(m, boxQuery(box, angle), work);
+    EXPECT_NEAR(r.fraction * std::fabs(angle), boxCornerAngle(), 1e-3) << angle;
+  }
+  // Free turns keep fraction 1 and end at the whole angle.
+  const CollisionModel far = ModelMaker().addBox({{500, 500, 0}, {600, 600, 10}}).build();
+  for (Real angle : {270.0f, 400.0f, -450.0f}) {
+    const TraceResult r = rotate(far, boxQuery(box, angle), work);
+    EXPECT_EQ(r.fraction, 1.0f);
+    const Mat3 expected = Rotation({0, 0, 0}, {0, 0, 1}, angle).rotateAxis(Mat3::identity());
+    for (int i = 0; i < 3; ++i) expectVecNear(r.endAxis[i], expected[i], 1e-5f);
+  }
+}
+
+TEST(Rotation, AxisFarFromTheTraceModel) {
+  // A 16-unit cube centred at (100, 0, 0) swings clockwise about the z axis
+  // through the origin toward a slab whose top face is y = -50. Its lowest
+  // vertex (108, -8) has y = -108 sin a - 8 cos a; it stops at y = -49.75.
+  const CollisionModel m = ModelMaker().addBox({{-300, -200, -100}, {300, -50, 100}}).build();
+  const TraceModel cube = *TraceModel::box({{-8, -8, -8}, {8, 8, 8}});
+  QueryWork work;
+  RotationQuery q;
+  q.trm = &cube;
+  q.start = {100, 0, 0};
+  q.rotation = Rotation({0, 0, 0}, {0, 0, 1}, 90);
+  const TraceResult r = rotate(m, q, work);
+  const double radius = std::hypot(108.0, 8.0);
+  const double expected = (std::asin(49.75 / radius) - std::atan2(8.0, 108.0)) * kDeg;
+  EXPECT_NEAR(r.fraction * 90, expected, 1e-3);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  expectVecNear(r.contact.normal, {0, 1, 0}, 1e-6f);
+  EXPECT_NEAR(r.contact.point.y, -49.75f, 1e-3f);
+  const double a = r.fraction * 90 / kDeg;
+  expectVecNear(r.endPos, {Real(100 * std::cos(a)), Real(-100 * std::sin(a)), 0}, 1e-3f);
+}
+
+TEST(Rotation, BoneTippingOntoAFloor) {
+  // A bone of length 64 lying along y (trmAxis: its z axis -> world y),
+  // centred 20 above a floor (top z = 0), turning about the x axis through
+  // its centre. Positive angles turn clockwise seen from +x: the tip at
+  // +y goes down, z = 20 - 32 sin a, and stops 0.25 above the floor. The
+  // bone's middle vertices (radius 8 at most) stay higher.
+  const CollisionModel m = ModelMaker().addBox({{-200, -200, -50}, {200, 200, 0}}).build();
+  const TraceModel bone = *TraceModel::bone(64, 16);
+  QueryWork work;
+  RotationQuery q;
+  q.trm = &bone;
+  q.trmAxis = Mat3{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+  q.start = {0, 0, 20};
+  q.rotation = Rotation({0, 0, 20}, {1, 0, 0}, 120);
+  const TraceResult r = rotate(m, q, work);
+  EXPECT_NEAR(r.fraction * 120, std::asin(19.75 / 32) * kDeg, 1e-3);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  expectVecNear(r.contact.normal, {0, 0, 1}, 1e-6f);
+  EXPECT_NEAR(r.contact.point.z, 0.25f, 1e-3f);
+  EXPECT_GT(r.contact.point.y, 0);
+  // The other way the tip at -y goes down: same angle.
+  q.rotation.angle = -120;
+  const TraceResult r2 = rotate(m, q, work);
+  EXPECT_NEAR(r2.fraction * 120, std::asin(19.75 / 32) * kDeg, 1e-3);
+  EXPECT_LT(r2.contact.point.y, 0);
+}
+
+TEST(Rotation, PlacedModelGivesTheSameAnswerInTheWorld) {
+  // The wall model placed at (1000, 0, 0) and turned 90 degrees (its x axis
+  // along world y): its face is now the world plane y = 20 (relative).
+  const CollisionModel m = wallModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});
+  QueryWork work;
+  RotationQuery q = boxQuery(box, 90);
+  q.start = {1000, 0, 0};
+  q.rotation.origin = {1000, 0, 0};
+  q.model.origin = {1000, 0, 0};
+  q.model.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
+  const TraceResult r = rotate(m, q, work);
+  EXPECT_NEAR(r.fraction, boxCornerAngle() / 90, 1e-5);
+  expectVecNear(r.contact.normal, {0, -1, 0}, 1e-6f);
+  EXPECT_NEAR(r.contact.point.y, 19.75f, 1e-3f);
+  EXPECT_NEAR(r.contact.dist, r.contact.normal.dot(r.contact.point) - 0.25f, 1e-3f);  // 0.25 in front
+}
+
+TEST(Rotation, PointTurningIntoASlab) {
+  // (100, 0, 10) turning clockwise about z goes to (0, -100, 10); the slab
+  // below y = -50 stops it where 100 sin a = 49.75.
+  const CollisionModel m = ModelMaker().addBox({{-300, -200, -100}, {300, -50, 100}}).build();
+  QueryWork work;
+  RotationQuery q;
+  q.start = {100, 0, 10};
+  q.rotation = Rotation({0, 0, 0}, {0, 0, 1}, 90);
+  const TraceResult r = rotate(m, q, work);
+  EXPECT_NEAR(r.fraction * 90, std::asin(0.4975) * kDeg, 1e-3);
+  EXPECT_EQ(r.contact.type, ContactType::TrmVertex);
+  EXPECT_EQ(r.endAxis, Mat3::identity());
+  EXPECT_NEAR(r.endPos.y, -49.75f, 1e-3f);
+  // Counter-clockwise it goes to +y: free.
+  q.rotation.angle = -90;
+  const TraceResult free = rotate(m, q, work);
+  EXPECT_EQ(free.fraction, 1.0f);
+  expectVecNear(free.endPos, {0, 100, 10}, 1e-3f);
+}
+
+TEST(Rotation, AngleZeroIsAPositionTest) {
+  const CollisionModel m = wallModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});
+  QueryWork work;
+  RotationQuery q = boxQuery(box, 0);
+  q.start = {10, 0, 0};  // reaches x = 26: inside the wall
+  const TraceResult stuck = rotate(m, q, work);
+  EXPECT_EQ(stuck.fraction, 0.0f);
+  EXPECT_TRUE(stuck.startSolid);
+  q.start = {4, 0, 0};  // reaches x = 20 exactly: touching is free
+  const TraceResult touching = rotate(m, q, work);
+  EXPECT_EQ(touching.fraction, 1.0f);
+  EXPECT_FALSE(touching.startSolid);
+  EXPECT_EQ(touching.endPos, q.start);
+}
+
+TEST(Rotation, StartSolidIsReportedWhenAsked) {
+  const CollisionModel m = wallModel();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});
+  QueryWork work;
+  RotationQuery q = boxQuery(box, 30);
+  q.detectStartSolid = true;
+  EXPECT_FALSE(rotate(m, q, work).startSolid);
+  q.start = {10, 0, 0};
+  EXPECT_TRUE(rotate(m, q, work).startSolid);
+}
+
+TEST(Rotation, QuadraticSolverNeverReturnsNaN) {
+  // The original's solver computed -b + sqrt(b^2 - ac) for b > 0, which is
+  // 0 when ac = 0, and then c / 0 = 0 / 0. A root at exactly 0 must come out.
+  const CollisionModel m = ModelMaker().addBox({{-300, -200, -100}, {300, -50, 100}}).build();
+  QueryWork work;
+  RotationQuery q;
+  // The point starts exactly on the epsilon plane (y = -49.75) moving down.
+  q.start = {0, -49.75f, 0};
+  q.rotation = Rotation({-100, -49.75f, 0}, {0, 0, 1}, 45);
+  const TraceResult r = rotate(m, q, work);
+  EXPECT_TRUE(std::isfinite(r.fraction));
+  EXPECT_EQ(r.fraction, 0.0f);
+  EXPECT_TRUE(r.endPos.isFinite());
+}
+
+// ---- the original's rotation bugs ------------------------------------------
+
+TEST(RotationRegression, LongArcReachesLeavesItsChordMisses) {
+  // A tree split at y = -50: the back leaf (y < -50) holds a pillar at
+  // (0, -100). A point at (100, 0) turns 170 degrees clockwise about the z
+  // axis: its chord (100, 0) -> (-98.5, -17.4) stays above y = -18, so the
+  // original's walk (one chord, extents = 1 + the 64-unit-chord sagitta, a
+  // few units) never enters the back leaf; the arc passes y = -100.
+  CollisionModel m = ModelMaker().addBox({{-10, -110, -50}, {10, -90, 50}}).build();
+  CmNode root;
+  root.planeType = 1;
+  root.planeDist = -50;
+  root.children[0] = 1;
+  root.children[1] = 2;
+  CmNode front, back;
+  front.parent = back.parent = 0;
+  back.numPolygonRefs = std::uint32_t(m.polygons.size());
+  back.numBrushRefs = std::uint32_t(m.brushes.size());
+  m.nodes = {root, front, back};
+  QueryWork work;
+  RotationQuery q;
+  q.start = {100, 0, 0};
+  q.rotation = Rotation({0, 0, 0}, {0, 0, 1}, 170);
+  const TraceResult r = rotate(m, q, work);
+  ASSERT_LT(r.fraction, 1.0f);
+  // It meets the pillar's face x = 10 (r = 100: 100 cos a = 10.25).
+  EXPECT_NEAR(r.fraction * 170, std::acos(10.25 / 100) * kDeg, 1e-3);
+  expectVecNear(r.contact.normal, {1, 0, 0}, 1e-6f);
+}
+
+TEST(RotationRegression, ResultDoesNotDependOnPolygonOrder) {
+  // The original marked a model edge tested with the first polygon that
+  // contained it even when that polygon's culls had skipped trace-model
+  // edges, so which edge pairs were tested depended on polygon order. A
+  // cluster of boxes, its polygon list in several orders: every rotation
+  // gives the same bits.
+  ModelMaker mk;
+  mk.addBox({{0, 0, 0}, {40, 40, 40}})
+      .addBox({{40, 10, 0}, {60, 30, 60}})
+      .addBox({{-30, -30, 0}, {0, 80, 8}});
+  mk.addConvex(*TraceModel::octahedron({{10, 50, 0}, {50, 90, 40}}));
+  const CollisionModel base = mk.build();
+  std::vector<TraceModel> trms = {*TraceModel::box({{-8, -8, -8}, {8, 8, 8}}), *TraceModel::bone(50, 10),
+                                  *TraceModel::cylinder({{-6, -6, -12}, {6, 6, 12}}, 6)};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> pos(-40, 100), ang(-200, 200), unit(-1, 1);
+  QueryWork work;
+  int hits = 0;
+  for (int n = 0; n < 300; ++n) {
+    RotationQuery q;
+    q.trm = &trms[std::size_t(n) % trms.size()];
+    q.start = {pos(rng), pos(rng), pos(rng) * 0.5f};
+    Vec3 axis{unit(rng), unit(rng), unit(rng)};
+    if (axis.normalize() == 0) continue;
+    q.rotation = Rotation(q.start + Vec3{unit(rng), unit(rng), unit(rng)} * 20, axis, ang(rng));
+    CollisionModel m = base;
+    const TraceResult ref = rotate(m, q, work);
+    hits += ref.fraction < 1;
+    for (int order = 0; order < 3; ++order) {
+      if (order == 0) std::reverse(m.polygonRefs.begin(), m.polygonRefs.end());
+      if (order == 1) std::rotate(m.polygonRefs.begin(), m.polygonRefs.begin() + 7, m.polygonRefs.end());
+      if (order == 2) std::shuffle(m.polygonRefs.begin(), m.polygonRefs.end(), rng);
+      const TraceResult r = rotate(m, q, work);
+      ASSERT_EQ(r.fraction, ref.fraction) << "query " << n << " order " << order;
+      ASSERT_EQ(r.endPos, ref.endPos);
+    }
+  }
+  EXPECT_GT(hits, 30);
+}
