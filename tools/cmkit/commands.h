@@ -16,6 +16,15 @@ void registerCompile(CLI::App& app);
 /// `cmkit info FILE`: statistics of the collision models of a file.
 void registerInfo(CLI::App& app);
 
+/// `cmkit render MODELS -o out.png`: a picture of the models (and traces).
+void registerRender(CLI::App& app);
+
+/// `cmkit export MODELS -o out.gltf|.glb|.obj`: the models (and traces) as a 3D file.
+void registerExport(CLI::App& app);
+
+/// `cmkit view MODELS`: serves the web viewer on a loopback address.
+void registerView(CLI::App& app);
+
 /// Exit code for bad input (files, arguments) as opposed to 0 = success.
 inline constexpr int kExitBadInput = 2;
 

@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   cmkit::cli::registerTrm(app);
   cmkit::cli::registerCompile(app);
   cmkit::cli::registerInfo(app);
+  cmkit::cli::registerRender(app);
+  cmkit::cli::registerExport(app);
+  cmkit::cli::registerView(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

@@ -1,0 +1,56 @@
+#include "trace_loading.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "cmkit/map.h"
+
+namespace cmkit::cli {
+namespace {
+
+Result<std::string> readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error{"cannot open the file", path};
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath,
+                                                  const std::string& resultsPath) {
+  if (resultsPath.empty()) {
+    if (!queriesPath.empty()) return Error{"--queries needs --results (run 'cmkit query' to make one)"};
+    return std::vector<TraceRecord>{};
+  }
+  std::string queries;
+  if (!queriesPath.empty()) {
+    auto text = readText(queriesPath);
+    if (!text) return text.error();
+    queries = std::move(*text);
+  }
+  auto results = readText(resultsPath);
+  if (!results) return results.error();
+  return parseTraceRecords(queries, *results);
+}
+
+std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_t numModels) {
+  std::vector<Placement> placements;
+  const std::string ext = ".map";
+  if (modelsPath.size() < ext.size() ||
+      modelsPath.compare(modelsPath.size() - ext.size(), ext.size(), ext) != 0)
+    return placements;
+  auto map = loadMapFile(modelsPath);
+  if (!map) return placements;
+  for (const MapEntity& e : map->entities) {
+    if (e.primitives.empty()) continue;
+    Placement p;
+    p.origin = e.origin();
+    placements.push_back(p);
+  }
+  if (placements.size() != numModels) placements.clear();  // not the build's order: do not guess
+  return placements;
+}
+
+}  // namespace cmkit::cli

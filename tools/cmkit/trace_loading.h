@@ -1,0 +1,26 @@
+// Reading the --queries / --results files of the render, export and view
+// commands into trace records.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cmkit/debug_draw.h"
+#include "cmkit/query.h"
+#include "cmkit/result.h"
+
+namespace cmkit::cli {
+
+/// Reads a query file and its results file (or, with `queriesPath` empty, a
+/// results file holding each query line followed by its result line).
+/// Empty `resultsPath`: no traces. Error when a file cannot be read.
+Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath,
+                                                  const std::string& resultsPath);
+
+/// Where the models of MODELS go in the world: for a .map, each model at
+/// its entity's "origin" (models are built in entity order, one per entity
+/// with primitives, each in its entity's frame); for a .cm file, all at the
+/// origin (the file has no placements).
+std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_t numModels);
+
+}  // namespace cmkit::cli
