@@ -7,6 +7,9 @@ namespace cmkit::build {
 
 namespace {
 
+/// Windings up to this many points are clipped without heap allocation.
+constexpr std::size_t kStackPoints = 64 + 4;
+
 // The split point between p1 and p2 on the plane; coordinates along an
 // exactly axial normal are set to the plane distance (avoids round-off).
 Vec3 splitPoint(const Vec3& p1, const Vec3& p2, Real d1, Real d2, const Plane& plane) {
@@ -51,13 +54,13 @@ Winding Winding::baseForPlane(const Plane& plane) {
 void Winding::clipInPlace(const Plane& plane, Real epsilon) {
   const std::size_t n = points_.size();
   if (n == 0) return;
-  Real distsBuf[64 + 4];
-  WindingSide sidesBuf[64 + 4];
+  Real distsBuf[kStackPoints];
+  WindingSide sidesBuf[kStackPoints];
   std::vector<Real> distsHeap;
   std::vector<WindingSide> sidesHeap;
   Real* dists = distsBuf;
   WindingSide* sides = sidesBuf;
-  if (n + 1 > 64 + 4) {
+  if (n + 1 > kStackPoints) {
     distsHeap.resize(n + 1);
     sidesHeap.resize(n + 1);
     dists = distsHeap.data();
@@ -77,31 +80,39 @@ void Winding::clipInPlace(const Plane& plane, Real epsilon) {
   }
   if (counts[static_cast<int>(WindingSide::Back)] == 0) return;
 
-  std::vector<Vec3> out;
-  out.reserve(n + 4);
+  // The clipped winding has at most n + 1 points; small ones are built on
+  // the stack and copied back into the existing storage (no allocation).
+  Vec3 outBuf[kStackPoints];
+  std::vector<Vec3> outHeap;
+  Vec3* out = outBuf;
+  if (n + 4 > kStackPoints) {
+    outHeap.resize(n + 4);
+    out = outHeap.data();
+  }
+  std::size_t numOut = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p1 = points_[i];
     if (sides[i] == WindingSide::On) {
-      out.push_back(p1);
+      out[numOut++] = p1;
       continue;
     }
-    if (sides[i] == WindingSide::Front) out.push_back(p1);
+    if (sides[i] == WindingSide::Front) out[numOut++] = p1;
     if (sides[i + 1] == WindingSide::On || sides[i + 1] == sides[i]) continue;
     const Vec3& p2 = points_[(i + 1) % n];
-    out.push_back(splitPoint(p1, p2, dists[i], dists[i + 1], plane));
+    out[numOut++] = splitPoint(p1, p2, dists[i], dists[i + 1], plane);
   }
-  points_.swap(out);
+  points_.assign(out, out + numOut);
 }
 
 WindingSide Winding::split(Winding& back, const Plane& plane, Real epsilon) {
   const std::size_t n = points_.size();
-  Real distsBuf[64 + 4];
-  WindingSide sidesBuf[64 + 4];
+  Real distsBuf[kStackPoints];
+  WindingSide sidesBuf[kStackPoints];
   std::vector<Real> distsHeap;
   std::vector<WindingSide> sidesHeap;
   Real* dists = distsBuf;
   WindingSide* sides = sidesBuf;
-  if (n + 1 > 64 + 4) {
+  if (n + 1 > kStackPoints) {
     distsHeap.resize(n + 1);
     sidesHeap.resize(n + 1);
     dists = distsHeap.data();
@@ -120,25 +131,31 @@ WindingSide Winding::split(Winding& back, const Plane& plane, Real epsilon) {
   sides[n] = sides[0];
   dists[n] = dists[0];
 
-  std::vector<Vec3> front;
-  front.reserve(n + 4);
+  Vec3 frontBuf[kStackPoints];
+  std::vector<Vec3> frontHeap;
+  Vec3* front = frontBuf;
+  if (n + 4 > kStackPoints) {
+    frontHeap.resize(n + 4);
+    front = frontHeap.data();
+  }
+  std::size_t numFront = 0;
   back.points_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p1 = points_[i];
     if (sides[i] == WindingSide::On) {
-      front.push_back(p1);
+      front[numFront++] = p1;
       back.points_.push_back(p1);
       continue;
     }
-    if (sides[i] == WindingSide::Front) front.push_back(p1);
+    if (sides[i] == WindingSide::Front) front[numFront++] = p1;
     if (sides[i] == WindingSide::Back) back.points_.push_back(p1);
     if (sides[i + 1] == WindingSide::On || sides[i + 1] == sides[i]) continue;
     const Vec3& p2 = points_[(i + 1) % n];
     const Vec3 mid = splitPoint(p1, p2, dists[i], dists[i + 1], plane);
-    front.push_back(mid);
+    front[numFront++] = mid;
     back.points_.push_back(mid);
   }
-  points_.swap(front);
+  points_.assign(front, front + numFront);
   return WindingSide::Cross;
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cmkit/build.h"
+#include "cmkit/cm_file.h"
 #include "cmkit/map.h"
 #include "test_support.h"
 
@@ -126,6 +127,40 @@ TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
   }
 }
 
+TEST(BuildReference, WrittenCmFilesAreByteIdenticalToTheOriginals) {
+  CMKIT_REQUIRE_SHARED();
+  int compared = 0;
+  for (const auto& [name, path] : mapsWithStats()) {
+    const fs::path refCm = sharedDir() / "reference" / (name + ".cm");
+    if (!fs::exists(refCm)) continue;
+    SCOPED_TRACE(name);
+    auto map = loadMapFile(path.string());
+    ASSERT_TRUE(map.ok()) << map.error().toString();
+    auto models = buildCollisionModels(*map, MaterialTable{});
+    ASSERT_TRUE(models.ok());
+    const std::string mine = writeCmText(*models, map->geometryCrc);
+    const std::string ref = cmkit::test::readFile(refCm);
+    if (mine != ref) {
+      // report the first differing line
+      std::istringstream a(mine), b(ref);
+      std::string la, lb;
+      int line = 0;
+      while (true) {
+        ++line;
+        const bool ga = static_cast<bool>(std::getline(a, la));
+        const bool gb = static_cast<bool>(std::getline(b, lb));
+        if (!ga || !gb || la != lb) {
+          ADD_FAILURE() << name << ".cm line " << line << ": cmkit \"" << (ga ? la : "<eof>")
+                        << "\", original \"" << (gb ? lb : "<eof>") << "\"";
+          break;
+        }
+      }
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 15);
+}
+
 std::string runCapture(const std::string& cmd, int& status) {
   std::string out;
   FILE* p = popen(cmd.c_str(), "r");
@@ -193,6 +228,19 @@ TEST(BuildReference, CliRejectsBrokenMapsWithFileAndLine) {
       runCapture(std::string(CMKIT_CLI_PATH) + " info '" + (dir / "none.map").string() + "' 2>&1", status);
   EXPECT_EQ(WEXITSTATUS(status), 2);
   fs::remove_all(dir);
+}
+
+TEST(BuildReference, CliCompileWritesTheCmFile) {
+  CMKIT_REQUIRE_SHARED();
+  CMKIT_REQUIRE_CLI();
+  const fs::path out = fs::temp_directory_path() / "cmkit_build_cli_box_room.cm";
+  int status = 0;
+  const fs::path map = sharedDir() / "maps" / "synthetic" / "box_room.map";
+  runCapture(std::string(CMKIT_CLI_PATH) + " compile -q '" + map.string() + "' -o '" + out.string() + "'",
+             status);
+  EXPECT_EQ(status, 0);
+  EXPECT_EQ(cmkit::test::readFile(out), cmkit::test::readFile(sharedDir() / "reference" / "box_room.cm"));
+  fs::remove(out);
 }
 
 TEST(BuildReference, CliJsonHasTotalsAndModels) {
