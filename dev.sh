@@ -31,6 +31,33 @@ deps() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 }
 
+# The web viewer's test (viewer/test/screenshot.mjs) needs Debian's chromium,
+# node and npm, and viewer/node_modules. Nothing here is fatal: when a piece is
+# missing (offline, say), that test skips with a message.
+viewer_deps() {
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  local missing=()
+  [ -x /usr/bin/chromium ] || missing+=(chromium)
+  command -v node >/dev/null 2>&1 || missing+=(nodejs)
+  command -v npm >/dev/null 2>&1 || missing+=(npm)
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "== installing for the viewer test: ${missing[*]}"
+    { $sudo apt-get update -qq &&
+      DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"; } ||
+      echo "== could not install ${missing[*]}: the viewer test will skip"
+  fi
+  if command -v npm >/dev/null 2>&1; then
+    # npm ci first; some npm 11 registries leave other platforms' optional
+    # rollup packages out of the lock, which npm ci refuses: then install from
+    # the same lock without changing it.
+    { { npm ci --prefix viewer --no-audit --no-fund ||
+        npm install --prefix viewer --no-save --no-audit --no-fund; } &&
+      npm run build --prefix viewer; } ||
+      echo "== npm install / vite build failed: the viewer test will skip"
+  fi
+}
+
 build() {  # build PRESET
   cmake --preset "$1" >/dev/null
   cmake --build --preset "$1"
@@ -55,6 +82,7 @@ case "${1:-}" in
     ;;
   test)
     deps
+    viewer_deps
     format_check
     echo "== release build and tests"
     build release

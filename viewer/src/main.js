@@ -1,0 +1,252 @@
+// cmkit viewer: shows a glTF exported by `cmkit export` / `cmkit view` and
+// the traces of a results file. URL parameters: model (default scene.glb),
+// results (default results.txt; optional).
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { describe, parseResults } from './results.js';
+
+const params = new URLSearchParams(location.search);
+const modelUrl = params.get('model') ?? 'scene.glb';
+const resultsUrl = params.get('results') ?? 'results.txt';
+
+const canvas = document.getElementById('view');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x1c1e24);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+sun.position.set(0.35, 0.8, -0.5);
+scene.add(sun);
+const camera = new THREE.PerspectiveCamera(50, 1, 1, 100000);
+const controls = new OrbitControls(camera, canvas);
+
+// The map is z-up; the glTF root turns it y-up. Traces drawn from the
+// results file get the same turn.
+const zUp = new THREE.Group();
+zUp.rotation.x = -Math.PI / 2;
+scene.add(zUp);
+
+const groups = { contents: new Map(), edges: [], internal: [], traces: new Map() };
+let records = [];
+let selected = null;
+
+function resize() {
+  const w = canvas.clientWidth;
+  const h = canvas.clientHeight;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+}
+
+// Cutting the scene above a height (map z, which is world y here) to look
+// into rooms from above; the slider starts with the top fifth cut away.
+const AUTO_CUT_FRACTION = 0.2;
+const cutPlane = new THREE.Plane(new THREE.Vector3(0, -1, 0), 0);
+renderer.clippingPlanes = [cutPlane];
+function setupCut(object) {
+  const box = new THREE.Box3().setFromObject(object);
+  const slider = document.getElementById('cut');
+  slider.min = String(Math.floor(box.min.y));
+  slider.max = String(Math.ceil(box.max.y) + 1);
+  slider.value = String(box.max.y - (box.max.y - box.min.y) * AUTO_CUT_FRACTION);
+  const apply = () => {
+    cutPlane.constant = Number(slider.value);
+    document.getElementById('cut-value').textContent = slider.value;
+  };
+  slider.addEventListener('input', apply);
+  apply();
+}
+
+function frame(object) {
+  const box = new THREE.Box3().setFromObject(object);
+  if (box.isEmpty()) return;
+  const center = box.getCenter(new THREE.Vector3());
+  const radius = box.getSize(new THREE.Vector3()).length() / 2 || 1;
+  const dist = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2));
+  camera.position.copy(center).add(new THREE.Vector3(-0.6, 0.7, 0.6).normalize().multiplyScalar(dist));
+  camera.near = Math.max(dist / 1000, 0.1);
+  camera.far = dist * 10;
+  camera.updateProjectionMatrix();
+  controls.target.copy(center);
+  controls.update();
+}
+
+// Sorts the glTF's nodes into contents kinds, edges, internal edges, traces.
+function classify(root) {
+  root.traverse((obj) => {
+    const x = obj.userData ?? {};
+    if (obj.isMesh && obj.material) {
+      // Faces sit a little behind their edges, so that edges do not flicker.
+      obj.material.polygonOffset = true;
+      obj.material.polygonOffsetFactor = 1;
+      obj.material.polygonOffsetUnits = 1;
+    }
+    if (x.kind === 'polygons') {
+      const name = x.contentsNames || 'none';
+      if (!groups.contents.has(name)) groups.contents.set(name, []);
+      groups.contents.get(name).push(obj);
+    } else if (x.kind === 'edges') {
+      groups.edges.push(obj);
+    } else if (x.kind === 'internal edges') {
+      groups.internal.push(obj);
+      obj.visible = false;
+    } else if (x.kind === 'trace' && x.query !== undefined) {
+      groups.traces.set(x.trace, obj);
+    }
+  });
+}
+
+// Lines for the traces of the results file that the glTF does not have.
+function addTraceLines(recs) {
+  const colors = { path: 0xffff00, rest: 0x808040, contact: 0xff0000, normal: 0xff8000 };
+  for (const rec of recs) {
+    if (groups.traces.has(rec.index) || rec.error || !rec.start) continue;
+    const g = new THREE.Group();
+    g.userData = { kind: 'trace', trace: rec.index };
+    const seg = (a, b, color) => {
+      const geo = new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(...a), new THREE.Vector3(...b)]);
+      g.add(new THREE.LineSegments(geo, new THREE.LineBasicMaterial({ color })));
+    };
+    seg(rec.start, rec.endpos, colors.path);
+    if (rec.end) seg(rec.endpos, rec.end, colors.rest);
+    if (rec.point && rec.type !== 'none') {
+      const s = 4;
+      for (let k = 0; k < 3; ++k) {
+        const a = [...rec.point];
+        const b = [...rec.point];
+        a[k] -= s;
+        b[k] += s;
+        seg(a, b, colors.contact);
+      }
+      if (rec.normal) seg(rec.point, rec.point.map((p, k) => p + rec.normal[k] * 16), colors.normal);
+    }
+    zUp.add(g);
+    groups.traces.set(rec.index, g);
+  }
+}
+
+function swatchColor(objs) {
+  let color = '#888';
+  objs[0]?.traverse((o) => {
+    if (o.material?.color) color = '#' + o.material.color.getHexString(THREE.SRGBColorSpace);
+  });
+  return color;
+}
+
+function buildPanel() {
+  const contentsDiv = document.getElementById('contents');
+  for (const [name, objs] of [...groups.contents].sort()) {
+    const label = document.createElement('label');
+    label.innerHTML = `<input type="checkbox" checked data-contents="${name}" />` +
+      `<span class="swatch" style="background:${swatchColor(objs)}"></span>${name}`;
+    label.querySelector('input').addEventListener('change', (e) => {
+      objs.forEach((o) => (o.visible = e.target.checked));
+    });
+    contentsDiv.appendChild(label);
+  }
+  const toggle = (id, objs) =>
+    document.getElementById(id).addEventListener('change', (e) => objs().forEach((o) => (o.visible = e.target.checked)));
+  toggle('show-edges', () => groups.edges);
+  toggle('show-internal', () => groups.internal);
+  toggle('show-traces', () => [...groups.traces.values()]);
+
+  const list = document.getElementById('traces');
+  for (const rec of records) {
+    const li = document.createElement('li');
+    li.textContent = `${rec.op} ${rec.error ? 'error' : `fraction ${rec.fraction ?? '-'} ${rec.type}`}`;
+    li.dataset.trace = rec.index;
+    li.addEventListener('click', () => select(rec.index));
+    list.appendChild(li);
+  }
+}
+
+// Shows a trace's contact and highlights it.
+function select(index) {
+  selected = index;
+  const rec = records[index];
+  const obj = groups.traces.get(index);
+  let text = rec ? describe(rec) : '';
+  if (!rec && obj) {
+    const x = obj.userData;
+    text = [`#${index}`, x.query, `fraction: ${x.fraction}`, `contact: ${x.type}`, `point: ${x.point}`,
+      `normal: ${x.normal}`, `contents: ${x.contents}`,
+      `feature: model ${x.modelFeature}, trace model ${x.trmFeature}`].join('\n');
+  }
+  document.getElementById('info').textContent = text;
+  document.querySelectorAll('#traces li').forEach((li) => li.classList.toggle('selected', +li.dataset.trace === index));
+  document.body.dataset.selected = String(index);
+}
+
+const raycaster = new THREE.Raycaster();
+function pick(event) {
+  const rect = canvas.getBoundingClientRect();
+  const ndc = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1,
+    -((event.clientY - rect.top) / rect.height) * 2 + 1);
+  raycaster.setFromCamera(ndc, camera);
+  // Lines are thin: accept hits within a few pixels' worth of world units.
+  raycaster.params.Line.threshold = camera.position.distanceTo(controls.target) * 0.01;
+  const targets = [...groups.traces.values()].filter((o) => o.visible);
+  const hit = raycaster.intersectObjects(targets, true)[0];
+  if (!hit) return;
+  for (let o = hit.object; o; o = o.parent) {
+    if (o.userData?.kind === 'trace' && groups.traces.get(o.userData.trace) === o) {
+      select(o.userData.trace);
+      return;
+    }
+    if (o.userData?.kind === 'trace' && o.userData.trace !== undefined && !o.userData.query) {
+      const owner = groups.traces.get(o.userData.trace);
+      if (owner) {
+        select(o.userData.trace);
+        return;
+      }
+    }
+  }
+}
+let downAt = null;
+canvas.addEventListener('pointerdown', (e) => (downAt = [e.clientX, e.clientY]));
+canvas.addEventListener('pointerup', (e) => {
+  if (downAt && Math.hypot(e.clientX - downAt[0], e.clientY - downAt[1]) < 4) pick(e);
+});
+
+/** For tests: the screen position (CSS pixels) of a trace's path middle. */
+function traceScreenPoint(index) {
+  const rec = records[index];
+  if (!rec?.start) return null;
+  const mid = rec.start.map((s, k) => (s + rec.endpos[k]) / 2);
+  const v = new THREE.Vector3(...mid).applyMatrix4(zUp.matrixWorld).project(camera);
+  const rect = canvas.getBoundingClientRect();
+  return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height };
+}
+window.cmkitViewer = { select, traceScreenPoint, get records() { return records; } };
+
+async function load() {
+  const status = document.getElementById('status');
+  try {
+    const gltf = await new GLTFLoader().loadAsync(modelUrl);
+    scene.add(gltf.scene);
+    classify(gltf.scene);
+    const res = await fetch(resultsUrl);
+    if (res.ok) records = parseResults(await res.text());
+    zUp.updateMatrixWorld(true);
+    addTraceLines(records);
+    buildPanel();
+    resize();
+    frame(gltf.scene);
+    setupCut(gltf.scene);
+    status.textContent = `${modelUrl}: ${groups.contents.size} contents kinds, ${groups.traces.size} traces`;
+    document.body.dataset.ready = '1';
+  } catch (err) {
+    status.textContent = `cannot load ${modelUrl}: ${err.message ?? err}`;
+    document.body.dataset.ready = 'error';
+  }
+}
+
+window.addEventListener('resize', resize);
+renderer.setAnimationLoop(() => {
+  controls.update();
+  renderer.render(scene, camera);
+});
+resize();
+load();
