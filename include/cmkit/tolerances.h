@@ -34,6 +34,9 @@ inline constexpr Real kOnEpsilon = 0.1f;
 /// most kCircleApproximationLength long, but with no more than this many
 /// pieces per part below 180 degrees (more pieces only make smaller boxes).
 inline constexpr int kMaxRotationWalkPieces = 16;
+/// cmkit: rotating edges whose directions differ by a sine below this at the
+/// contact are parallel: their crossing equation is float noise, no contact.
+inline constexpr Real kRotationParallelEdgeSine = 1e-5f;
 
 // ---- Building models -------------------------------------------------------
 

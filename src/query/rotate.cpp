@@ -236,15 +236,18 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   double u;
   Vec3 c, d;
   if ((f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0)) {
+    // Within the band (on the model edge line included): the side of the
+    // epsilon line is the outside, so moving away from it is moving in.
+    // away = d|f1|/dt, with sign(f1) = -sign(f2) in the band.
     const Sinusoid real = edgeEdgeSinusoid(turned, DVec(c0), DVec(d0), sign);
-    // Moving toward the model edge line: |product| shrinking.
-    const double approach = real.v0 + real.v2 < 0 ? -real.v1 : real.v1;
+    const double flip = f2 > 0 ? -1.0 : 1.0;
+    const double away = flip * real.v1;
     c = c1;
     d = d1;
-    if (approach <= 0) {
+    if (away <= 0) {
       u = 0;
     } else {
-      const double furthest = firstExtremumTan(approach, real.v0 + real.v2 < 0 ? -real.v2 : real.v2);
+      const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
       if (!sinusoidRoot(edgeEdgeSinusoid(turned, DVec(c1), DVec(d1), sign), furthest, rw.maxTan, u)) return;
     }
@@ -258,11 +261,16 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   Vec3 a, b, point;
   if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c0, d0, u, a, b, point)) return;
 
-  rw.maxTan = u;
   // Contact plane: through the model edge, containing both edge directions,
   // facing out of the solid (the model edge's normal), else the trm edge.
+  // Parallel edges have no such plane and no crossing: their product is
+  // zero at every angle, so its roots are noise (vertex-polygon tests see
+  // those contacts).
   Vec3 normal = (b - a).cross(d0 - c0);
+  const Real sinSq = normal.lengthSquared() / ((b - a).lengthSquared() * (d0 - c0).lengthSquared());
+  if (!(sinSq > tol::kRotationParallelEdgeSine * tol::kRotationParallelEdgeSine)) return;
   normal.normalize();
+  rw.maxTan = u;
   const Real facing = normal.dot(edge.normal);
   if (facing < 0 || (facing == 0 && normal.dot(a - c0) < 0)) normal = -normal;
   setContact(tw, poly, ContactType::Edge, normal, normal.dot(c0), point, edgeNum, trmEdgeNum);
