@@ -25,6 +25,12 @@ void registerExport(CLI::App& app);
 /// `cmkit view MODELS`: serves the web viewer on a loopback address.
 void registerView(CLI::App& app);
 
+/// `cmkit bench MODELS`: the original's collision speed test; `--suite DIR`.
+void registerBench(CLI::App& app);
+
+/// `cmkit demo [MAP]`: compile, speed test and picture of the bundled map.
+void registerDemo(CLI::App& app);
+
 /// Exit code for bad input (files, arguments) as opposed to 0 = success.
 inline constexpr int kExitBadInput = 2;
 

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   cmkit::cli::registerRender(app);
   cmkit::cli::registerExport(app);
   cmkit::cli::registerView(app);
+  cmkit::cli::registerBench(app);
+  cmkit::cli::registerDemo(app);
   CLI11_PARSE(app, argc, argv);
   return 0;
 }

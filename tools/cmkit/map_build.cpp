@@ -13,6 +13,7 @@
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "commands.h"
+#include "progress_bar.h"
 #include "stats_print.h"
 
 namespace cmkit::cli {
@@ -21,33 +22,6 @@ namespace {
 
 /// Maps at least this large (bytes) get a progress bar on a terminal.
 constexpr std::uintmax_t kProgressMinFileSize = 1u << 20;
-constexpr int kProgressBarWidth = 40;
-
-/// A progress bar on stderr, redrawn only when it changes.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
-  ~ProgressBar() { finish(); }
-  void update(std::size_t done, std::size_t total) {
-    if (!enabled_ || total == 0) return;
-    const int filled = static_cast<int>(done * kProgressBarWidth / total);
-    if (filled == lastFilled_ && done != total) return;
-    lastFilled_ = filled;
-    fmt::print(stderr, "\rbuilding [{}{}] {}/{} entities", std::string(static_cast<std::size_t>(filled), '#'),
-               std::string(static_cast<std::size_t>(kProgressBarWidth - filled), ' '), done, total);
-    std::fflush(stderr);
-    drawn_ = true;
-  }
-  void finish() {
-    if (drawn_) fmt::print(stderr, "\r\033[K");
-    drawn_ = false;
-  }
-
- private:
-  bool enabled_;
-  bool drawn_ = false;
-  int lastFilled_ = -1;
-};
 
 }  // namespace
 

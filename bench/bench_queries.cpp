@@ -1,0 +1,160 @@
+// Query benchmarks on lt4 (shared/maps/lt4/lt4.map, or the bundled copy in
+// data/maps/lt4): the lines of shared/reference/lt4.queries.txt of each kind,
+// parsed once, run through the library (results not formatted).
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "cmkit/build.h"
+#include "cmkit/map.h"
+#include "cmkit/query_file.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// lt4 built and its queries parsed, loaded on first use by any benchmark.
+struct Lt4Scene {
+  std::once_flag once;
+  std::string error;  ///< why the scene is missing (benchmarks skip with it)
+  std::vector<cmkit::ModelPtr> models;
+  std::vector<cmkit::ParsedQuery> queries;
+
+  void load() {
+    const fs::path source(CMKIT_SOURCE_DIR);
+    const fs::path shared = source / ".." / "shared";
+    fs::path map = shared / "maps" / "lt4" / "lt4.map";
+    if (!fs::exists(map)) map = source / "data" / "maps" / "lt4" / "lt4.map";
+    const fs::path queryFile = shared / "reference" / "lt4.queries.txt";
+    if (!fs::exists(map) || !fs::exists(queryFile)) {
+      error = "lt4.map or shared/reference/lt4.queries.txt is absent";
+      return;
+    }
+    auto parsed = cmkit::loadMapFile(map.string());
+    if (!parsed) {
+      error = parsed.error().toString();
+      return;
+    }
+    auto built = cmkit::buildCollisionModels(*parsed, cmkit::MaterialTable{});
+    if (!built) {
+      error = built.error().toString();
+      return;
+    }
+    models = std::move(*built);
+    std::ifstream in(queryFile);
+    for (std::string line; std::getline(in, line);) {
+      if (!cmkit::isQueryLine(line)) continue;
+      if (auto q = cmkit::parseQueryLine(models, line)) queries.push_back(std::move(*q));
+    }
+  }
+};
+
+/// Which queries a benchmark runs.
+enum class Kind { BoxTranslation, PointTranslation, Rotation, Contents, PointContents, Contacts };
+
+bool matches(Kind kind, const cmkit::ParsedQuery& q) {
+  const bool point = !q.trm || q.trm->isPoint();
+  switch (kind) {
+    case Kind::BoxTranslation:
+      return q.op == cmkit::QueryOp::Translation && !point;
+    case Kind::PointTranslation:
+      return q.op == cmkit::QueryOp::Translation && point;
+    case Kind::Rotation:
+      return q.op == cmkit::QueryOp::Rotation;
+    case Kind::Contents:
+      return q.op == cmkit::QueryOp::Contents;
+    case Kind::PointContents:
+      return q.op == cmkit::QueryOp::PointContents;
+    case Kind::Contacts:
+      return q.op == cmkit::QueryOp::Contacts;
+  }
+  return false;
+}
+
+/// Runs one query through the library; returns something to keep alive.
+double runOne(const Lt4Scene& scene, const cmkit::ParsedQuery& q, cmkit::QueryWork& work,
+              std::vector<cmkit::ContactInfo>& out) {
+  const cmkit::CollisionModel& model = *scene.models[q.model];
+  const cmkit::TraceModel* trm = q.trm ? &*q.trm : nullptr;
+  switch (q.op) {
+    case cmkit::QueryOp::Translation:
+      return cmkit::translate(model, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement}, work)
+          .fraction;
+    case cmkit::QueryOp::Rotation: {
+      cmkit::RotationQuery r;
+      r.trm = trm;
+      r.trmAxis = q.trmAxis;
+      r.start = q.position;
+      r.rotation = q.rotation;
+      r.contentMask = q.contentMask;
+      r.model = q.placement;
+      return cmkit::rotate(model, r, work).fraction;
+    }
+    case cmkit::QueryOp::Contents:
+      return cmkit::contentsTest(model, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work)
+          .contents;
+    case cmkit::QueryOp::PointContents:
+      return cmkit::pointContents(model, q.position, q.placement);
+    case cmkit::QueryOp::Contacts: {
+      cmkit::ContactsQuery c;
+      c.trm = trm;
+      c.trmAxis = q.trmAxis;
+      c.start = q.position;
+      c.dir = q.dir;
+      c.depth = q.depth;
+      c.contentMask = q.contentMask;
+      c.model = q.placement;
+      c.maxContacts = q.maxContacts;
+      return cmkit::contacts(model, c, work, out);
+    }
+  }
+  return 0;
+}
+
+void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
+  std::call_once(scene.once, [&scene] { scene.load(); });
+  if (!scene.error.empty()) {
+    state.SkipWithError(scene.error.c_str());
+    return;
+  }
+  std::vector<const cmkit::ParsedQuery*> queries;
+  for (const auto& q : scene.queries)
+    if (matches(kind, q)) queries.push_back(&q);
+  if (queries.empty()) {
+    state.SkipWithError("no queries of this kind in lt4.queries.txt");
+    return;
+  }
+  cmkit::QueryWork work;
+  std::vector<cmkit::ContactInfo> out;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(runOne(scene, *queries[i], work, out));
+    if (++i == queries.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["queries"] = double(queries.size());
+}
+
+/// Registers the lt4 benchmarks (they share one lazily loaded scene).
+bool registerLt4Benchmarks() {
+  auto scene = std::make_shared<Lt4Scene>();
+  const std::pair<const char*, Kind> kinds[] = {{"lt4/translation_box", Kind::BoxTranslation},
+                                                {"lt4/translation_point", Kind::PointTranslation},
+                                                {"lt4/rotation", Kind::Rotation},
+                                                {"lt4/contents", Kind::Contents},
+                                                {"lt4/pointcontents", Kind::PointContents},
+                                                {"lt4/contacts", Kind::Contacts}};
+  for (const auto& [name, kind] : kinds)
+    benchmark::RegisterBenchmark(name,
+                                 [scene, kind = kind](benchmark::State& s) { runKind(s, *scene, kind); });
+  return true;
+}
+
+const bool kLt4Registered = registerLt4Benchmarks();
+
+}  // namespace

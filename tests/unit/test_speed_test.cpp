@@ -1,0 +1,114 @@
+// The speed test (include/cmkit/speed_test.h): same results at any thread
+// count, hits on a real map; `cmkit bench` prints its statistics lines.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "cmkit/build.h"
+#include "cmkit/map.h"
+#include "cmkit/speed_test.h"
+#include "test_support.h"
+
+namespace cmkit {
+namespace {
+
+/// Queries per kind in the tests (small: the tests must stay fast).
+constexpr int kTestTimes = 300;
+
+ModelPtr featuresWorld() {
+  auto map = loadMapFile((test::testDataDir() / "maps" / "features.map").string());
+  if (!map) return nullptr;
+  auto models = buildCollisionModels(*map, MaterialTable{});
+  if (!models || models->empty()) return nullptr;
+  return models->front();
+}
+
+TEST(SpeedTest, SameResultsOnOneAndTwoThreads) {
+  const ModelPtr world = featuresWorld();
+  ASSERT_TRUE(world);
+  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
+  ASSERT_TRUE(trm);
+  for (bool walk : {false, true}) {
+    SpeedTestOptions o;
+    o.times = kTestTimes;
+    o.walk = walk;
+    o.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
+    const SpeedTestReport one = runSpeedTest(*world, *trm, o);
+    o.threads = 2;
+    const SpeedTestReport two = runSpeedTest(*world, *trm, o);
+    SCOPED_TRACE(walk ? "walk" : "plain");
+    EXPECT_EQ(one.translation.count, kTestTimes);
+    EXPECT_EQ(one.rotation.count, kTestTimes);
+    EXPECT_GT(one.translation.hits, 0);
+    EXPECT_GT(one.rotation.hits, 0);
+    EXPECT_EQ(one.translation.hash, two.translation.hash);
+    EXPECT_EQ(one.rotation.hash, two.rotation.hash);
+    EXPECT_EQ(one.translation.hits, two.translation.hits);
+    EXPECT_EQ(one.rotation.hits, two.rotation.hits);
+    EXPECT_LE(one.translation.minUs, one.translation.avgUs);
+    EXPECT_LE(one.translation.avgUs, one.translation.maxUs);
+  }
+}
+
+TEST(SpeedTest, SeedChangesTheQueries) {
+  const ModelPtr world = featuresWorld();
+  ASSERT_TRUE(world);
+  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
+  ASSERT_TRUE(trm);
+  SpeedTestOptions o;
+  o.times = kTestTimes;
+  o.rotations = false;
+  o.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
+  const auto a = runSpeedTest(*world, *trm, o);
+  o.seed = 1;
+  const auto b = runSpeedTest(*world, *trm, o);
+  EXPECT_NE(a.translation.hash, b.translation.hash);
+  EXPECT_EQ(a.rotation.count, 0);
+}
+
+TEST(SpeedTest, RandomManySharesOneEndPoint) {
+  const ModelPtr world = featuresWorld();
+  ASSERT_TRUE(world);
+  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
+  ASSERT_TRUE(trm);
+  SpeedTestOptions o;
+  o.times = kTestTimes;
+  o.randomMany = true;
+  o.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
+  const auto r = runSpeedTest(*world, *trm, o);
+  // Every query is the same: all hit or none does.
+  EXPECT_TRUE(r.translation.hits == 0 || r.translation.hits == kTestTimes);
+  EXPECT_TRUE(r.rotation.hits == 0 || r.rotation.hits == kTestTimes);
+}
+
+std::string runCapture(const std::string& cmd, int& status) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) {
+    status = -1;
+    return out;
+  }
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  status = pclose(p);
+  return out;
+}
+
+TEST(SpeedTest, CliBenchPrintsStatistics) {
+  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
+  const auto map = std::filesystem::path(CMKIT_SOURCE_DIR) / "data" / "maps" / "lt4" / "lt4.map";
+  if (!std::filesystem::exists(map)) GTEST_SKIP() << "no " << map;
+  int status = 0;
+  const std::string out = runCapture(
+      std::string(CMKIT_CLI_PATH) + " bench '" + map.string() + "' --times 200 --threads 2", status);
+  EXPECT_EQ(status, 0) << out;
+  for (const char* expected : {"translation:", "rotation:", " min ", " avg ", " max ", "hits", "hash",
+                               "2 threads:", "speed-up", "hash identical"})
+    EXPECT_NE(out.find(expected), std::string::npos) << expected << " missing in:\n" << out;
+  EXPECT_EQ(out.find("DIFFERENT"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace cmkit

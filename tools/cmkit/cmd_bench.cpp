@@ -1,0 +1,308 @@
+// `cmkit bench MODELS`: the original's collision speed test, and `--suite DIR`
+// to time the reference query files per kind.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "bench_report.h"
+#include "cmkit/query_file.h"
+#include "commands.h"
+#include "model_loading.h"
+
+namespace cmkit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+/// The query kinds of the suite, in print order.
+constexpr std::array<QueryOp, 5> kSuiteOps = {QueryOp::Translation, QueryOp::Rotation, QueryOp::Contents,
+                                              QueryOp::PointContents, QueryOp::Contacts};
+
+struct BenchOptions {
+  std::string models;
+  std::string materials;
+  std::string trm = kSpeedTestDefaultTrm;
+  std::string origin;
+  std::string suite;
+  int repeat = 1;
+  bool noRotation = false;
+  SpeedTestOptions test;
+};
+
+bool parseVec3(const std::string& text, Vec3& out) {
+  float x = 0, y = 0, z = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &x, &y, &z, &tail) != 3) return false;
+  out = {x, y, z};
+  return true;
+}
+
+}  // namespace
+
+void printSpeedTestBatch(const SpeedTestBatch& b) {
+  fmt::print(
+      "{:<12} {:5} queries  total {:9.3f} ms  min {:8.2f} us  avg {:8.2f} us  max {:9.2f} us  hits {:5}  "
+      "hash {:016x}\n",
+      b.kind + ":", b.count, b.sumMs, b.minUs, b.avgUs, b.maxUs, b.hits, b.hash);
+}
+
+bool runAndPrintSpeedTest(const CollisionModel& model, const TraceModel& trm, const std::string& trmSpec,
+                          const SpeedTestOptions& options) {
+  fmt::print("speed test on model \"{}\" ({} polygons, {} brushes): trm {}, origin ({} {} {})\n", model.name,
+             model.polygons.size(), model.brushes.size(), trmSpec, options.origin.x, options.origin.y,
+             options.origin.z);
+  fmt::print("  {} translations (end within +-{} per axis){}, mask {:#x}, seed {}{}{}\n", options.times,
+             options.length,
+             options.rotations ? fmt::format(" + {} rotations of {} deg (origins within +-{})", options.times,
+                                             options.angle, options.radius)
+                               : std::string(),
+             options.contentMask, options.seed, options.randomMany ? ", random-many" : "",
+             options.walk ? ", walk" : "");
+  SpeedTestOptions single = options;
+  single.threads = 1;
+  const SpeedTestReport one = runSpeedTest(model, trm, single);
+  fmt::print("1 thread:\n");
+  printSpeedTestBatch(one.translation);
+  if (options.rotations) printSpeedTestBatch(one.rotation);
+  if (options.threads <= 1) return true;
+
+  const SpeedTestReport many = runSpeedTest(model, trm, options);
+  fmt::print("{} threads:\n", options.threads);
+  printSpeedTestBatch(many.translation);
+  if (options.rotations) printSpeedTestBatch(many.rotation);
+  bool same = true;
+  for (const auto& [a, b] :
+       {std::pair{&one.translation, &many.translation}, {&one.rotation, &many.rotation}}) {
+    if (a->count == 0) continue;
+    const bool equal = a->hash == b->hash && a->hits == b->hits;
+    same = same && equal;
+    fmt::print("{:<12} 1 thread {:10.0f} q/s, {} threads {:10.0f} q/s: speed-up {:.2f}x, hash {}\n",
+               a->kind + ":", a->queriesPerSecond, options.threads, b->queriesPerSecond,
+               a->queriesPerSecond > 0 ? b->queriesPerSecond / a->queriesPerSecond : 0.0,
+               equal ? "identical" : "DIFFERENT");
+  }
+  return same;
+}
+
+namespace {
+
+/// The model source of NAME.queries.txt in DIR: DIR/../maps/*/NAME.map, else
+/// DIR/../maps/rbdoom-unittests/NAME.cm; empty when there is none.
+std::string suiteModelSource(const fs::path& dir, const std::string& name) {
+  const fs::path maps = dir / ".." / "maps";
+  std::error_code ec;
+  std::vector<fs::path> candidates;
+  for (const auto& entry : fs::directory_iterator(maps, ec))
+    if (entry.is_directory() && fs::exists(entry.path() / (name + ".map")))
+      candidates.push_back(entry.path());
+  std::sort(candidates.begin(), candidates.end());
+  if (!candidates.empty()) return (candidates.front() / (name + ".map")).lexically_normal().string();
+  const fs::path cm = maps / "rbdoom-unittests" / (name + ".cm");
+  if (fs::exists(cm)) return cm.lexically_normal().string();
+  return {};
+}
+
+/// Runs a parsed query without formatting its result (what is timed).
+/// Returns a value derived from the result so that nothing is optimised away.
+double runRaw(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work,
+              std::vector<ContactInfo>& contactsOut) {
+  const CollisionModel& model = *models[q.model];
+  const TraceModel* trm = q.trm ? &*q.trm : nullptr;
+  switch (q.op) {
+    case QueryOp::Translation:
+      return translate(model, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement}, work).fraction;
+    case QueryOp::Rotation: {
+      RotationQuery r;
+      r.trm = trm;
+      r.trmAxis = q.trmAxis;
+      r.start = q.position;
+      r.rotation = q.rotation;
+      r.contentMask = q.contentMask;
+      r.model = q.placement;
+      return rotate(model, r, work).fraction;
+    }
+    case QueryOp::Contents:
+      return contentsTest(model, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work).contents;
+    case QueryOp::PointContents:
+      return pointContents(model, q.position, q.placement);
+    case QueryOp::Contacts: {
+      ContactsQuery c;
+      c.trm = trm;
+      c.trmAxis = q.trmAxis;
+      c.start = q.position;
+      c.dir = q.dir;
+      c.depth = q.depth;
+      c.contentMask = q.contentMask;
+      c.model = q.placement;
+      c.maxContacts = q.maxContacts;
+      return contacts(model, c, work, contactsOut);
+    }
+  }
+  return 0;
+}
+
+struct KindTime {
+  double ns = 0;
+  std::size_t count = 0;
+};
+
+int runSuite(const BenchOptions& o) {
+  const fs::path dir(o.suite);
+  std::error_code ec;
+  std::vector<fs::path> files;
+  const std::string suffix = ".queries.txt";
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string f = entry.path().filename().string();
+    if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0)
+      files.push_back(entry.path());
+  }
+  if (ec || files.empty()) {
+    fmt::print(stderr, "cmkit bench: --suite {}: no NAME.queries.txt files\n", o.suite);
+    return kExitBadInput;
+  }
+  std::sort(files.begin(), files.end());
+  fmt::print("ns/query per kind (parsed once, results not formatted; {} pass{}, 1 thread; (n) = queries)\n",
+             o.repeat, o.repeat == 1 ? "" : "es");
+  fmt::print("{:<36}", "file");
+  for (QueryOp op : kSuiteOps) fmt::print(" {:>20}", toString(op));
+  fmt::print("\n");
+  std::map<QueryOp, KindTime> total;
+  QueryWork work;
+  std::vector<ContactInfo> contactsOut;
+  double sink = 0;
+  for (const fs::path& file : files) {
+    const std::string fname = file.filename().string();
+    const std::string name = fname.substr(0, fname.size() - suffix.size());
+    const std::string source = suiteModelSource(dir, name);
+    if (source.empty()) {
+      fmt::print("{:<36} (skipped: no model source)\n", name);
+      continue;
+    }
+    auto models = loadModelsForCli(source, o.materials);
+    if (!models) {
+      fmt::print("{:<36} (skipped: {})\n", name, models.error().toString());
+      continue;
+    }
+    std::ifstream in(file, std::ios::binary);
+    std::map<QueryOp, std::vector<ParsedQuery>> byKind;
+    for (std::string line; std::getline(in, line);) {
+      if (!isQueryLine(line)) continue;
+      auto parsed = parseQueryLine(*models, line);
+      if (parsed) byKind[parsed->op].push_back(std::move(*parsed));
+    }
+    fmt::print("{:<36}", name);
+    for (QueryOp op : kSuiteOps) {
+      const auto& queries = byKind[op];
+      if (queries.empty()) {
+        fmt::print(" {:>20}", "-");
+        continue;
+      }
+      const auto t0 = Clock::now();
+      for (int pass = 0; pass < o.repeat; ++pass)
+        for (const ParsedQuery& q : queries) sink += runRaw(*models, q, work, contactsOut);
+      const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+      const std::size_t n = queries.size() * std::size_t(o.repeat);
+      total[op].ns += ns;
+      total[op].count += n;
+      fmt::print(" {:>20}", fmt::format("{:.0f} ({})", ns / double(n), queries.size()));
+    }
+    fmt::print("\n");
+  }
+  fmt::print("{:<36}", "all files");
+  for (QueryOp op : kSuiteOps) {
+    const KindTime& t = total[op];
+    fmt::print(" {:>20}", t.count ? fmt::format("{:.0f} ({})", t.ns / double(t.count), t.count) : "-");
+  }
+  fmt::print("\n");
+  if (sink == -1) fmt::print("\n");  // keeps the results alive
+  return 0;
+}
+
+int runBench(const BenchOptions& o) {
+  if (!o.suite.empty()) return runSuite(o);
+  if (o.models.empty()) {
+    fmt::print(stderr, "cmkit bench: give MODELS (a .map or .cm file) or --suite DIR\n");
+    return kExitBadInput;
+  }
+  auto models = loadModelsForCli(o.models, o.materials);
+  if (!models) {
+    fmt::print(stderr, "cmkit bench: {}\n", models.error().toString());
+    return kExitBadInput;
+  }
+  if (models->empty()) {
+    fmt::print(stderr, "cmkit bench: {}: no collision models\n", o.models);
+    return kExitBadInput;
+  }
+  auto trm = TraceModel::parse(o.trm);
+  if (!trm) {
+    fmt::print(stderr, "cmkit bench: --trm: {}\n", trm.error().toString());
+    return kExitBadInput;
+  }
+  const CollisionModel& world = *models->front();
+  SpeedTestOptions test = o.test;
+  test.rotations = !o.noRotation;
+  if (o.origin.empty()) {
+    test.origin = (world.bounds.min + world.bounds.max) * Real(0.5);
+  } else if (!parseVec3(o.origin, test.origin)) {
+    fmt::print(stderr, "cmkit bench: --origin: expected x,y,z, got '{}'\n", o.origin);
+    return kExitBadInput;
+  }
+  fmt::print("{}: ", o.models);
+  return runAndPrintSpeedTest(world, *trm, o.trm, test) ? 0 : 1;
+}
+
+}  // namespace
+
+void registerBench(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  auto* cmd = app.add_subcommand(
+      "bench",
+      "The original's collision speed test (cm_testCollision): --times translations of a trace\n"
+      "model from an origin (default: the centre of the world model) to seeded random end points\n"
+      "within +-length per axis (mask solid|playerclip), then --times rotations of --angle degrees\n"
+      "about random axes through points within +-radius of the origin. Every query is timed;\n"
+      "per kind it prints the total, min/avg/max, the hits (fraction < 1) and a hash of all\n"
+      "results, which is the same at any --threads.\n\n"
+      "--suite DIR times every NAME.queries.txt of DIR (e.g. shared/reference) against its map\n"
+      "(DIR/../maps/*/NAME.map or DIR/../maps/rbdoom-unittests/NAME.cm): ns/query per kind.\n\n"
+      "Examples:\n"
+      "  cmkit bench data/maps/lt4/lt4.map\n"
+      "  cmkit bench data/maps/lt4/lt4.map --threads 2 --walk\n"
+      "  cmkit bench --suite ../shared/reference");
+  cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file; the first model is tested");
+  cmd->add_option("--trm", o->trm, "trace model (query-format syntax)")->capture_default_str();
+  cmd->add_option("--origin", o->origin, "start of the moves x,y,z (default: centre of the model's bounds)");
+  cmd->add_option("--times", o->test.times, "queries per kind (cm_testTimes)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--length", o->test.length, "end points within +-length per axis (cm_testLength)")
+      ->capture_default_str();
+  cmd->add_option("--angle", o->test.angle, "degrees per rotation (cm_testAngle)")->capture_default_str();
+  cmd->add_option("--radius", o->test.radius, "rotation origins within +-radius (cm_testRadius)")
+      ->capture_default_str();
+  cmd->add_flag("--random-many", o->test.randomMany, "one shared end point / rotation (cm_testRandomMany)");
+  cmd->add_flag("--walk", o->test.walk, "chained moves: each starts where the previous ended (cm_testWalk)");
+  cmd->add_flag("--no-rotation", o->noRotation, "translations only");
+  cmd->add_option("--seed", o->test.seed, "seed of the random generator")->capture_default_str();
+  cmd->add_option("-j,--threads", o->test.threads, "also run on this many threads and compare")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("--suite", o->suite, "time every NAME.queries.txt of this directory");
+  cmd->add_option("--repeat", o->repeat, "suite: passes over each file")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
+  cmd->callback([o] {
+    if (int rc = runBench(*o); rc != 0) std::exit(rc);
+  });
+}
+
+}  // namespace cmkit::cli
