@@ -3,6 +3,7 @@
 // line per query, so that two implementations can be compared line by line.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -11,6 +12,34 @@
 #include "cmkit/query.h"
 
 namespace cmkit {
+
+/// The operation of a query line.
+enum class QueryOp { Translation, Rotation, Contents, PointContents, Contacts };
+
+/// "translation", "rotation", "contents", "pointcontents", "contacts".
+const char* toString(QueryOp op);
+
+/// A query line parsed once (for running it many times, e.g. benchmarks).
+struct ParsedQuery {
+  QueryOp op = QueryOp::Translation;
+  std::optional<TraceModel> trm;  ///< empty: a point
+  Mat3 trmAxis;
+  Vec3 position;         ///< start (pos for pointcontents)
+  Vec3 end;              ///< translation
+  Vec3 dir;              ///< contacts
+  Real depth = 0;        ///< contacts
+  int maxContacts = 16;  ///< contacts
+  Rotation rotation;     ///< rotation
+  std::uint32_t contentMask = contents::kMaskSolid;
+  std::size_t model = 0;  ///< index into the models
+  Placement placement;
+};
+
+/// Parses a query line; the error message is the line's "error=" reason.
+Result<ParsedQuery> parseQueryLine(std::span<const ModelPtr> models, std::string_view line);
+
+/// Runs a parsed query and formats its result line.
+std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work);
 
 /// True for lines that hold a query (not blank, not a # comment).
 bool isQueryLine(std::string_view line);

@@ -197,79 +197,143 @@ Placement parsePlacement(Fields& f) {
   return p;
 }
 
-std::string runLine(std::span<const ModelPtr> models, std::string_view line, QueryWork& work) {
+// Parses a line into a ParsedQuery (throws LineError).
+ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
   const std::size_t sp = line.find_first_of(" \t");
   const std::string_view op = line.substr(0, sp);
   Fields f(sp == std::string_view::npos ? std::string_view() : line.substr(sp));
-  std::string out;
+  ParsedQuery q;
+  auto modelIndex = [&](const CollisionModel& m) {
+    for (std::size_t i = 0; i < models.size(); ++i)
+      if (models[i].get() == &m) return i;
+    return std::size_t(0);
+  };
   if (op == "pointcontents") {
-    const Vec3 pos = parseVec(f.require("pos"), "pos");
-    const CollisionModel& m = selectModel(models, f);
-    const Placement placement = parsePlacement(f);
+    q.op = QueryOp::PointContents;
+    q.position = parseVec(f.require("pos"), "pos");
+    q.model = modelIndex(selectModel(models, f));
+    q.placement = parsePlacement(f);
     f.checkAllUsed();
-    return "contents=" + std::to_string(pointContents(m, pos, placement));
+    return q;
   }
-  if (op != "translation" && op != "contents" && op != "contacts" && op != "rotation")
+  if (op == "translation")
+    q.op = QueryOp::Translation;
+  else if (op == "contents")
+    q.op = QueryOp::Contents;
+  else if (op == "contacts")
+    q.op = QueryOp::Contacts;
+  else if (op == "rotation")
+    q.op = QueryOp::Rotation;
+  else
     throw LineError{"unknown operation '" + std::string(op) + "'"};
-  const std::optional<TraceModel> trm = parseTrm(f);
-  const TraceModel* trmPtr = trm ? &*trm : nullptr;
-  const Vec3 start = parseVec(f.require("start"), "start");
-  Mat3 trmAxis;
-  if (auto a = f.get("trmaxis")) trmAxis = parseAxis(*a, "trmaxis");
-  const std::uint32_t mask = parseMask(f);
-  const CollisionModel& m = selectModel(models, f);
-  const Placement placement = parsePlacement(f);
-  if (op == "translation") {
-    const Vec3 end = parseVec(f.require("end"), "end");
-    f.checkAllUsed();
-    TranslationQuery q{trmPtr, trmAxis, start, end, mask, placement, false};
-    appendTrace(out, m, translate(m, q, work));
-    return out;
-  }
-  if (op == "contents") {
-    f.checkAllUsed();
-    const ContentsResult r = contentsTest(m, {trmPtr, trmAxis, start, mask, placement}, work);
-    out = "result=" + std::to_string(r.contents) + " ";
-    appendTrace(out, m, r.trace);
-    return out;
-  }
-  if (op == "contacts") {
-    ContactsQuery q;
-    q.trm = trmPtr;
-    q.trmAxis = trmAxis;
-    q.start = start;
-    q.dir = parseVec(f.require("dir"), "dir");
-    if (!parseFloat(f.require("depth"), q.depth)) throw LineError{"bad number in depth"};
-    q.contentMask = mask;
-    q.model = placement;
-    if (auto mx = f.get("max")) {
-      Real v;
-      if (!parseFloat(*mx, v) || v < 0 || v != std::floor(v) || v > 1e6f) throw LineError{"bad max"};
-      q.maxContacts = int(v);
+  q.trm = parseTrm(f);
+  q.position = parseVec(f.require("start"), "start");
+  if (auto a = f.get("trmaxis")) q.trmAxis = parseAxis(*a, "trmaxis");
+  q.contentMask = parseMask(f);
+  q.model = modelIndex(selectModel(models, f));
+  q.placement = parsePlacement(f);
+  switch (q.op) {
+    case QueryOp::Translation:
+      q.end = parseVec(f.require("end"), "end");
+      break;
+    case QueryOp::Contacts:
+      q.dir = parseVec(f.require("dir"), "dir");
+      if (!parseFloat(f.require("depth"), q.depth)) throw LineError{"bad number in depth"};
+      if (auto mx = f.get("max")) {
+        Real v;
+        if (!parseFloat(*mx, v) || v < 0 || v != std::floor(v) || v > 1e6f) throw LineError{"bad max"};
+        q.maxContacts = int(v);
+      }
+      break;
+    case QueryOp::Rotation: {
+      const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
+      const Vec3 rotOrigin = parseVec(f.require("rotorigin"), "rotorigin");
+      Real angle;
+      if (!parseFloat(f.require("angle"), angle)) throw LineError{"bad number in angle"};
+      if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
+      q.rotation = Rotation(rotOrigin, axis, angle);
+      break;
     }
-    f.checkAllUsed();
-    std::vector<ContactInfo> found;
-    const int n = contacts(m, q, work, found);
-    out = "count=" + std::to_string(n);
-    for (int i = 0; i < n; ++i) {
-      out += ' ';
-      appendContact(out, m, found[std::size_t(i)], "." + std::to_string(i));
-    }
-    return out;
+    default:
+      break;
   }
-  // rotation
-  const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
-  const Vec3 rotOrigin = parseVec(f.require("rotorigin"), "rotorigin");
-  Real angle;
-  if (!parseFloat(f.require("angle"), angle)) throw LineError{"bad number in angle"};
-  if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
   f.checkAllUsed();
-  const RotationQuery q{trmPtr, trmAxis, start, Rotation(rotOrigin, axis, angle), mask, placement, false};
-  appendTrace(out, m, rotate(m, q, work));
-  return out;
+  return q;
 }
 
 }  // namespace
+
+Result<ParsedQuery> parseQueryLine(std::span<const ModelPtr> models, std::string_view line) {
+  try {
+    return parseLine(models, trim(line));
+  } catch (const LineError& e) {
+    return Error{e.reason};
+  }
+}
+
+std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work) {
+  const CollisionModel& m = *models[q.model];
+  const TraceModel* trm = q.trm ? &*q.trm : nullptr;
+  std::string out;
+  switch (q.op) {
+    case QueryOp::PointContents:
+      return "contents=" + std::to_string(pointContents(m, q.position, q.placement));
+    case QueryOp::Translation:
+      appendTrace(out, m,
+                  translate(m, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement, false}, work));
+      return out;
+    case QueryOp::Contents: {
+      const ContentsResult r =
+          contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work);
+      out = "result=" + std::to_string(r.contents) + " ";
+      appendTrace(out, m, r.trace);
+      return out;
+    }
+    case QueryOp::Contacts: {
+      ContactsQuery cq;
+      cq.trm = trm;
+      cq.trmAxis = q.trmAxis;
+      cq.start = q.position;
+      cq.dir = q.dir;
+      cq.depth = q.depth;
+      cq.contentMask = q.contentMask;
+      cq.model = q.placement;
+      cq.maxContacts = q.maxContacts;
+      std::vector<ContactInfo> found;
+      const int n = contacts(m, cq, work, found);
+      out = "count=" + std::to_string(n);
+      for (int i = 0; i < n; ++i) {
+        out += ' ';
+        appendContact(out, m, found[std::size_t(i)], "." + std::to_string(i));
+      }
+      return out;
+    }
+    case QueryOp::Rotation:
+      appendTrace(
+          out, m,
+          rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work));
+      return out;
+  }
+  return "error=unknown operation";
+}
+
+const char* toString(QueryOp op) {
+  switch (op) {
+    case QueryOp::Translation:
+      return "translation";
+    case QueryOp::Rotation:
+      return "rotation";
+    case QueryOp::Contents:
+      return "contents";
+    case QueryOp::PointContents:
+      return "pointcontents";
+    case QueryOp::Contacts:
+      return "contacts";
+  }
+  return "?";
+}
+
+namespace {}  // namespace
 
 bool isQueryLine(std::string_view line) {
   const std::string_view t = trim(line);
@@ -277,11 +341,9 @@ bool isQueryLine(std::string_view line) {
 }
 
 std::string answerQueryLine(std::span<const ModelPtr> models, std::string_view line, QueryWork& work) {
-  try {
-    return runLine(models, trim(line), work);
-  } catch (const LineError& e) {
-    return "error=" + e.reason;
-  }
+  auto parsed = parseQueryLine(models, line);
+  if (!parsed) return "error=" + parsed.error().message;
+  return runParsedQuery(models, *parsed, work);
 }
 
 }  // namespace cmkit
