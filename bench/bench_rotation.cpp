@@ -111,9 +111,6 @@ void BM_RotationLt4(benchmark::State& state) {
     for (const ParsedRotation& p : d.parsed) benchmark::DoNotOptimize(cmkit::rotate(*p.model, p.query, work));
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(d.parsed.size()));
-  state.counters["ns/query"] =
-      benchmark::Counter(double(d.parsed.size()) * 1e-9,
-                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_RotationLt4)->Unit(benchmark::kMillisecond);
 
