@@ -14,6 +14,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(build-essential cmake ninja-build ccache clang-format
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
+          libbullet-dev pkg-config
           python3)
 
 deps() {
@@ -77,8 +78,8 @@ case "${1:-}" in
   demo)
     deps
     build release
-    echo "== main job: the trace model demonstration"
-    ./build/release/bin/cmkit trm box:-16,-16,0,16,16,72
+    echo "== main job: compile lt4, speed test, picture (cmkit demo)"
+    ./build/release/bin/cmkit demo -o build/cmkit-demo.png
     ;;
   test)
     deps
