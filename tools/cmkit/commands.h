@@ -9,6 +9,9 @@ namespace cmkit::cli {
 /// `cmkit trm SPEC`: builds a trace model and prints its features.
 void registerTrm(CLI::App& app);
 
+/// `cmkit query MODELS QUERIES`: runs a query file (docs/query-format.md).
+void registerQuery(CLI::App& app);
+
 /// `cmkit compile MAP`: builds the collision models of a map, prints their
 /// statistics, optionally writes a .cm file.
 void registerCompile(CLI::App& app);
