@@ -89,6 +89,7 @@ class Validator {
       }
       if (p.numEdges < 3) report("polygon", item, "fewer than 3 edges");
       bool edgesOk = true;
+      bool repeated = false;  // reported once per polygon
       const auto list = m_.edgesOf(p);
       for (std::size_t k = 0; k < list.size(); ++k) {
         if (!edgeInRange(list[k])) {
@@ -96,9 +97,11 @@ class Validator {
           edgesOk = false;
           continue;
         }
-        for (std::size_t j = 0; j < k; ++j) {
-          if (list[j] == list[k] || list[j] == -list[k])
+        for (std::size_t j = 0; j < k && !repeated; ++j) {
+          if (list[j] == list[k] || list[j] == -list[k]) {
             report("polygon", item, "uses edge " + std::to_string(std::abs(list[k])) + " twice");
+            repeated = true;
+          }
         }
       }
       if (p.material < -1 || (p.material >= 0 && std::size_t(p.material) >= m_.materials.size()))

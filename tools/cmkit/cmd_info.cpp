@@ -3,8 +3,14 @@
 #include <cstdlib>
 #include <string>
 
+#include <fmt/core.h>
+
+#include <chrono>
+
 #include "commands.h"
 #include "map_build.h"
+#include "model_loading.h"
+#include "stats_print.h"
 
 namespace cmkit::cli {
 
@@ -14,20 +20,42 @@ void registerInfo(CLI::App& app) {
                          "Print the statistics of the collision models of FILE without writing anything:\n"
                          "for a .map, the models are built as by 'cmkit compile' (per model: bounds,\n"
                          "contents, vertices, edges, polygons, brushes, nodes, references, internal and\n"
-                         "sharp edges, contained polygons removed, polygons merged, memory).\n\n"
+                         "sharp edges, contained polygons removed, polygons merged, memory); a .cm\n"
+                         "file is loaded instead.\n\n"
                          "Examples:\n"
                          "  cmkit info maps/lt4.map\n"
                          "  cmkit info maps/lt4.map --quiet          totals only\n"
+                         "  cmkit info maps/lt4.cm\n"
                          "  cmkit info maps/lt4.map --json | jq '.total.polygons'\n\n"
                          "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message).");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "info";
-  cmd->add_option("FILE", req->mapPath, "the .map file")->required();
+  cmd->add_option("FILE", req->mapPath, "the .map file, or a .cm file (loaded, not built)")->required();
   cmd->add_option("--materials", req->materialsDir,
                   "directory of .mtr material files (searched recursively)");
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");
   cmd->add_flag("-q,--quiet", req->quiet, "print only the totals, not every model");
   cmd->callback([req] {
+    if (req->mapPath.size() > 3 && req->mapPath.ends_with(".cm")) {  // a .cm file: load, no build
+      const auto start = std::chrono::steady_clock::now();
+      Result<std::vector<ModelPtr>> models = loadModelsForCli(req->mapPath, req->materialsDir);
+      if (!models) {
+        fmt::print(stderr, "cmkit info: {}\n", models.error().toString());
+        std::exit(kExitBadInput);
+      }
+      StatsContext context;
+      context.source = req->mapPath;
+      context.milliseconds =
+          std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start)
+              .count();
+      context.perModel = !req->quiet;
+      if (req->json) {
+        fmt::print("{}", statsJson(*models, context));
+      } else {
+        printStatsText(stdout, *models, context);
+      }
+      return;
+    }
     const int rc = runMapBuild(*req);
     if (rc != 0) std::exit(rc);
   });

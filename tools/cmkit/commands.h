@@ -19,6 +19,9 @@ void registerCompile(CLI::App& app);
 /// `cmkit info FILE`: statistics of the collision models of a file.
 void registerInfo(CLI::App& app);
 
+/// `cmkit validate FILE`: checks the invariants of every model of a .cm or .map.
+void registerValidate(CLI::App& app);
+
 /// `cmkit render MODELS -o out.png`: a picture of the models (and traces).
 void registerRender(CLI::App& app);
 

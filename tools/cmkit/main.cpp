@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   cmkit::cli::registerTrm(app);
   cmkit::cli::registerCompile(app);
   cmkit::cli::registerInfo(app);
+  cmkit::cli::registerValidate(app);
   cmkit::cli::registerQuery(app);
   cmkit::cli::registerRender(app);
   cmkit::cli::registerExport(app);
