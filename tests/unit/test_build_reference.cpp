@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,14 +36,24 @@ std::vector<RefModel> parseStats(const fs::path& p) {
   std::vector<RefModel> models;
   std::istringstream in(cmkit::test::readFile(p));
   std::string line;
-  const std::regex modelLine(R"(^model \d+ (.*)$)");
-  const std::regex countLine(R"(^\s*(\d+) ([a-z ]+?)( \(\d+ KB\))?$)");
-  std::smatch m;
   while (std::getline(in, line)) {
-    if (std::regex_match(line, m, modelLine)) {
-      models.push_back({m[1].str(), {}});
-    } else if (!models.empty() && std::regex_match(line, m, countLine)) {
-      models.back().counts[m[2].str()] = std::stoll(m[1].str());
+    if (line.rfind("model ", 0) == 0) {
+      // "model N <header>"
+      const auto space = line.find(' ', 6);
+      if (space != std::string::npos) models.push_back({line.substr(space + 1), {}});
+    } else if (!models.empty()) {
+      // "   <count> <name words>[ (<n> KB)]"
+      std::string rest = line;
+      if (const auto kb = rest.find(" ("); kb != std::string::npos && rest.ends_with(" KB)")) rest.resize(kb);
+      std::istringstream fields(rest);
+      std::string count, word, name;
+      if (!(fields >> count) || count.find_first_not_of("0123456789") != std::string::npos) continue;
+      bool words = true;
+      while (fields >> word) {
+        if (word.find_first_not_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos) words = false;
+        name += (name.empty() ? "" : " ") + word;
+      }
+      if (words && !name.empty()) models.back().counts[name] = std::stoll(count);
     }
   }
   return models;
