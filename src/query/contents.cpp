@@ -81,10 +81,10 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
   if (tw.isConvex) {
     for (std::int32_t edgeNum : edges) {
       const std::size_t e = std::size_t(std::abs(edgeNum));
-      if (s.edgeChecked[e] == s.generation) continue;
+      if (s.isChecked(s.edges[e])) continue;
       for (int j = 0; j < 2; ++j) {
         const std::size_t vn = std::size_t(m.edges[e].vertex[j]);
-        if (s.vertexChecked[vn] == s.generation) continue;
+        if (s.isChecked(s.vertices[vn])) continue;
         const Vec3& p = m.vertices[vn];
         int bestPlane = 0;
         Real bestd = -tol::kBoundsInfinity;
@@ -112,7 +112,7 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
     const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
     s.polygonEdgeLines[i] =
         Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
-    s.vertexChecked[std::size_t(m.edgeStart(edges[i]))] = s.generation;
+    s.mark(s.vertices[std::size_t(m.edgeStart(edges[i]))]);
   }
 
   // 2. a trm edge crossing the polygon plane inside all polygon edges.
@@ -140,7 +140,7 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (s.testAndMark(s.edgeChecked, e)) continue;
+    if (s.testAndMark(s.edges[e])) continue;
     const CmEdge& edge = m.edges[e];
     const std::size_t v1 = std::size_t(edge.vertex[0]), v2 = std::size_t(edge.vertex[1]);
     for (int j = 0; j < tw.numPolys; ++j) {

@@ -446,10 +446,10 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     const CmEdge& edge = m.edges[e];
     if (edge.internal) continue;
-    s.touchEdgeCache(e);
-    const std::uint64_t todo = trmEdgesHere & ~s.edgeSide[e];
+    QueryWork::Scratch::Feature& cache = s.touchCache(s.edges[e]);
+    const std::uint64_t todo = trmEdgesHere & ~cache.side;
     if (!todo) continue;
-    s.edgeSide[e] |= todo;
+    cache.side |= todo;
     const Vec3& v0 = m.vertices[std::size_t(edge.vertex[0])];
     const Vec3& v1 = m.vertices[std::size_t(edge.vertex[1])];
     Bounds edgeBounds = Bounds::ofPoint(v0);
@@ -467,12 +467,12 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   // (these culls do not depend on the polygon).
   for (const std::int32_t edgeNum : edges) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (s.testAndMark(s.edgeChecked, e)) continue;
+    if (s.testAndMark(s.edges[e])) continue;
     const CmEdge& edge = m.edges[e];
     if (edge.internal) continue;
     for (int k = 0; k < 2; ++k) {
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
-      if (s.testAndMark(s.vertexChecked, vn)) continue;
+      if (s.testAndMark(s.vertices[vn])) continue;
       const Vec3& p = m.vertices[vn];
       if (!tw.bounds.containsPoint(p)) continue;
       const Vec3 ro = rw.origin + rw.axis * rw.axis.dot(p - rw.origin);

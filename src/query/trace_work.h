@@ -15,17 +15,25 @@ namespace cmkit {
 /// entry is valid when its generation equals the current one, so starting a
 /// query costs nothing but a counter increment.
 struct QueryWork::Scratch {
+  /// Everything a query keeps about one model edge or vertex, together so
+  /// that one cache line serves the mark and the side caches (the marks are
+  /// read for every edge of every polygon met, mostly cache misses on a
+  /// large model).
+  struct Feature {
+    std::uint32_t checked = 0;   ///< tested this query (== generation)
+    std::uint32_t cacheGen = 0;  ///< side / sideSet valid (== generation)
+    std::uint64_t side = 0;      ///< cached side bits, one per trace-model feature
+    std::uint64_t sideSet = 0;   ///< which bits of `side` are known
+  };
+
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
   std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
-  std::vector<std::uint32_t> edgeChecked;     ///< edge tested this query
-  std::vector<std::uint32_t> vertexChecked;   ///< vertex tested this query
-  std::vector<std::uint32_t> edgeCacheGen;    ///< edgeSide/edgeSideSet valid
-  std::vector<std::uint32_t> vertexCacheGen;  ///< vertexSide/vertexSideSet valid
-  std::vector<std::uint64_t> edgeSide, edgeSideSet;
-  std::vector<std::uint64_t> vertexSide, vertexSideSet;
-  std::vector<Pluecker> polygonEdgeLines;   ///< per edge of the current polygon
-  std::vector<Pluecker> polygonVertexRays;  ///< per start vertex of the current polygon's edges
+  std::vector<Feature> edges;                 ///< per model edge
+  std::vector<Feature> vertices;              ///< per model vertex
+  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon
+  std::vector<Pluecker> polygonVertexRays;    ///< per start vertex of the current polygon's edges
+  std::vector<std::uint32_t> polygonEdgesToTest;  ///< translation: edges of the current polygon to test
 
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
@@ -35,46 +43,42 @@ struct QueryWork::Scratch {
     marks[i] = generation;
     return false;
   }
-  /// Side bits of an edge for this query (zeroed on first use).
-  void touchEdgeCache(std::size_t e) {
-    if (edgeCacheGen[e] != generation) {
-      edgeCacheGen[e] = generation;
-      edgeSide[e] = edgeSideSet[e] = 0;
-    }
+  bool testAndMark(Feature& f) {
+    if (f.checked == generation) return true;
+    f.checked = generation;
+    return false;
   }
-  void touchVertexCache(std::size_t v) {
-    if (vertexCacheGen[v] != generation) {
-      vertexCacheGen[v] = generation;
-      vertexSide[v] = vertexSideSet[v] = 0;
+  bool isChecked(const Feature& f) const { return f.checked == generation; }
+  void mark(Feature& f) { f.checked = generation; }
+  /// The side bits of a feature for this query (zeroed on first use).
+  Feature& touchCache(Feature& f) {
+    if (f.cacheGen != generation) {
+      f.cacheGen = generation;
+      f.side = f.sideSet = 0;
     }
+    return f;
   }
-  /// Returns the cached side bit `bit` of model edge e, computing it with
+  /// Returns the cached side bit `bit` of a feature, computing it with
   /// `product()` (side = sign bit of the product) when not yet known.
   template <class F>
-  unsigned edgeSideBit(std::size_t e, unsigned bit, F product) {
-    touchEdgeCache(e);
+  static unsigned sideBit(Feature& f, unsigned bit, F product) {
     const std::uint64_t m = std::uint64_t(1) << bit;
-    if (!(edgeSideSet[e] & m)) {
+    if (!(f.sideSet & m)) {
       if (signBitSet(product()))
-        edgeSide[e] |= m;
+        f.side |= m;
       else
-        edgeSide[e] &= ~m;
-      edgeSideSet[e] |= m;
+        f.side &= ~m;
+      f.sideSet |= m;
     }
-    return unsigned(edgeSide[e] >> bit) & 1u;
+    return unsigned(f.side >> bit) & 1u;
+  }
+  template <class F>
+  unsigned edgeSideBit(std::size_t e, unsigned bit, F product) {
+    return sideBit(touchCache(edges[e]), bit, product);
   }
   template <class F>
   unsigned vertexSideBit(std::size_t v, unsigned bit, F product) {
-    touchVertexCache(v);
-    const std::uint64_t m = std::uint64_t(1) << bit;
-    if (!(vertexSideSet[v] & m)) {
-      if (signBitSet(product()))
-        vertexSide[v] |= m;
-      else
-        vertexSide[v] &= ~m;
-      vertexSideSet[v] |= m;
-    }
-    return unsigned(vertexSide[v] >> bit) & 1u;
+    return sideBit(touchCache(vertices[v]), bit, product);
   }
 };
 

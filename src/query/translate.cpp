@@ -105,12 +105,10 @@ void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int tr
   QueryWork::Scratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const auto edges = m.edgesOf(poly);
-  for (std::size_t i = 0; i < edges.size(); ++i) {
+  for (const std::uint32_t i : s.polygonEdgesToTest) {
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (tw.scratch.edgeChecked[e] == s.generation) continue;  // tested with an earlier polygon
     const CmEdge& edge = m.edges[e];
-    if (edge.internal) continue;
     const Pluecker& pl = s.polygonEdgeLines[i];
     // The trm edge's two vertices must pass the polygon edge on different sides...
     const unsigned a0 = s.edgeSideBit(e, unsigned(te.vertexNum[0]), [&] {
@@ -246,21 +244,32 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
       s.polygonVertexRays[i] = Pluecker::fromRay(m.vertices[std::size_t(m.edgeStart(edges[i]))], -tw.dir);
     }
     s.polygonVertexRays[edges.size()] = s.polygonVertexRays[0];
+    // The polygon edges the trace-model edges are tested against: not
+    // internal, not tested with an earlier polygon (the marks are set below,
+    // after the edge tests, so this list holds for every trace-model edge).
+    s.polygonEdgesToTest.clear();
+    if (tw.numEdges > 0) {
+      for (std::size_t i = 0; i < edges.size(); ++i) {
+        const std::size_t e = std::size_t(std::abs(edges[i]));
+        if (!s.isChecked(s.edges[e]) && !m.edges[e].internal) s.polygonEdgesToTest.push_back(std::uint32_t(i));
+      }
+    }
 
     for (int i = 0; i < tw.numVerts; ++i)
       if (tw.vertices[std::size_t(i)].used) translateTrmVertexThroughPolygon(tw, polyNum, poly, i);
-    for (int i = 1; i <= tw.numEdges; ++i)
-      if (tw.edges[std::size_t(i)].used) translateTrmEdgeThroughPolygon(tw, poly, i);
+    if (!s.polygonEdgesToTest.empty())
+      for (int i = 1; i <= tw.numEdges; ++i)
+        if (tw.edges[std::size_t(i)].used) translateTrmEdgeThroughPolygon(tw, poly, i);
     // Model vertices through the trace model's front polygons; every edge and
     // vertex once per query.
     for (std::int32_t edgeNum : edges) {
       const std::size_t e = std::size_t(std::abs(edgeNum));
-      if (s.testAndMark(s.edgeChecked, e)) continue;
+      if (s.testAndMark(s.edges[e])) continue;
       const CmEdge& edge = m.edges[e];
       if (edge.internal) continue;
       for (int k = 0; k < 2; ++k) {
         const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
-        if (s.testAndMark(s.vertexChecked, vn)) continue;
+        if (s.testAndMark(s.vertices[vn])) continue;
         const Vec3& p = m.vertices[vn];
         if (!tw.bounds.containsPoint(p)) continue;
         const Vec3 endp = p - tw.dir;

@@ -19,18 +19,13 @@ void QueryWork::Scratch::begin(const CollisionModel& model) {
   const std::size_t ne = model.edges.size(), nv = model.vertices.size();
   grow(polygonChecked, np);
   grow(brushChecked, nb);
-  grow(edgeChecked, ne);
-  grow(edgeCacheGen, ne);
-  grow(edgeSide, ne);
-  grow(edgeSideSet, ne);
-  grow(vertexChecked, nv);
-  grow(vertexCacheGen, nv);
-  grow(vertexSide, nv);
-  grow(vertexSideSet, nv);
+  grow(edges, ne);
+  grow(vertices, nv);
   if (++generation == 0) {  // wrapped: clear every mark once every 2^32 queries
-    for (auto* v :
-         {&polygonChecked, &brushChecked, &edgeChecked, &vertexChecked, &edgeCacheGen, &vertexCacheGen})
-      std::fill(v->begin(), v->end(), 0u);
+    std::fill(polygonChecked.begin(), polygonChecked.end(), 0u);
+    std::fill(brushChecked.begin(), brushChecked.end(), 0u);
+    std::fill(edges.begin(), edges.end(), Feature{});
+    std::fill(vertices.begin(), vertices.end(), Feature{});
     generation = 1;
   }
 }
