@@ -14,7 +14,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(build-essential cmake ninja-build ccache clang-format
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
-          libbullet-dev pkg-config
+          libbullet-dev libembree-dev pkg-config
           python3)
 
 deps() {

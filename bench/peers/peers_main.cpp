@@ -1,19 +1,27 @@
 // cmkit_peers: the speed test's translations run through cmkit and through
 // Bullet (btCollisionWorld::convexSweepTest with a box against a
 // btBvhTriangleMeshShape of the world model's polygons; rayTest for points)
-// in the same run: ns/query, the ratio cmkit/peer, and the hit agreement.
+// and, when built with Embree (Debian libembree-dev), the points through
+// rtcIntersect1 against the same triangles, in the same run: ns/query, the
+// ratio cmkit/peer, and the hit agreement. Each timing is the fastest of
+// --passes runs over all the queries (robust against a busy machine).
 //
-//   cmkit_peers [MAP] [--times N]
+//   cmkit_peers [MAP] [--times N] [--passes N]
 //
 // Semantic differences (docs/performance.md): cmkit stops 0.25 units in front
 // of a surface and collides only with the front faces of polygons; Bullet's
 // triangles are two-sided and its convex sweeps allow no margin here (0).
 #include <btBulletCollisionCommon.h>
+#ifdef CMKIT_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +38,8 @@ using Clock = std::chrono::steady_clock;
 
 /// Queries per kind by default (as the speed test).
 constexpr int kDefaultTimes = 1000;
+/// Timed runs over all queries per kind; the fastest is reported.
+constexpr int kDefaultPasses = 5;
 /// The speed test's box (cm_testBox) and move length (cm_testLength).
 constexpr cmkit::Real kBoxHalfX = 16, kBoxHalfY = 16, kBoxHalfZ = 32, kBoxCentreZ = 32;
 constexpr cmkit::Real kLength = 1024;
@@ -40,6 +50,7 @@ btVector3 bt(const cmkit::Vec3& v) { return {v.x, v.y, v.z}; }
 /// One kind's comparison.
 struct Comparison {
   const char* kind = "";
+  const char* peer = "";
   double cmkitNs = 0;
   double peerNs = 0;
   int bothHit = 0;
@@ -49,11 +60,28 @@ struct Comparison {
 
 void print(const Comparison& c, int n) {
   std::printf(
-      "%-18s cmkit %9.0f ns/query   bullet %9.0f ns/query   cmkit/bullet %5.2f   both hit %4d  both miss %4d "
-      " "
-      "differ %4d (of %d)\n",
-      c.kind, c.cmkitNs, c.peerNs, c.peerNs > 0 ? c.cmkitNs / c.peerNs : 0.0, c.bothHit, c.bothMiss, c.differ,
-      n);
+      "%-19s cmkit %7.0f ns/query   %-6s %7.0f ns/query   cmkit/%-6s %5.2f   both hit %4d  both miss %4d"
+      "  differ %4d (of %d)\n",
+      c.kind, c.cmkitNs, c.peer, c.peerNs, c.peer, c.peerNs > 0 ? c.cmkitNs / c.peerNs : 0.0, c.bothHit,
+      c.bothMiss, c.differ, n);
+}
+
+/// Runs query(i) for every i, `passes` times; returns the fastest pass in ns/query.
+double fastestPass(std::size_t n, int passes, const std::function<void(std::size_t)>& query) {
+  double best = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    const auto t0 = Clock::now();
+    for (std::size_t i = 0; i < n; ++i) query(i);
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(n);
+    best = pass == 0 ? ns : std::min(best, ns);
+  }
+  return best;
+}
+
+/// Counts agreement of two hit lists into c.
+void agreement(Comparison& c, const std::vector<char>& a, const std::vector<char>& b) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    (a[i] && b[i]) ? ++c.bothHit : (!a[i] && !b[i]) ? ++c.bothMiss : ++c.differ;
 }
 
 std::string defaultMap() {
@@ -69,12 +97,20 @@ std::string defaultMap() {
 int main(int argc, char** argv) {
   std::string mapPath;
   int times = kDefaultTimes;
+  int passes = kDefaultPasses;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--times" && i + 1 < argc) {
       times = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--passes" && i + 1 < argc) {
+      passes = std::max(1, std::atoi(argv[++i]));
     } else if (arg == "-h" || arg == "--help") {
-      std::printf("usage: cmkit_peers [MAP] [--times N]\n");
+      std::printf(
+          "usage: cmkit_peers [MAP] [--times N] [--passes N]\n"
+          "  MAP        a Doom 3 .map (default: lt4); its world model is the scene\n"
+          "  --times    translations per kind (default %d)\n"
+          "  --passes   timed runs per kind, the fastest is printed (default %d)\n",
+          kDefaultTimes, kDefaultPasses);
       return 0;
     } else {
       mapPath = arg;
@@ -97,17 +133,20 @@ int main(int argc, char** argv) {
   }
   const cmkit::CollisionModel& world = *models->front();
 
-  // The same geometry for Bullet: every polygon matching the mask, as a fan.
-  auto mesh = std::make_unique<btTriangleMesh>();
-  int triangles = 0;
+  // The same geometry for the peers: every polygon matching the mask, as a
+  // fan of triangles over the model's vertices.
+  std::vector<std::uint32_t> indices;
   for (const cmkit::CmPolygon& p : world.polygons) {
     if ((p.contents & kMask) == 0) continue;
-    const auto edges = world.edgesOf(p);
-    std::vector<cmkit::Vec3> v;
-    for (std::int32_t e : edges) v.push_back(world.vertices[std::size_t(world.edgeStart(e))]);
-    for (std::size_t k = 1; k + 1 < v.size(); ++k, ++triangles)
-      mesh->addTriangle(bt(v[0]), bt(v[k]), bt(v[k + 1]));
+    std::vector<std::uint32_t> v;
+    for (std::int32_t e : world.edgesOf(p)) v.push_back(std::uint32_t(world.edgeStart(e)));
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) indices.insert(indices.end(), {v[0], v[k], v[k + 1]});
   }
+  const int triangles = int(indices.size() / 3);
+  auto mesh = std::make_unique<btTriangleMesh>();
+  for (std::size_t t = 0; t < indices.size(); t += 3)
+    mesh->addTriangle(bt(world.vertices[indices[t]]), bt(world.vertices[indices[t + 1]]),
+                      bt(world.vertices[indices[t + 2]]));
   auto shape = std::make_unique<btBvhTriangleMeshShape>(mesh.get(), true);
   shape->setMargin(0);
   btDefaultCollisionConfiguration config;
@@ -120,6 +159,26 @@ int main(int argc, char** argv) {
   bulletWorld.updateAabbs();
   btBoxShape box(btVector3(kBoxHalfX, kBoxHalfY, kBoxHalfZ));
   box.setMargin(0);
+
+#ifdef CMKIT_HAVE_EMBREE
+  RTCDevice device = rtcNewDevice(nullptr);
+  RTCScene scene = rtcNewScene(device);
+  {
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world.vertices.size()));
+    for (std::size_t i = 0; i < world.vertices.size(); ++i)
+      for (int k = 0; k < 3; ++k) vertices[3 * i + std::size_t(k)] = world.vertices[i][k];
+    auto* tris = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(std::uint32_t), std::size_t(triangles)));
+    std::copy(indices.begin(), indices.end(), tris);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(scene);
+  }
+#endif
 
   // The speed test's translations: from the centre of the world, seed 0.
   const cmkit::Vec3 origin = (world.bounds.min + world.bounds.max) * cmkit::Real(0.5);
@@ -138,66 +197,71 @@ int main(int argc, char** argv) {
       mapPath.c_str(), world.polygons.size(), triangles, times, origin.x, origin.y, origin.z);
 
   cmkit::QueryWork work;
-  for (int pass = 0; pass < 2; ++pass) {  // pass 0 warms up caches; pass 1 is printed
-    Comparison boxCmp{"translation (box)"};
-    Comparison pointCmp{"translation (point)"};
-    std::vector<bool> cmkitBox(ends.size()), cmkitPoint(ends.size());
-    auto t0 = Clock::now();
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      cmkit::TranslationQuery q;
-      q.trm = &*boxTrm;
-      q.start = origin;
-      q.end = ends[i];
-      q.contentMask = kMask;
-      cmkitBox[i] = cmkit::translate(world, q, work).fraction < 1;
-    }
-    auto t1 = Clock::now();
-    boxCmp.cmkitNs = std::chrono::duration<double, std::nano>(t1 - t0).count() / double(ends.size());
-    std::vector<bool> peerBox(ends.size());
-    const btVector3 centre(0, 0, kBoxCentreZ);
-    t0 = Clock::now();
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      const btTransform from(btMatrix3x3::getIdentity(), bt(origin) + centre);
-      const btTransform to(btMatrix3x3::getIdentity(), bt(ends[i]) + centre);
-      btCollisionWorld::ClosestConvexResultCallback cb(from.getOrigin(), to.getOrigin());
-      bulletWorld.convexSweepTest(&box, from, to, cb, 0);
-      peerBox[i] = cb.hasHit();
-    }
-    t1 = Clock::now();
-    boxCmp.peerNs = std::chrono::duration<double, std::nano>(t1 - t0).count() / double(ends.size());
+  const std::size_t n = ends.size();
+  std::vector<char> cmkitBox(n), cmkitPoint(n), peerBox(n), peerPoint(n);
+  Comparison boxCmp{"translation (box)", "bullet"};
+  boxCmp.cmkitNs = fastestPass(n, passes, [&](std::size_t i) {
+    cmkit::TranslationQuery q;
+    q.trm = &*boxTrm;
+    q.start = origin;
+    q.end = ends[i];
+    q.contentMask = kMask;
+    cmkitBox[i] = cmkit::translate(world, q, work).fraction < 1;
+  });
+  const btVector3 centre(0, 0, kBoxCentreZ);
+  boxCmp.peerNs = fastestPass(n, passes, [&](std::size_t i) {
+    const btTransform from(btMatrix3x3::getIdentity(), bt(origin) + centre);
+    const btTransform to(btMatrix3x3::getIdentity(), bt(ends[i]) + centre);
+    btCollisionWorld::ClosestConvexResultCallback cb(from.getOrigin(), to.getOrigin());
+    bulletWorld.convexSweepTest(&box, from, to, cb, 0);
+    peerBox[i] = cb.hasHit();
+  });
+  agreement(boxCmp, cmkitBox, peerBox);
+  print(boxCmp, times);
 
-    t0 = Clock::now();
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      cmkit::TranslationQuery q;
-      q.start = origin;
-      q.end = ends[i];
-      q.contentMask = kMask;
-      cmkitPoint[i] = cmkit::translate(world, q, work).fraction < 1;
-    }
-    t1 = Clock::now();
-    pointCmp.cmkitNs = std::chrono::duration<double, std::nano>(t1 - t0).count() / double(ends.size());
-    std::vector<bool> peerPoint(ends.size());
-    t0 = Clock::now();
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      btCollisionWorld::ClosestRayResultCallback cb(bt(origin), bt(ends[i]));
-      bulletWorld.rayTest(bt(origin), bt(ends[i]), cb);
-      peerPoint[i] = cb.hasHit();
-    }
-    t1 = Clock::now();
-    pointCmp.peerNs = std::chrono::duration<double, std::nano>(t1 - t0).count() / double(ends.size());
-    if (pass == 0) continue;
-    for (std::size_t i = 0; i < ends.size(); ++i) {
-      (cmkitBox[i] && peerBox[i])     ? ++boxCmp.bothHit
-      : (!cmkitBox[i] && !peerBox[i]) ? ++boxCmp.bothMiss
-                                      : ++boxCmp.differ;
-      (cmkitPoint[i] && peerPoint[i])     ? ++pointCmp.bothHit
-      : (!cmkitPoint[i] && !peerPoint[i]) ? ++pointCmp.bothMiss
-                                          : ++pointCmp.differ;
-    }
-    print(boxCmp, times);
-    print(pointCmp, times);
-  }
-  std::printf("Embree: not compared (see docs/performance.md)\n");
+  Comparison pointCmp{"translation (point)", "bullet"};
+  pointCmp.cmkitNs = fastestPass(n, passes, [&](std::size_t i) {
+    cmkit::TranslationQuery q;
+    q.start = origin;
+    q.end = ends[i];
+    q.contentMask = kMask;
+    cmkitPoint[i] = cmkit::translate(world, q, work).fraction < 1;
+  });
+  pointCmp.peerNs = fastestPass(n, passes, [&](std::size_t i) {
+    btCollisionWorld::ClosestRayResultCallback cb(bt(origin), bt(ends[i]));
+    bulletWorld.rayTest(bt(origin), bt(ends[i]), cb);
+    peerPoint[i] = cb.hasHit();
+  });
+  agreement(pointCmp, cmkitPoint, peerPoint);
+  print(pointCmp, times);
+
+#ifdef CMKIT_HAVE_EMBREE
+  Comparison embreeCmp{"translation (point)", "embree"};
+  embreeCmp.cmkitNs = pointCmp.cmkitNs;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  embreeCmp.peerNs = fastestPass(n, passes, [&](std::size_t i) {
+    RTCRayHit rh{};
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = ends[i].x - origin.x;  // t in [0, 1] spans the move
+    rh.ray.dir_y = ends[i].y - origin.y;
+    rh.ray.dir_z = ends[i].z - origin.z;
+    rh.ray.tnear = 0;
+    rh.ray.tfar = 1;
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    peerPoint[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  });
+  agreement(embreeCmp, cmkitPoint, peerPoint);
+  print(embreeCmp, times);
+  rtcReleaseScene(scene);
+  rtcReleaseDevice(device);
+#else
+  std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
+#endif
   bulletWorld.removeCollisionObject(&object);
   return 0;
 }

@@ -11,6 +11,41 @@
 
 namespace cmkit {
 
+/// A trace-model vertex during a query (model space).
+struct WorkVertex {
+  Vec3 p;       ///< position at the start
+  Vec3 endp;    ///< position at the end of the full move
+  Pluecker pl;  ///< the line of its movement
+  bool used = false;
+};
+
+/// A trace-model edge during a query.
+struct WorkEdge {
+  Vec3 start, end;
+  int vertexNum[2] = {0, 0};
+  Pluecker pl;  ///< the edge line start -> end
+  Vec3 cross;   ///< normal of the plane swept by the edge (translation)
+  bool used = false;
+};
+
+/// A trace-model polygon during a query.
+struct WorkPolygon {
+  Plane plane;
+  int numEdges = 0;
+  std::array<int, kMaxTrmPolygonEdges> edges{};
+  bool used = false;
+};
+
+/// The trace-model features of a query. They live in the caller's scratch
+/// (about 6 KB: constructing and zeroing them per query cost more than a
+/// short point trace). Every query's set-up writes the fields it uses for the
+/// first numVerts / numEdges / numPolys entries; the rest is stale.
+struct TrmFeatures {
+  std::array<WorkVertex, kMaxTrmVertices> vertices;
+  std::array<WorkEdge, kMaxTrmEdges + 1> edges;
+  std::array<WorkPolygon, kMaxTrmPolygons> polys;
+};
+
 /// Per-model-feature marks and caches, valid for one query. A mark or cache
 /// entry is valid when its generation equals the current one, so starting a
 /// query costs nothing but a counter increment.
@@ -27,13 +62,14 @@ struct QueryWork::Scratch {
   };
 
   std::uint32_t generation = 0;
-  std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
-  std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
-  std::vector<Feature> edges;                 ///< per model edge
-  std::vector<Feature> vertices;              ///< per model vertex
-  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon
-  std::vector<Pluecker> polygonVertexRays;    ///< per start vertex of the current polygon's edges
+  std::vector<std::uint32_t> polygonChecked;      ///< polygon tested this query
+  std::vector<std::uint32_t> brushChecked;        ///< brush tested this query
+  std::vector<Feature> edges;                     ///< per model edge
+  std::vector<Feature> vertices;                  ///< per model vertex
+  std::vector<Pluecker> polygonEdgeLines;         ///< per edge of the current polygon
+  std::vector<Pluecker> polygonVertexRays;        ///< per start vertex of the current polygon's edges
   std::vector<std::uint32_t> polygonEdgesToTest;  ///< translation: edges of the current polygon to test
+  TrmFeatures trm;                                ///< the trace model of the current query
 
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
@@ -82,44 +118,20 @@ struct QueryWork::Scratch {
   }
 };
 
-/// A trace-model vertex during a query (model space).
-struct WorkVertex {
-  Vec3 p;       ///< position at the start
-  Vec3 endp;    ///< position at the end of the full move
-  Pluecker pl;  ///< the line of its movement
-  bool used = false;
-};
-
-/// A trace-model edge during a query.
-struct WorkEdge {
-  Vec3 start, end;
-  int vertexNum[2] = {0, 0};
-  Pluecker pl;  ///< the edge line start -> end
-  Vec3 cross;   ///< normal of the plane swept by the edge (translation)
-  bool used = false;
-};
-
-/// A trace-model polygon during a query.
-struct WorkPolygon {
-  Plane plane;
-  int numEdges = 0;
-  std::array<int, kMaxTrmPolygonEdges> edges{};
-  bool used = false;
-};
-
 struct RotationWork;
 
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
-  TraceWork(const CollisionModel& m, QueryWork::Scratch& s) : model(m), scratch(s) {}
+  TraceWork(const CollisionModel& m, QueryWork::Scratch& s)
+      : model(m), scratch(s), vertices(s.trm.vertices), edges(s.trm.edges), polys(s.trm.polys) {}
 
   const CollisionModel& model;
   QueryWork::Scratch& scratch;
 
   int numVerts = 0, numEdges = 0, numPolys = 0;
-  std::array<WorkVertex, kMaxTrmVertices> vertices{};
-  std::array<WorkEdge, kMaxTrmEdges + 1> edges{};
-  std::array<WorkPolygon, kMaxTrmPolygons> polys{};
+  std::array<WorkVertex, kMaxTrmVertices>& vertices;  ///< scratch.trm.vertices
+  std::array<WorkEdge, kMaxTrmEdges + 1>& edges;      ///< scratch.trm.edges
+  std::array<WorkPolygon, kMaxTrmPolygons>& polys;    ///< scratch.trm.polys
 
   Vec3 start, end, dir;  ///< of the trace model's centre, model space
   Bounds bounds;         ///< of the whole move, padded

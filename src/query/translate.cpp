@@ -251,7 +251,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     if (tw.numEdges > 0) {
       for (std::size_t i = 0; i < edges.size(); ++i) {
         const std::size_t e = std::size_t(std::abs(edges[i]));
-        if (!s.isChecked(s.edges[e]) && !m.edges[e].internal) s.polygonEdgesToTest.push_back(std::uint32_t(i));
+        if (!s.isChecked(s.edges[e]) && !m.edges[e].internal)
+          s.polygonEdgesToTest.push_back(std::uint32_t(i));
       }
     }
 
