@@ -50,18 +50,8 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
   if (!(poly.contents & tw.contentMask)) return false;
   if (!poly.bounds.intersects(tw.bounds)) return false;
-  switch (tw.bounds.planeSide(poly.plane)) {
-    case Side::Cross:
-      break;
-    case Side::Front:
-      if (m.isConvex) {
-        tw.quickExit = true;
-        return true;
-      }
-      return false;
-    default:
-      return false;
-  }
+  if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
+    return cull == PlaneCull::Stop;
   const auto edges = m.edgesOf(poly);
   auto stuck = [&](ContactType type, const Vec3& normal, Real dist, const Vec3& point,
                    std::int32_t modelFeature, int trmFeature) {
@@ -104,16 +94,8 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
       }
     }
   }
-  if (s.polygonEdgeLines.size() < edges.size() + 1) {
-    s.polygonEdgeLines.resize(edges.size() + 1);
-    s.polygonVertexRays.resize(edges.size() + 1);
-  }
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
-    s.polygonEdgeLines[i] =
-        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
-    s.mark(s.vertices[std::size_t(m.edgeStart(edges[i]))]);
-  }
+  setPolygonEdgeLines(m, edges, s);
+  for (const std::int32_t edgeNum : edges) s.mark(s.vertices[std::size_t(m.edgeStart(edgeNum))]);
 
   // 2. a trm edge crossing the polygon plane inside all polygon edges.
   int sides[kMaxTrmVertices];

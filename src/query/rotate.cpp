@@ -296,17 +296,6 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
              trmPolyNum);
 }
 
-// Distance of a box to a plane: 0 when it straddles the plane.
-Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
-  const Vec3 c = b.center();
-  const Real d1 = plane.distance(c);
-  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
-                  std::fabs((b.max.z - c.z) * plane.normal.z);
-  if (d1 - d2 > 0) return d1 - d2;
-  if (d1 + d2 < 0) return d1 + d2;
-  return 0;
-}
-
 // A polygon's tests are done: a hit at the very start blocks completely.
 bool finishPolygon(TraceWork& tw, const RotationWork& rw) {
   if (rw.maxTan != 0) return false;
@@ -385,29 +374,11 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   if (!(poly.contents & tw.contentMask)) return false;
   if (!tw.bounds.intersects(poly.bounds)) return false;
   if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
-  switch (tw.bounds.planeSide(poly.plane)) {
-    case Side::Cross:
-      break;
-    case Side::Front:
-      if (m.isConvex) {
-        tw.quickExit = true;
-        return true;
-      }
-      return false;
-    default:
-      return false;
-  }
+  if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
+    return cull == PlaneCull::Stop;
 
   const auto edges = m.edgesOf(poly);
-  if (s.polygonEdgeLines.size() < edges.size() + 1) {
-    s.polygonEdgeLines.resize(edges.size() + 1);
-    s.polygonVertexRays.resize(edges.size() + 1);
-  }
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
-    s.polygonEdgeLines[i] =
-        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
-  }
+  setPolygonEdgeLines(m, edges, s);
 
   // The original's back-face culls, for a convex trace model the axis passes
   // through: the whole polygon when the trace-model centre is behind it, a

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "cmkit/query.h"
@@ -186,6 +187,23 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
 /// Position tests (contents.cpp); true when stuck.
 bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);
 bool testTrmInPolygon(TraceWork& tw, std::int32_t polygon);
+
+/// Distance of a box to a plane: 0 when it straddles the plane.
+Real boundsPlaneDistance(const Bounds& b, const Plane& plane);
+
+/// What the plane test of a polygon against the trace bounds decides.
+enum class PlaneCull {
+  Test,  ///< the bounds straddle the plane: test the polygon
+  Skip,  ///< the bounds are entirely on one side: nothing to test
+  Stop,  ///< in front of a convex model's face: nothing of the model can be hit
+};
+/// The plane test shared by translations, rotations and position tests
+/// (sets tw.quickExit for Stop).
+PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
+
+/// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
+/// edges' stored direction) and makes room for polygonVertexRays.
+void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryWork::Scratch& s);
 
 /// Sets up tw for a position test of `trm` (not a point) at `position`.
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,

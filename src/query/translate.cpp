@@ -189,17 +189,6 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
   if (tw.gettingContacts()) tw.addContact();
 }
 
-// Distance of a box to a plane: 0 when it straddles the plane.
-Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
-  const Vec3 c = b.center();
-  const Real d1 = plane.distance(c);
-  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
-                  std::fabs((b.max.z - c.z) * plane.normal.z);
-  if (d1 - d2 > 0) return d1 - d2;
-  if (d1 + d2 < 0) return d1 + d2;
-  return 0;
-}
-
 }  // namespace
 
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
@@ -218,31 +207,14 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   if (tw.pointTrace) {
     translatePointThroughPolygon(tw, polyNum, poly);
   } else {
-    switch (tw.bounds.planeSide(poly.plane)) {
-      case Side::Cross:
-        break;
-      case Side::Front:
-        if (m.isConvex) {
-          tw.quickExit = true;
-          return true;
-        }
-        return false;
-      default:
-        return false;
-    }
+    if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
+      return cull == PlaneCull::Stop;
     // Lines of the polygon's edges (stored direction) and of its vertices'
     // movement relative to the trace model (-dir).
     const auto edges = m.edgesOf(poly);
-    if (s.polygonEdgeLines.size() < edges.size() + 1) {
-      s.polygonEdgeLines.resize(edges.size() + 1);
-      s.polygonVertexRays.resize(edges.size() + 1);
-    }
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
-      s.polygonEdgeLines[i] = Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])],
-                                                 m.vertices[std::size_t(edge.vertex[1])]);
+    setPolygonEdgeLines(m, edges, s);
+    for (std::size_t i = 0; i < edges.size(); ++i)
       s.polygonVertexRays[i] = Pluecker::fromRay(m.vertices[std::size_t(m.edgeStart(edges[i]))], -tw.dir);
-    }
     s.polygonVertexRays[edges.size()] = s.polygonVertexRays[0];
     // The polygon edges the trace-model edges are tested against: not
     // internal, not tested with an earlier polygon (the marks are set below,

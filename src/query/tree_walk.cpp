@@ -1,6 +1,7 @@
 // Walking the axial BSP tree along a movement (the original's
 // TraceThroughAxialBSPTree_r and TraceTrmThroughNode), and the scratch set-up.
 #include <algorithm>
+#include <cmath>
 
 #include "query/trace_work.h"
 
@@ -128,6 +129,44 @@ void traceThroughTree(TraceWork& tw, std::int32_t nodeNum, Real p1f, Real p2f, c
 }
 
 }  // namespace
+
+Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
+  const Vec3 c = b.center();
+  const Real d1 = plane.distance(c);
+  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
+                  std::fabs((b.max.z - c.z) * plane.normal.z);
+  if (d1 - d2 > 0) return d1 - d2;
+  if (d1 + d2 < 0) return d1 + d2;
+  return 0;
+}
+
+PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
+  switch (tw.bounds.planeSide(plane)) {
+    case Side::Cross:
+      return PlaneCull::Test;
+    case Side::Front:
+      if (tw.model.isConvex) {
+        tw.quickExit = true;
+        return PlaneCull::Stop;
+      }
+      return PlaneCull::Skip;
+    default:
+      return PlaneCull::Skip;
+  }
+}
+
+void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
+                         QueryWork::Scratch& s) {
+  if (s.polygonEdgeLines.size() < edges.size() + 1) {
+    s.polygonEdgeLines.resize(edges.size() + 1);
+    s.polygonVertexRays.resize(edges.size() + 1);
+  }
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
+    s.polygonEdgeLines[i] =
+        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
+  }
+}
 
 void traceBoxThroughModel(TraceWork& tw, const Bounds& box) {
   if (tw.model.nodes.empty()) return;
