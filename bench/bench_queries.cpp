@@ -76,46 +76,6 @@ bool matches(Kind kind, const cmkit::ParsedQuery& q) {
   return false;
 }
 
-/// Runs one query through the library; returns something to keep alive.
-double runOne(const Lt4Scene& scene, const cmkit::ParsedQuery& q, cmkit::QueryWork& work,
-              std::vector<cmkit::ContactInfo>& out) {
-  const cmkit::CollisionModel& model = *scene.models[q.model];
-  const cmkit::TraceModel* trm = q.trm ? &*q.trm : nullptr;
-  switch (q.op) {
-    case cmkit::QueryOp::Translation:
-      return cmkit::translate(model, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement}, work)
-          .fraction;
-    case cmkit::QueryOp::Rotation: {
-      cmkit::RotationQuery r;
-      r.trm = trm;
-      r.trmAxis = q.trmAxis;
-      r.start = q.position;
-      r.rotation = q.rotation;
-      r.contentMask = q.contentMask;
-      r.model = q.placement;
-      return cmkit::rotate(model, r, work).fraction;
-    }
-    case cmkit::QueryOp::Contents:
-      return cmkit::contentsTest(model, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work)
-          .contents;
-    case cmkit::QueryOp::PointContents:
-      return cmkit::pointContents(model, q.position, q.placement);
-    case cmkit::QueryOp::Contacts: {
-      cmkit::ContactsQuery c;
-      c.trm = trm;
-      c.trmAxis = q.trmAxis;
-      c.start = q.position;
-      c.dir = q.dir;
-      c.depth = q.depth;
-      c.contentMask = q.contentMask;
-      c.model = q.placement;
-      c.maxContacts = q.maxContacts;
-      return cmkit::contacts(model, c, work, out);
-    }
-  }
-  return 0;
-}
-
 void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
   std::call_once(scene.once, [&scene] { scene.load(); });
   if (!scene.error.empty()) {
@@ -133,7 +93,7 @@ void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
   std::vector<cmkit::ContactInfo> out;
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(runOne(scene, *queries[i], work, out));
+    benchmark::DoNotOptimize(cmkit::runParsedQueryUnformatted(scene.models, *queries[i], work, out));
     if (++i == queries.size()) i = 0;
   }
   state.SetItemsProcessed(state.iterations());

@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cmkit/model.h"
 #include "cmkit/query.h"
@@ -40,6 +41,12 @@ Result<ParsedQuery> parseQueryLine(std::span<const ModelPtr> models, std::string
 
 /// Runs a parsed query and formats its result line.
 std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work);
+
+/// Runs a parsed query without formatting its result (what benchmarks time).
+/// Returns the fraction (translation, rotation), the contents (contents,
+/// pointcontents) or the number of contacts (found into `contactsOut`).
+double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work,
+                                 std::vector<ContactInfo>& contactsOut);
 
 /// True for lines that hold a query (not blank, not a # comment).
 bool isQueryLine(std::string_view line);

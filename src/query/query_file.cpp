@@ -271,6 +271,44 @@ Result<ParsedQuery> parseQueryLine(std::span<const ModelPtr> models, std::string
   }
 }
 
+namespace {
+
+ContactsQuery contactsQuery(const ParsedQuery& q) {
+  ContactsQuery cq;
+  cq.trm = q.trm ? &*q.trm : nullptr;
+  cq.trmAxis = q.trmAxis;
+  cq.start = q.position;
+  cq.dir = q.dir;
+  cq.depth = q.depth;
+  cq.contentMask = q.contentMask;
+  cq.model = q.placement;
+  cq.maxContacts = q.maxContacts;
+  return cq;
+}
+
+}  // namespace
+
+double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work,
+                                 std::vector<ContactInfo>& contactsOut) {
+  const CollisionModel& m = *models[q.model];
+  const TraceModel* trm = q.trm ? &*q.trm : nullptr;
+  switch (q.op) {
+    case QueryOp::PointContents:
+      return pointContents(m, q.position, q.placement);
+    case QueryOp::Translation:
+      return translate(m, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement, false}, work)
+          .fraction;
+    case QueryOp::Contents:
+      return contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work).contents;
+    case QueryOp::Contacts:
+      return contacts(m, contactsQuery(q), work, contactsOut);
+    case QueryOp::Rotation:
+      return rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work)
+          .fraction;
+  }
+  return 0;
+}
+
 std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work) {
   const CollisionModel& m = *models[q.model];
   const TraceModel* trm = q.trm ? &*q.trm : nullptr;
@@ -290,17 +328,8 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
       return out;
     }
     case QueryOp::Contacts: {
-      ContactsQuery cq;
-      cq.trm = trm;
-      cq.trmAxis = q.trmAxis;
-      cq.start = q.position;
-      cq.dir = q.dir;
-      cq.depth = q.depth;
-      cq.contentMask = q.contentMask;
-      cq.model = q.placement;
-      cq.maxContacts = q.maxContacts;
       std::vector<ContactInfo> found;
-      const int n = contacts(m, cq, work, found);
+      const int n = contacts(m, contactsQuery(q), work, found);
       out = "count=" + std::to_string(n);
       for (int i = 0; i < n; ++i) {
         out += ' ';

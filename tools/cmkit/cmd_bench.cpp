@@ -110,45 +110,6 @@ std::string suiteModelSource(const fs::path& dir, const std::string& name) {
   return {};
 }
 
-/// Runs a parsed query without formatting its result (what is timed).
-/// Returns a value derived from the result so that nothing is optimised away.
-double runRaw(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work,
-              std::vector<ContactInfo>& contactsOut) {
-  const CollisionModel& model = *models[q.model];
-  const TraceModel* trm = q.trm ? &*q.trm : nullptr;
-  switch (q.op) {
-    case QueryOp::Translation:
-      return translate(model, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement}, work).fraction;
-    case QueryOp::Rotation: {
-      RotationQuery r;
-      r.trm = trm;
-      r.trmAxis = q.trmAxis;
-      r.start = q.position;
-      r.rotation = q.rotation;
-      r.contentMask = q.contentMask;
-      r.model = q.placement;
-      return rotate(model, r, work).fraction;
-    }
-    case QueryOp::Contents:
-      return contentsTest(model, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work).contents;
-    case QueryOp::PointContents:
-      return pointContents(model, q.position, q.placement);
-    case QueryOp::Contacts: {
-      ContactsQuery c;
-      c.trm = trm;
-      c.trmAxis = q.trmAxis;
-      c.start = q.position;
-      c.dir = q.dir;
-      c.depth = q.depth;
-      c.contentMask = q.contentMask;
-      c.model = q.placement;
-      c.maxContacts = q.maxContacts;
-      return contacts(model, c, work, contactsOut);
-    }
-  }
-  return 0;
-}
-
 struct KindTime {
   double ns = 0;
   std::size_t count = 0;
@@ -207,7 +168,7 @@ int runSuite(const BenchOptions& o) {
       }
       const auto t0 = Clock::now();
       for (int pass = 0; pass < o.repeat; ++pass)
-        for (const ParsedQuery& q : queries) sink += runRaw(*models, q, work, contactsOut);
+        for (const ParsedQuery& q : queries) sink += runParsedQueryUnformatted(*models, q, work, contactsOut);
       const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
       const std::size_t n = queries.size() * std::size_t(o.repeat);
       total[op].ns += ns;
