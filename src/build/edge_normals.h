@@ -1,4 +1,4 @@
-// Internal: edge normals of a collision model (the original's edge normal
+// Internal: edge normals, bounds and contents of a collision model (the original's edge normal
 // pass, spec section 3.5). Used by the map builder on freshly built models
 // and by the .cm reader after loading.
 #pragma once
@@ -26,5 +26,10 @@ namespace cmkit {
 /// The order only matters for edges with more than two users. Polygons not
 /// referenced from the tree get no visit (as in the original).
 int computeEdgeNormals(CollisionModel& model);
+
+/// Sets model.bounds and model.contents from the polygons and brushes (the
+/// original's CM_GetNodeBounds: both corners of every item as points, so an
+/// empty brush's cleared bounds count; no items gives zero bounds).
+void computeModelBoundsAndContents(CollisionModel& model);
 
 }  // namespace cmkit

@@ -136,23 +136,7 @@ CollisionModel ModelBuilder::finish() {
     }
   }
 
-  // ---- bounds and contents (the original's CM_GetNodeBounds: both corners
-  // of every item as points, so an empty brush's cleared bounds count) ----
-  Bounds bounds;
-  std::uint32_t contents = 0;
-  for (const CmPolygon& p : model.polygons) {
-    bounds.addPoint(p.bounds.min);
-    bounds.addPoint(p.bounds.max);
-    contents |= p.contents;
-  }
-  for (const CmBrush& b : model.brushes) {
-    bounds.addPoint(b.bounds.min);
-    bounds.addPoint(b.bounds.max);
-    contents |= b.contents;
-  }
-  if (bounds.min.x > bounds.max.x) bounds = Bounds{Vec3{}, Vec3{}};
-  model.bounds = bounds;
-  model.contents = contents;
+  computeModelBoundsAndContents(model);
 
   model.stats.sharpEdges = computeEdgeNormals(model);
   model.stats.internalEdges = counters_.numInternalEdges;

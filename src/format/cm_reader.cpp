@@ -261,7 +261,7 @@ struct ModelReader {
     cmtree::filterItemsIntoTree(model);
     model.stats.sharpEdges = computeEdgeNormals(model);
     for (std::size_t i = 1; i < model.edges.size(); ++i) model.stats.internalEdges += model.edges[i].internal;
-    cmtree::computeModelBoundsAndContents(model);
+    computeModelBoundsAndContents(model);
   }
 };
 

@@ -124,22 +124,4 @@ void filterItemsIntoTree(CollisionModel& model) {
   buildRanges(model, pairs, model.brushRefs, false);
 }
 
-void computeModelBoundsAndContents(CollisionModel& model) {
-  Bounds bounds;
-  std::uint32_t contents = 0;
-  for (const CmPolygon& p : model.polygons) {
-    bounds.addPoint(p.bounds.min);
-    bounds.addPoint(p.bounds.max);
-    contents |= p.contents;
-  }
-  for (const CmBrush& b : model.brushes) {
-    bounds.addPoint(b.bounds.min);
-    bounds.addPoint(b.bounds.max);
-    contents |= b.contents;
-  }
-  if (bounds.isCleared()) bounds = Bounds(Vec3{}, Vec3{});
-  model.bounds = bounds;
-  model.contents = contents;
-}
-
 }  // namespace cmkit::cmtree

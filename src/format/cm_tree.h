@@ -16,9 +16,4 @@ namespace cmkit::cmtree {
 /// parent (pre-order), child indices in range.
 void filterItemsIntoTree(CollisionModel& model);
 
-/// model.bounds = union of the bounds of all polygons and brushes (each added
-/// as its two corner points), (0,0,0)-(0,0,0) when there are none;
-/// model.contents = OR of their contents.
-void computeModelBoundsAndContents(CollisionModel& model);
-
 }  // namespace cmkit::cmtree

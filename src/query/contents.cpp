@@ -166,17 +166,7 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis
   const bool modelRotated = isRotated(placement.axis);
   const bool trmRotated = isRotated(trmAxis);
 
-  tw.numVerts = trm.numVertices();
-  tw.numEdges = trm.numEdges();
-  tw.numPolys = trm.numPolygons();
-  for (int i = 0; i < tw.numVerts; ++i) {
-    Vec3 p = trm.vertex(i);
-    if (trmRotated) p = p * trmAxis;
-    p += tw.start;
-    if (modelRotated) p = placement.axis * p;  // into the model's frame
-    tw.vertices[std::size_t(i)].p = p;
-    tw.vertices[std::size_t(i)].used = true;
-  }
+  placeTrmVertices(tw, trm, trmAxis, modelRotated, placement.axis, true);
   const Vec3 offset = trmRotated ? trm.offset() * trmAxis : trm.offset();
   tw.start += offset;
   tw.end += offset;

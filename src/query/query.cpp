@@ -69,16 +69,7 @@ void setupPointTrace(TraceWork& tw) {
 void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
                          const Mat3& modelAxis) {
   const bool trmRotated = isRotated(trmAxis);
-  tw.numVerts = trm.numVertices();
-  tw.numEdges = trm.numEdges();
-  tw.numPolys = trm.numPolygons();
-  for (int i = 0; i < tw.numVerts; ++i) {
-    Vec3 p = trm.vertex(i);
-    if (trmRotated) p = p * trmAxis;
-    p += tw.start;
-    if (modelRotated) p = modelAxis * p;
-    tw.vertices[std::size_t(i)] = WorkVertex{p, {}, {}, false};
-  }
+  placeTrmVertices(tw, trm, trmAxis, modelRotated, modelAxis, false);
   const Vec3 offset = trmRotated ? trm.offset() * trmAxis : trm.offset();
   tw.start += offset;
   tw.end += offset;

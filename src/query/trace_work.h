@@ -205,6 +205,12 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
 /// edges' stored direction) and makes room for polygonVertexRays.
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryWork::Scratch& s);
 
+/// Sets tw's feature counts from `trm` and its vertices at tw.start (turned by
+/// trmAxis, then into the model's frame when modelRotated), each with the
+/// given `used` flag.
+void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
+                      const Mat3& modelAxis, bool used);
+
 /// Sets up tw for a position test of `trm` (not a point) at `position`.
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
                        std::uint32_t mask, const Placement& placement);

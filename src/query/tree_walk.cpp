@@ -168,6 +168,21 @@ void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> 
   }
 }
 
+void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
+                      const Mat3& modelAxis, bool used) {
+  const bool trmRotated = isRotated(trmAxis);
+  tw.numVerts = trm.numVertices();
+  tw.numEdges = trm.numEdges();
+  tw.numPolys = trm.numPolygons();
+  for (int i = 0; i < tw.numVerts; ++i) {
+    Vec3 p = trm.vertex(i);
+    if (trmRotated) p = p * trmAxis;
+    p += tw.start;
+    if (modelRotated) p = modelAxis * p;  // into the model's frame
+    tw.vertices[std::size_t(i)] = WorkVertex{p, {}, {}, used};
+  }
+}
+
 void traceBoxThroughModel(TraceWork& tw, const Bounds& box) {
   if (tw.model.nodes.empty()) return;
   traceBoxThroughTree(tw, 0, box);
