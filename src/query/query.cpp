@@ -52,9 +52,7 @@ void setupPointTrace(TraceWork& tw) {
   }
   tw.extents = {tol::kBoxEpsilon, tol::kBoxEpsilon, tol::kBoxEpsilon};
   tw.size = Bounds{{0, 0, 0}, {0, 0, 0}};
-  setupTranslationHeartPlanes(tw);
-  tw.maxDistFromHeartPlane1 = tol::kBoxEpsilon;
-  tw.maxDistFromHeartPlane2 = tol::kBoxEpsilon;
+  // No heart planes: point traces do not use them (see translate.cpp).
   tw.numVerts = 1;
   tw.vertices[0].p = tw.start;
   tw.vertices[0].endp = tw.start + tw.dir;
