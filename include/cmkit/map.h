@@ -81,6 +81,11 @@ struct MapEntity {
   std::optional<std::string_view> value(std::string_view key) const;
   /// The "origin" key parsed as three numbers, or (0,0,0).
   Vec3 origin() const;
+  /// The orientation the game gives the entity (and so its collision
+  /// model): the "rotation" key (nine numbers, the rows of the axis), else a
+  /// yaw of "angle" degrees about z, else the identity. World position of a
+  /// local point: local * axis() + origin().
+  Mat3 axis() const;
 };
 
 /// A parsed .map file.

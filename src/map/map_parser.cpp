@@ -6,6 +6,7 @@
 // API, and a failing parse never returns a partial map.
 #include <charconv>
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <utility>
 
@@ -337,24 +338,42 @@ std::optional<std::string_view> MapEntity::value(std::string_view key) const {
   return std::nullopt;
 }
 
-Vec3 MapEntity::origin() const {
-  const auto text = value("origin");
-  Vec3 out;
-  if (!text) return out;
-  // Like sscanf("%f %f %f"): whitespace-separated, correctly rounded, stops
-  // at the first thing that is not a number (missing components stay 0).
-  const char* p = text->data();
-  const char* end = p + text->size();
-  for (int i = 0; i < 3; ++i) {
+namespace {
+
+// Like sscanf("%f %f ..."): whitespace-separated numbers, correctly rounded,
+// stopping at the first thing that is not a number; the values read replace
+// the first entries of `out`, the rest keep theirs.
+void scanFloats(std::string_view text, std::span<float> out) {
+  const char* p = text.data();
+  const char* end = p + text.size();
+  for (float& slot : out) {
     while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) ++p;
     if (p < end && *p == '+') ++p;
     float v = 0;
     const auto r = std::from_chars(p, end, v);
     if (r.ec != std::errc()) break;
-    out[i] = v;
+    slot = v;
     p = r.ptr;
   }
-  return out;
+}
+
+}  // namespace
+
+Vec3 MapEntity::origin() const {
+  float v[3] = {0, 0, 0};  // missing components stay 0
+  if (const auto text = value("origin")) scanFloats(*text, v);
+  return {v[0], v[1], v[2]};
+}
+
+Mat3 MapEntity::axis() const {
+  if (const auto text = value("rotation")) {
+    float m[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // missing entries stay the identity's
+    scanFloats(*text, m);
+    return {{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}};
+  }
+  float yaw = 0;
+  if (const auto text = value("angle")) scanFloats(*text, {&yaw, 1});
+  return yaw == 0 ? Mat3::identity() : Mat3::fromAngles(0, yaw, 0);
 }
 
 Result<MapFile> parseMapText(std::string_view text, std::string fileName) {

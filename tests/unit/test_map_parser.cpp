@@ -13,6 +13,7 @@ using cmkit::MapBrush;
 using cmkit::MapFile;
 using cmkit::MapPatch;
 using cmkit::parseMapText;
+using cmkit::Mat3;
 using cmkit::Vec3;
 
 std::uint32_t bits(float f) {
@@ -244,6 +245,29 @@ TEST(MapParser, EntityKeys) {
   ASSERT_TRUE(junk.ok());
   EXPECT_EQ(junk->entities[0].origin(), (Vec3{0, 0, 0}));
   EXPECT_EQ(cmkit::MapEntity{}.origin(), (Vec3{0, 0, 0}));
+}
+
+TEST(MapParser, EntityAxisFromRotationOrAngle) {
+  auto r = parseMapText(
+      "{\n\"rotation\" \"0 1 0 -1 0 0 0 0 1\"\n\"angle\" \"45\"\n}\n"
+      "{\n\"angle\" \"90\"\n}\n"
+      "{\n\"rotation\" \"0 1 0\"\n}\n"
+      "{\n\"angle\" \"0\"\n}\n");
+  ASSERT_TRUE(r.ok());
+  ASSERT_EQ(r->entities.size(), 4u);
+  // "rotation" holds the rows and wins over "angle".
+  const Mat3 quarterTurn{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
+  EXPECT_EQ(r->entities[0].axis(), quarterTurn);
+  // A yaw of 90 degrees: forward becomes +y, left becomes -x (up to rounding).
+  const Mat3 yaw = r->entities[1].axis();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(yaw[i][j], quarterTurn[i][j], 1e-6f) << i << "," << j;
+  // A short "rotation" replaces the first entries only, like sscanf.
+  EXPECT_EQ(r->entities[2].axis(), (Mat3{{0, 1, 0}, {0, 1, 0}, {0, 0, 1}}));
+  EXPECT_EQ(r->entities[3].axis(), Mat3::identity());
+  EXPECT_EQ(cmkit::MapEntity{}.axis(), Mat3::identity());
+  // A local point goes to the world as local * axis + origin.
+  EXPECT_EQ(Vec3(1, 0, 0) * quarterTurn, (Vec3{0, 1, 0}));
 }
 
 TEST(MapParser, EmptyInputIsAnEmptyMap) {

@@ -47,6 +47,7 @@ std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_
     if (e.primitives.empty()) continue;
     Placement p;
     p.origin = e.origin();
+    p.axis = e.axis();
     placements.push_back(p);
   }
   if (placements.size() != numModels) placements.clear();  // not the build's order: do not guess
