@@ -175,6 +175,33 @@ TEST(DebugPicture, CliRendersABoxRoomWithTraces) {
   EXPECT_GE(distinctColors(t.rgb), kMinDistinctColors);
 }
 
+TEST(DebugPicture, CliViewRemovesItsSceneFolderWhenStopped) {
+  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the cmkit CLI is not built";
+  const fs::path dir = scratchDir("view");
+  std::ofstream(dir / "box_room.map") << boxRoomMap();
+  const fs::path viewer = dir / "viewer";  // a stand-in for the built viewer
+  fs::create_directories(viewer);
+  std::ofstream(viewer / "index.html") << "<html></html>\n";
+  const fs::path out = dir / "out.txt";
+  // Background jobs of a non-interactive shell ignore SIGINT, so the test
+  // stops the server with SIGTERM (which takes the same way out as Ctrl-C).
+  std::ofstream(dir / "run.sh") << "\"" << CMKIT_CLI_PATH << "\" view \"" << (dir / "box_room.map").string()
+                                << "\" --port 0 --viewer-dir \"" << viewer.string() << "\" > \""
+                                << out.string() << "\" 2>&1 &\n"
+                                << "pid=$!\n"
+                                << "for i in $(seq 200); do grep -q '^viewer: ' \"" << out.string()
+                                << "\" && break; sleep 0.05; done\n"
+                                << "kill -TERM $pid\n"
+                                << "wait $pid\n";
+  ASSERT_EQ(std::system(("sh \"" + (dir / "run.sh").string() + "\"").c_str()), 0) << test::readFile(out);
+  const std::string text = test::readFile(out);
+  const auto at = text.find("scene: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  const fs::path scene = text.substr(at + 7, text.find('\n', at) - at - 7);
+  EXPECT_NE(text.find("stopping: removing " + scene.string()), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(scene)) << scene << " was left behind";
+}
+
 TEST(DebugPicture, CliRendersLt4) {
   const fs::path map = test::sharedDir() / "maps" / "lt4" / "lt4.map";
   if (!fs::exists(map)) GTEST_SKIP() << map << " is absent (shared data beside the clone); skipped";

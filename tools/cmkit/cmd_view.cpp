@@ -7,14 +7,18 @@
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/signalfd.h>
 #include <sys/socket.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "cmkit/debug_export.h"
 #include "commands.h"
@@ -49,6 +53,36 @@ struct ViewOptions {
   int port = kDefaultPort;
   double exitAfter = 0;
 };
+
+/// Removes the temporary scene folder on every way out of the command.
+class TempDirGuard {
+ public:
+  explicit TempDirGuard(fs::path dir) : dir_(std::move(dir)) {}
+  ~TempDirGuard() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  TempDirGuard(const TempDirGuard&) = delete;
+  TempDirGuard& operator=(const TempDirGuard&) = delete;
+
+ private:
+  fs::path dir_;
+};
+
+/// Ctrl-C (SIGINT) and SIGTERM as a file descriptor to poll: the signals are
+/// blocked for the process and read from the descriptor instead, so the
+/// serve loop ends normally and cleans up (no handler, no global flag).
+/// -1 when the system refuses (then the default action applies).
+int openStopSignals() {
+  sigset_t mask;
+  sigemptyset(&mask);
+  sigaddset(&mask, SIGINT);
+  sigaddset(&mask, SIGTERM);
+  if (::sigprocmask(SIG_BLOCK, &mask, nullptr) != 0) return -1;
+  const int fd = ::signalfd(-1, &mask, SFD_CLOEXEC);
+  if (fd < 0) ::sigprocmask(SIG_UNBLOCK, &mask, nullptr);
+  return fd;
+}
 
 std::string defaultViewerDir() {
   if (const char* env = std::getenv("CMKIT_VIEWER_DIR")) return env;
@@ -156,6 +190,7 @@ int runView(const ViewOptions& o) {
     return kExitBadInput;
   }
   const fs::path sceneDir = tmpl;
+  const TempDirGuard removeSceneDir(sceneDir);
   ExportOptions exportOptions;
   exportOptions.placements = modelPlacements(o.models, models->size());
   if (Status s = saveScene((sceneDir / kSceneFile).string(), *models, *traces, exportOptions); !s) {
@@ -191,19 +226,24 @@ int runView(const ViewOptions& o) {
              ntohs(addr.sin_port), kSceneFile, kResultsFile);
   std::fflush(stdout);
 
+  const int stopSignals = openStopSignals();
   const auto start = std::chrono::steady_clock::now();
   while (o.exitAfter <= 0 ||
          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < o.exitAfter) {
-    pollfd p{server, POLLIN, 0};
-    if (::poll(&p, 1, kAcceptPollMs) <= 0) continue;
+    pollfd p[2] = {{server, POLLIN, 0}, {stopSignals, POLLIN, 0}};
+    if (::poll(p, stopSignals >= 0 ? 2 : 1, kAcceptPollMs) <= 0) continue;
+    if (stopSignals >= 0 && (p[1].revents & POLLIN)) {
+      fmt::print("stopping: removing {}\n", sceneDir.string());
+      break;
+    }
+    if (!(p[0].revents & POLLIN)) continue;
     const int client = ::accept(server, nullptr, nullptr);
     if (client < 0) continue;
     serveClient(client, sceneDir, viewerDir);
     ::close(client);
   }
+  if (stopSignals >= 0) ::close(stopSignals);
   ::close(server);
-  std::error_code ec;
-  fs::remove_all(sceneDir, ec);
   return 0;
 }
 
