@@ -12,8 +12,8 @@ namespace {
 using cmkit::MapBrush;
 using cmkit::MapFile;
 using cmkit::MapPatch;
-using cmkit::parseMapText;
 using cmkit::Mat3;
+using cmkit::parseMapText;
 using cmkit::Vec3;
 
 std::uint32_t bits(float f) {
