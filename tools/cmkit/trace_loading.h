@@ -18,8 +18,9 @@ Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath
                                                   const std::string& resultsPath);
 
 /// Where the models of MODELS go in the world: for a .map, each model at
-/// its entity's "origin" (models are built in entity order, one per entity
-/// with primitives, each in its entity's frame); for a .cm file, all at the
+/// its entity's "origin", turned by its "rotation" (or "angle") key as the
+/// game turns it (models are built in entity order, one per entity with
+/// primitives, each in its entity's frame); for a .cm file, all at the
 /// origin (the file has no placements).
 std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_t numModels);
 
