@@ -52,7 +52,9 @@ void setupPointTrace(TraceWork& tw) {
   }
   tw.extents = {tol::kBoxEpsilon, tol::kBoxEpsilon, tol::kBoxEpsilon};
   tw.size = Bounds{{0, 0, 0}, {0, 0, 0}};
-  // No heart planes: point traces do not use them (see translate.cpp).
+  setupTranslationHeartPlanes(tw);
+  tw.maxDistFromHeartPlane1 = tol::kBoxEpsilon;
+  tw.maxDistFromHeartPlane2 = tol::kBoxEpsilon;
   tw.numVerts = 1;
   tw.vertices[0].p = tw.start;
   tw.vertices[0].endp = tw.start + tw.dir;

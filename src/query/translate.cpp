@@ -201,15 +201,12 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   if (!(poly.contents & tw.contentMask)) return false;
   if (!tw.bounds.intersects(poly.bounds)) return false;
   if (poly.plane.normal.dot(tw.dir) > 0) return false;  // only front faces collide
+  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
+  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2) return false;
 
   if (tw.pointTrace) {
-    // No heart-plane cull for a point: a polygon its line passes through
-    // meets both heart planes, so the cull could only drop polygons the
-    // point test rejects anyway, and it costs more than that test.
     translatePointThroughPolygon(tw, polyNum, poly);
   } else {
-    if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
-    if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2) return false;
     if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
       return cull == PlaneCull::Stop;
     // Lines of the polygon's edges (stored direction) and of its vertices'
