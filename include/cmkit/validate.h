@@ -18,6 +18,8 @@
 //    every polygon and brush referenced at least once, every referenced
 //    item's bounds touching its node's region, the model bounds containing
 //    every item.
+// Each violation says whether it is one of structure (corrupt data) or of
+// geometry (an odd shape; see Violation::Kind).
 #pragma once
 
 #include <cstdint>
@@ -30,10 +32,20 @@ namespace cmkit {
 
 /// One broken invariant.
 struct Violation {
+  /// Structure: a number, range, link or loop is wrong (indices out of
+  /// range, a broken edge loop, a tree that is not a tree): the model is
+  /// corrupt and queries may read the wrong data. Geometry: the numbers
+  /// describe an odd shape that queries handle (a degenerate or non-planar
+  /// polygon, an empty brush, an edge shared by three polygons, non-finite
+  /// coordinates); real maps give some, and the map compiler keeps them as
+  /// the original does.
+  enum Kind { Structure, Geometry };
+
   std::string model;     ///< model name
   std::string itemKind;  ///< "vertex", "edge", "polygon", "brush", "node" or "model"
   std::int64_t item = -1;
   std::string message;
+  Kind kind = Structure;
 
   /// "model "NAME" polygon 12: message".
   std::string toString() const;

@@ -31,7 +31,10 @@ class Validator {
 
  private:
   void report(const char* kind, std::int64_t item, std::string message) {
-    if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message)});
+    if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), Violation::Structure});
+  }
+  void reportGeometry(const char* kind, std::int64_t item, std::string message) {
+    if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), Violation::Geometry});
   }
   static std::string str(Real v) {
     char buf[32];
@@ -49,7 +52,7 @@ class Validator {
 
   void vertices() {
     for (std::size_t i = 0; i < m_.vertices.size(); ++i)
-      if (!m_.vertices[i].isFinite()) report("vertex", std::int64_t(i), "non-finite coordinate");
+      if (!m_.vertices[i].isFinite()) reportGeometry("vertex", std::int64_t(i), "non-finite coordinate");
   }
 
   void edges() {
@@ -72,10 +75,13 @@ class Validator {
                    std::to_string(e.vertex[1]) + ")");
         continue;
       }
-      if (e.vertex[0] == e.vertex[1]) report("edge", std::int64_t(i), "both ends are the same vertex");
+      if (e.vertex[0] == e.vertex[1])
+        reportGeometry("edge", std::int64_t(i), "both ends are the same vertex");
       const int users = forward_[i] + backward_[i];
-      if (users > 2) report("edge", std::int64_t(i), "used by " + std::to_string(users) + " polygons");
-      if (users == 2 && forward_[i] != 1) report("edge", std::int64_t(i), "used twice in the same direction");
+      if (users > 2)
+        reportGeometry("edge", std::int64_t(i), "used by " + std::to_string(users) + " polygons");
+      if (users == 2 && forward_[i] != 1)
+        reportGeometry("edge", std::int64_t(i), "used twice in the same direction");
     }
   }
 
@@ -87,7 +93,7 @@ class Validator {
         report("polygon", item, "edge range beyond the edge list");
         continue;
       }
-      if (p.numEdges < 3) report("polygon", item, "fewer than 3 edges");
+      if (p.numEdges < 3) reportGeometry("polygon", item, "fewer than 3 edges");
       bool edgesOk = true;
       bool repeated = false;  // reported once per polygon
       const auto list = m_.edgesOf(p);
@@ -99,7 +105,7 @@ class Validator {
         }
         for (std::size_t j = 0; j < k && !repeated; ++j) {
           if (list[j] == list[k] || list[j] == -list[k]) {
-            report("polygon", item, "uses edge " + std::to_string(std::abs(list[k])) + " twice");
+            reportGeometry("polygon", item, "uses edge " + std::to_string(std::abs(list[k])) + " twice");
             repeated = true;
           }
         }
@@ -122,7 +128,7 @@ class Validator {
           break;
         }
       }
-      if (!unitLength(p.plane.normal)) report("polygon", item, "normal is not unit length");
+      if (!unitLength(p.plane.normal)) reportGeometry("polygon", item, "normal is not unit length");
       Real worst = 0;
       bool outside = false;
       const Bounds grown = p.bounds.expanded(tol::kValidateBoundsEpsilon);
@@ -132,8 +138,8 @@ class Validator {
         outside |= !grown.containsPoint(v);
       }
       if (worst > tol::kValidatePlanarEpsilon)
-        report("polygon", item, "not planar: a vertex is " + str(worst) + " off its plane");
-      if (outside) report("polygon", item, "a vertex lies outside the polygon's bounds");
+        reportGeometry("polygon", item, "not planar: a vertex is " + str(worst) + " off its plane");
+      if (outside) reportGeometry("polygon", item, "a vertex lies outside the polygon's bounds");
     }
   }
 
@@ -150,7 +156,7 @@ class Validator {
       for (const Plane& pl : planes)
         unit &= unitLength(pl.normal) && pl.normal.isFinite() && std::isfinite(pl.dist);
       if (!unit) {
-        report("brush", item, "a plane normal is not unit length");
+        reportGeometry("brush", item, "a plane normal is not unit length");
         continue;
       }
       // The corners of the volume: every plane's base winding clipped by all
@@ -167,11 +173,11 @@ class Validator {
         for (const Vec3& p : w.points()) outside |= !grown.containsPoint(p);
       }
       if (!any) {
-        report("brush", item, "its planes enclose no volume");
+        reportGeometry("brush", item, "its planes enclose no volume");
       } else if (huge) {
-        report("brush", item, "its planes do not enclose a bounded volume");
+        reportGeometry("brush", item, "its planes do not enclose a bounded volume");
       } else if (outside) {
-        report("brush", item, "a corner of the brush lies outside its bounds");
+        reportGeometry("brush", item, "a corner of the brush lies outside its bounds");
       }
       if (b.material < -1 || (b.material >= 0 && std::size_t(b.material) >= m_.materials.size()))
         report("brush", item, "material index out of range");
@@ -249,7 +255,7 @@ class Validator {
       }
       const Bounds& b = m_.polygons[std::size_t(p)].bounds;
       if (!polygonSeen[std::size_t(p)] && !modelBounds.containsBounds(b))
-        report("polygon", p, "outside the model bounds");
+        reportGeometry("polygon", p, "outside the model bounds");
       polygonSeen[std::size_t(p)] = 1;
       if (!region.expanded(tol::kValidateBoundsEpsilon).intersects(b))
         report("polygon", p,
@@ -261,8 +267,12 @@ class Validator {
         continue;
       }
       const Bounds& b = m_.brushes[std::size_t(bi)].bounds;
+      if (b.isCleared()) {  // an empty brush (reported with the brush): it is anywhere and nowhere
+        brushSeen[std::size_t(bi)] = 1;
+        continue;
+      }
       if (!brushSeen[std::size_t(bi)] && !modelBounds.containsBounds(b))
-        report("brush", bi, "outside the model bounds");
+        reportGeometry("brush", bi, "outside the model bounds");
       brushSeen[std::size_t(bi)] = 1;
       if (!region.expanded(tol::kValidateBoundsEpsilon).intersects(b))
         report("brush", bi,

@@ -18,7 +18,10 @@ void registerValidate(CLI::App& app) {
       "directions), closed and planar polygon edge loops, bounds that contain their\n"
       "vertices, brushes that enclose a bounded volume inside their bounds, a consistent\n"
       "tree whose nodes reach their items, and no index out of range.\n"
-      "Each violation is printed as: model \"NAME\" polygon 12: what is wrong.\n\n"
+      "Each violation is printed as: model \"NAME\" polygon 12: what is wrong. Violations of\n"
+      "structure (an index, range, link or loop that is wrong) mean a corrupt model; those\n"
+      "marked [geometry] are odd shapes queries handle (an empty brush, a non-planar or\n"
+      "degenerate polygon), which real maps have and the compiler keeps, as the original does.\n\n"
       "Examples:\n"
       "  cmkit validate maps/lt4.cm\n"
       "  cmkit validate maps/lt4.map --max 20\n\n"
@@ -36,15 +39,20 @@ void registerValidate(CLI::App& app) {
       fmt::print(stderr, "cmkit validate: {}\n", models.error().toString());
       std::exit(kExitBadInput);
     }
-    std::size_t violations = 0;
+    std::size_t violations = 0, geometry = 0;
     for (std::size_t i = 0; i < models->size(); ++i) {
       const CollisionModel& m = *(*models)[i];
       const std::vector<Violation> found = validateModel(m, *maxPerModel);
-      for (const Violation& v : found) fmt::print("{}: #{} {}\n", *path, i, v.toString());
+      for (const Violation& v : found) {
+        const bool odd = v.kind == Violation::Geometry;
+        fmt::print("{}: #{} {}{}\n", *path, i, v.toString(), odd ? " [geometry]" : "");
+        geometry += odd;
+      }
       violations += found.size();
     }
     if (violations > 0) {
-      fmt::print("{}: {} violation(s) in {} model(s)\n", *path, violations, models->size());
+      fmt::print("{}: {} violation(s) in {} model(s): {} of structure (a corrupt model), {} of geometry\n",
+                 *path, violations, models->size(), violations - geometry, geometry);
       std::exit(1);
     }
     fmt::print("{}: {} model(s), all invariants hold\n", *path, models->size());
