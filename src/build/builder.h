@@ -164,6 +164,16 @@ class ModelBuilder {
   // ---- finish.cpp
   CollisionModel finish();
 
+  /// True when each edge starts at the vertex where the one before it ends
+  /// (cyclically): the edges outline a polygon.
+  bool edgesFormLoop(const std::vector<int>& edgeNums) const {
+    auto startVertex = [&](int e) { return edges_[static_cast<std::size_t>(std::abs(e))].v[e > 0 ? 0 : 1]; };
+    for (std::size_t k = 0; k < edgeNums.size(); ++k) {
+      const int prev = edgeNums[k == 0 ? edgeNums.size() - 1 : k - 1];
+      if (startVertex(-prev) != startVertex(edgeNums[k])) return false;
+    }
+    return true;
+  }
   Vec3 edgeStart(int edgeNum) const {
     const BEdge& e = edges_[static_cast<std::size_t>(edgeNum < 0 ? -edgeNum : edgeNum)];
     return vertices_[static_cast<std::size_t>(edgeNum < 0 ? e.v[1] : e.v[0])];

@@ -173,6 +173,11 @@ int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
     // (The edges getEdge may have made stay, like those of rejected polygons.)
     return -1;
   }
+  // With odd geometry (found by fuzzing: a patch point at 6.5e13) the shared
+  // run is not what the splice above assumes and the original makes a
+  // polygon whose edges do not form a loop; cmkit keeps the two polygons.
+  // Real maps never get here (their .cm files validate).
+  if (!edgesFormLoop(newEdges)) return -1;
 
   BPolygon np;
   np.bounds = unionBounds(p1.bounds, p2.bounds);

@@ -149,7 +149,6 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
 }
 
 void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum) {
-  (void)primitiveNum;
   std::vector<int> polyEdges;
   polyEdges.reserve(static_cast<std::size_t>(w.size()));
   int v1num = -1;
@@ -168,6 +167,14 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
     for (std::size_t j = i + 1; j < polyEdges.size(); ++j) {
       if (std::abs(polyEdges[i]) == std::abs(polyEdges[j])) return;  // an edge used twice
     }
+  }
+  if (!edgesFormLoop(polyEdges)) {
+    // Welding met non-finite or enormous coordinates (found by fuzzing; real
+    // maps never get here): the original would keep an outline that is not
+    // closed, which no query can use correctly.
+    warn("primitive " + std::to_string(std::abs(primitiveNum)) +
+         " is degenerate: a polygon's welded edges do not form a loop; dropped");
+    return;
   }
   if (polyEdges.size() > static_cast<std::size_t>(tol::kMaxPolygonEdges)) {
     warn("polygon has " + std::to_string(polyEdges.size()) + " edges; truncated to " +

@@ -370,6 +370,22 @@ TEST(BuildBadInput, HugeCoordinatesAreDroppedWithAWarning) {
   EXPECT_LT(m.polygons.size(), 6u);
 }
 
+// Found by fuzzing: a patch point at 6.5e13 makes welded vertices whose
+// polygon outlines (built directly or by merging) do not close in the
+// original; cmkit drops or does not merge them, so every outline is a loop.
+TEST(BuildBadInput, EnormousPatchPointsStillGiveClosedOutlines) {
+  const std::string patch =
+      "{\npatchDef2\n{\n\"textures/a\"\n( 3 3 0 0 0 )\n(\n"
+      "( ( 0 0 0 0 0 ) ( 0 0 32 0 0.5 ) ( 0 0 64 0 1 ) )\n"
+      "( ( 64 0 0 0.5 0 ) ( 64 0 32 0.5 0.5 ) ( 64 0 64 0.5 1 ) )\n"
+      "( ( 64 64 0 1 0 ) ( 64 64 32 1 0.5 ) ( 64 64 64999999999999 1 1 ) )\n)\n}\n}\n";
+  const Built b = buildText(world(box({-512, -512, -16}, {512, 512, 0})) +
+                            entity("\"classname\" \"func_static\"\n", patch));
+  ASSERT_EQ(b.models.size(), 2u);
+  for (const ModelPtr& m : b.models) checkInvariants(*m);
+  EXPECT_GT(b.models[1]->polygons.size(), 0u);
+}
+
 TEST(BuildBadInput, ProgressIsReported) {
   auto map = parseMapText("Version 2\n" + world(box({0, 0, 0}, {16, 16, 16})) + entity("\"a\" \"b\"\n", ""),
                           "p.map");
