@@ -228,6 +228,10 @@ TEST(CmFile, ErrorsNameFileLineAndColumn) {
   EXPECT_NE(e.message.find("comment"), std::string::npos) << e.message;
   e = mustFail(std::string(kFloorCm) + "garbage");
   e = mustFail(replaced(kFloorCm, "\"worldMap\"", "worldMap"));
+  // Edges that do not outline the polygon (found by fuzzing): an error at the polygon.
+  e = mustFail(replaced(kFloorCm, "4 ( 1 2 3 4 )", "4 ( 1 3 2 4 )"));
+  EXPECT_NE(e.message.find("polygon 0: its edges do not form a loop"), std::string::npos) << e.message;
+  EXPECT_EQ(e.line, 23);
 }
 
 TEST(CmFile, EdgeNormalsOfAFoldAndASharpEdge) {
