@@ -5,6 +5,7 @@
 // parseMapText catches and turns into an Error: nothing escapes the public
 // API, and a failing parse never returns a partial map.
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <span>
 #include <sstream>
@@ -56,6 +57,9 @@ constexpr std::string_view kValve220Message =
     "this is a TrenchBroom \"Valve 220\" map, not the Doom 3 .map format: Doom 3 expects "
     "\"Version 2\" with brushDef3/patchDef2 primitives; re-save it in the Doom 3 (brushDef3) format";
 
+/// Largest map version number accepted (Doom 3 writes 2, Quake 4 3).
+constexpr float kMaxMapVersion = 1000000;
+
 /// The parser state for one file.
 class Parser {
  public:
@@ -67,7 +71,11 @@ class Parser {
     Token t = peek();
     if (t.is(TokenKind::Name, "Version")) {
       next();
+      const Token v = peek();
       versionValue_ = number("the map version after 'Version'");
+      // Doom 3 writes 2; anything beyond an int (found by fuzzing) is not a version.
+      if (!(std::fabs(versionValue_) <= kMaxMapVersion))
+        fail(v, "the map version is out of range: " + describe(v));
     }
     map.version = static_cast<int>(versionValue_);
     for (;;) {
