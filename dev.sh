@@ -7,6 +7,8 @@
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
+#   ./dev.sh fuzz [map|cm|query] [SECONDS]
+#                    coverage-guided fuzzing with libFuzzer (Clang, ASan+UBSan)
 #
 # Works on a fresh Debian 12 machine; uses sudo for apt-get when not root.
 set -euo pipefail
@@ -97,8 +99,21 @@ case "${1:-}" in
     build tsan
     ctest --preset tsan
     ;;
+  fuzz)
+    target="${2:-map}"
+    seconds="${3:-300}"
+    case "$target" in map | cm | query) ;; *) echo "fuzz target: map, cm or query" >&2; exit 2 ;; esac
+    PACKAGES+=(clang)
+    deps
+    build fuzz
+    # New inputs go to build/fuzz/work/TARGET; the seeds in fuzz/corpus stay as they are.
+    mkdir -p "build/fuzz/work/$target"
+    echo "== fuzzing $target for ${seconds}s; findings: build/fuzz/work/$target-crash-*"
+    "./build/fuzz/fuzz/fuzz_$target" "build/fuzz/work/$target" "fuzz/corpus/$target" \
+      -max_total_time="$seconds" -artifact_prefix="build/fuzz/work/$target-" -print_final_stats=1
+    ;;
   *)
-    sed -n '2,12p' "$0"
+    sed -n '2,14p' "$0"
     exit 2
     ;;
 esac
