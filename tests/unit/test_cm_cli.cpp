@@ -13,22 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Runs a shell command; returns its stdout and sets the exit code.
-std::string run(const std::string& command, int& exitCode) {
-  std::string out;
-  FILE* p = popen(command.c_str(), "r");
-  if (!p) {
-    exitCode = -1;
-    return out;
-  }
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
-
 #define REQUIRE_CLI() \
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built"
 
@@ -36,8 +20,8 @@ TEST(CmCli, ValidateAcceptsGoodFilesAndReportsViolations) {
   REQUIRE_CLI();
   const std::string cli = CMKIT_CLI_PATH;
   int rc = 0;
-  std::string out =
-      run(cli + " validate '" + (cmkit::test::testDataDir() / "cm" / "ep1.cm").string() + "'", rc);
+  std::string out = cmkit::test::runCapture(
+      cli + " validate '" + (cmkit::test::testDataDir() / "cm" / "ep1.cm").string() + "'", rc);
   EXPECT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("4 model(s), all invariants hold"), std::string::npos) << out;
 
@@ -47,13 +31,13 @@ TEST(CmCli, ValidateAcceptsGoodFilesAndReportsViolations) {
   std::ofstream(bad) << "CM \"1.00\" 0 collisionModel \"x\" { vertices { 3 ( 0 0 0 ) ( 1 0 0 ) ( 0 1 5 ) }\n"
                         "edges { 4 ( 0 0 ) 0 0 ( 0 1 ) 0 1 ( 1 2 ) 0 1 ( 2 0 ) 0 1 }\n"
                         "polygons { 3 ( 1 2 3 ) ( 0 0 1 ) 0 ( 0 0 0 ) ( 1 1 0 ) \"a\" } }\n";
-  out = run(cli + " validate '" + bad.string() + "'", rc);
+  out = cmkit::test::runCapture(cli + " validate '" + bad.string() + "'", rc);
   EXPECT_EQ(rc, 1) << out;
   EXPECT_NE(out.find("model \"x\" polygon 0: not planar"), std::string::npos) << out;
   EXPECT_NE(out.find("model \"x\" polygon 0: a vertex lies outside"), std::string::npos) << out;
 
   std::ofstream(dir / "broken.cm") << "CM \"1.00\" 0 collisionModel \"x\" { vertices { 3 ( 0 0 0 ) }";
-  out = run(cli + " validate '" + (dir / "broken.cm").string() + "' 2>&1", rc);
+  out = cmkit::test::runCapture(cli + " validate '" + (dir / "broken.cm").string() + "' 2>&1", rc);
   EXPECT_EQ(rc, 2) << out;
   EXPECT_NE(out.find("broken.cm:1:"), std::string::npos) << out;
   fs::remove_all(dir);
@@ -63,7 +47,8 @@ TEST(CmCli, InfoPrintsStatisticsOfACmFile) {
   REQUIRE_CLI();
   CMKIT_REQUIRE_SHARED();
   int rc = 0;
-  const std::string out = run(std::string(CMKIT_CLI_PATH) + " info '" +
+  const std::string out =
+      cmkit::test::runCapture(std::string(CMKIT_CLI_PATH) + " info '" +
                                   (cmkit::test::sharedDir() / "reference" / "box_room.cm").string() + "'",
                               rc);
   EXPECT_EQ(rc, 0) << out;

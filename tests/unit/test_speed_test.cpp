@@ -82,26 +82,12 @@ TEST(SpeedTest, RandomManySharesOneEndPoint) {
   EXPECT_TRUE(r.rotation.hits == 0 || r.rotation.hits == kTestTimes);
 }
 
-std::string runCapture(const std::string& cmd, int& status) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) {
-    status = -1;
-    return out;
-  }
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  status = pclose(p);
-  return out;
-}
-
 TEST(SpeedTest, CliBenchPrintsStatistics) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
   const auto map = std::filesystem::path(CMKIT_SOURCE_DIR) / "data" / "maps" / "lt4" / "lt4.map";
   if (!std::filesystem::exists(map)) GTEST_SKIP() << "no " << map;
   int status = 0;
-  const std::string out = runCapture(
+  const std::string out = test::runCapture(
       std::string(CMKIT_CLI_PATH) + " bench '" + map.string() + "' --times 200 --threads 2", status);
   EXPECT_EQ(status, 0) << out;
   for (const char* expected : {"translation:", "rotation:", " min ", " avg ", " max ", "hits", "hash",

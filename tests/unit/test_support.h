@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -23,6 +26,23 @@ inline std::string readFile(const std::filesystem::path& p) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+/// Runs a shell command; returns its standard output and sets its exit code
+/// (-1 when it could not run or was killed by a signal).
+inline std::string runCapture(const std::string& command, int& exitCode) {
+  std::string out;
+  FILE* p = popen(command.c_str(), "r");
+  if (!p) {
+    exitCode = -1;
+    return out;
+  }
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
 }
 
 }  // namespace cmkit::test
