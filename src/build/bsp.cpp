@@ -46,8 +46,10 @@ bool ModelBuilder::insideAllChildren(int nodeNum, const Bounds& bounds) const {
   return true;
 }
 
-void ModelBuilder::filterPolygonIntoTree(int nodeNum, int ref, int polygon) {
-  const Bounds bounds = polygons_[static_cast<std::size_t>(polygon)].bounds;
+void ModelBuilder::filterIntoTree(ItemKind kind, int nodeNum, int ref, int item) {
+  const bool polygon = kind == ItemKind::Polygon;
+  const auto index = static_cast<std::size_t>(item);
+  const Bounds bounds = polygon ? polygons_[index].bounds : brushes_[index].bounds;
   for (;;) {
     const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
     if (node.planeType == -1) break;
@@ -58,39 +60,19 @@ void ModelBuilder::filterPolygonIntoTree(int nodeNum, int ref, int polygon) {
       nodeNum = node.children[1];
     } else {
       const int front = node.children[0];
-      filterPolygonIntoTree(node.children[1], -1, polygon);
+      filterIntoTree(kind, node.children[1], -1, item);
       nodeNum = front;
     }
   }
-  if (ref >= 0) {
-    polygonRefs_[static_cast<std::size_t>(ref)].next = nodes_[static_cast<std::size_t>(nodeNum)].polygons;
-    nodes_[static_cast<std::size_t>(nodeNum)].polygons = ref;
+  BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
+  if (ref >= 0) {  // move an existing reference: prepend it to the node's list
+    int& head = polygon ? node.polygons : node.brushes;
+    (polygon ? polygonRefs_ : brushRefs_)[static_cast<std::size_t>(ref)].next = head;
+    head = ref;
+  } else if (polygon) {
+    addPolygonToNode(nodeNum, item);
   } else {
-    addPolygonToNode(nodeNum, polygon);
-  }
-}
-
-void ModelBuilder::filterBrushIntoTree(int nodeNum, int ref, int brush) {
-  const Bounds bounds = brushes_[static_cast<std::size_t>(brush)].bounds;
-  for (;;) {
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    if (insideAllChildren(nodeNum, bounds)) break;
-    if (bounds.min[node.planeType] >= node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (bounds.max[node.planeType] <= node.planeDist) {
-      nodeNum = node.children[1];
-    } else {
-      const int front = node.children[0];
-      filterBrushIntoTree(node.children[1], -1, brush);
-      nodeNum = front;
-    }
-  }
-  if (ref >= 0) {
-    brushRefs_[static_cast<std::size_t>(ref)].next = nodes_[static_cast<std::size_t>(nodeNum)].brushes;
-    nodes_[static_cast<std::size_t>(nodeNum)].brushes = ref;
-  } else {
-    addBrushToNode(nodeNum, brush);
+    addBrushToNode(nodeNum, item);
   }
 }
 
@@ -191,7 +173,7 @@ void ModelBuilder::createAxialBSPTree(int nodeNum, const Bounds& bounds) {
       next = polygonRefs_[static_cast<std::size_t>(r)].next;
       const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
       if (!insideAllChildren(n, polygons_[static_cast<std::size_t>(p)].bounds)) {
-        filterPolygonIntoTree(n, r, p);
+        filterIntoTree(ItemKind::Polygon, n, r, p);
         if (prev >= 0) {
           polygonRefs_[static_cast<std::size_t>(prev)].next = next;
         } else {
@@ -206,7 +188,7 @@ void ModelBuilder::createAxialBSPTree(int nodeNum, const Bounds& bounds) {
       next = brushRefs_[static_cast<std::size_t>(r)].next;
       const int b = brushRefs_[static_cast<std::size_t>(r)].item;
       if (!insideAllChildren(n, brushes_[static_cast<std::size_t>(b)].bounds)) {
-        filterBrushIntoTree(n, r, b);
+        filterIntoTree(ItemKind::Brush, n, r, b);
         if (prev >= 0) {
           brushRefs_[static_cast<std::size_t>(prev)].next = next;
         } else {

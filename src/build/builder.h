@@ -143,8 +143,11 @@ class ModelBuilder {
   void addPolygonToNode(int node, int polygon);
   void addBrushToNode(int node, int brush);
   bool insideAllChildren(int node, const Bounds& bounds) const;
-  void filterPolygonIntoTree(int node, int ref, int polygon);
-  void filterBrushIntoTree(int node, int ref, int brush);
+  enum class ItemKind { Polygon, Brush };
+  /// Links a polygon or brush into every node below `node` its bounds reach
+  /// (stopping where it is inside all children); `ref` >= 0 moves that
+  /// existing reference instead of making new ones.
+  void filterIntoTree(ItemKind kind, int node, int ref, int item);
   bool findSplitter(int node, const Bounds& bounds, int& planeType, Real& planeDist) const;
   void createAxialBSPTree(int node, const Bounds& bounds);
   Bounds nodeBounds() const;

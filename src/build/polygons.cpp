@@ -188,7 +188,7 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
   p.plane = plane;
   p.bounds = w.bounds();
   polygons_.push_back(std::move(p));
-  filterPolygonIntoTree(0, -1, static_cast<int>(polygons_.size()) - 1);
+  filterIntoTree(ItemKind::Polygon, 0, -1, static_cast<int>(polygons_.size()) - 1);
 }
 
 void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum) {
