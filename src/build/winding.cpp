@@ -33,6 +33,51 @@ WindingSide classify(Real d, Real epsilon) {
   return WindingSide::On;
 }
 
+/// A scratch array of up to kStackPoints values on the stack, else on the
+/// heap (windings are small; clipping them must not allocate).
+template <class T>
+class ScratchArray {
+ public:
+  explicit ScratchArray(std::size_t n) {
+    if (n > kStackPoints) {
+      heap_.resize(n);
+      data_ = heap_.data();
+    }
+  }
+  ScratchArray(const ScratchArray&) = delete;
+  ScratchArray& operator=(const ScratchArray&) = delete;
+  T& operator[](std::size_t i) { return data_[i]; }
+  T* data() { return data_; }
+
+ private:
+  T stack_[kStackPoints];
+  std::vector<T> heap_;
+  T* data_ = stack_;
+};
+
+/// Every point's distance to the plane and side, with the first repeated
+/// after the last (entry n), and how many points lie on each side.
+struct PointSides {
+  PointSides(const std::vector<Vec3>& points, const Plane& plane, Real epsilon)
+      : dists(points.size() + 1), sides(points.size() + 1) {
+    const std::size_t n = points.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      dists[i] = plane.distance(points[i]);
+      sides[i] = classify(dists[i], epsilon);
+      counts[static_cast<int>(sides[i])]++;
+    }
+    if (n > 0) {
+      sides[n] = sides[0];
+      dists[n] = dists[0];
+    }
+  }
+  int count(WindingSide side) const { return counts[static_cast<int>(side)]; }
+
+  ScratchArray<Real> dists;
+  ScratchArray<WindingSide> sides;
+  int counts[3] = {0, 0, 0};
+};
+
 }  // namespace
 
 Winding Winding::baseForPlane(const Plane& plane) {
@@ -54,108 +99,57 @@ Winding Winding::baseForPlane(const Plane& plane) {
 void Winding::clipInPlace(const Plane& plane, Real epsilon) {
   const std::size_t n = points_.size();
   if (n == 0) return;
-  Real distsBuf[kStackPoints];
-  WindingSide sidesBuf[kStackPoints];
-  std::vector<Real> distsHeap;
-  std::vector<WindingSide> sidesHeap;
-  Real* dists = distsBuf;
-  WindingSide* sides = sidesBuf;
-  if (n + 1 > kStackPoints) {
-    distsHeap.resize(n + 1);
-    sidesHeap.resize(n + 1);
-    dists = distsHeap.data();
-    sides = sidesHeap.data();
-  }
-  int counts[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    dists[i] = plane.distance(points_[i]);
-    sides[i] = classify(dists[i], epsilon);
-    counts[static_cast<int>(sides[i])]++;
-  }
-  sides[n] = sides[0];
-  dists[n] = dists[0];
-  if (counts[static_cast<int>(WindingSide::Front)] == 0) {
+  PointSides ps(points_, plane, epsilon);
+  if (ps.count(WindingSide::Front) == 0) {
     points_.clear();
     return;
   }
-  if (counts[static_cast<int>(WindingSide::Back)] == 0) return;
+  if (ps.count(WindingSide::Back) == 0) return;
 
   // The clipped winding has at most n + 1 points; small ones are built on
   // the stack and copied back into the existing storage (no allocation).
-  Vec3 outBuf[kStackPoints];
-  std::vector<Vec3> outHeap;
-  Vec3* out = outBuf;
-  if (n + 4 > kStackPoints) {
-    outHeap.resize(n + 4);
-    out = outHeap.data();
-  }
+  ScratchArray<Vec3> out(n + 4);
   std::size_t numOut = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p1 = points_[i];
-    if (sides[i] == WindingSide::On) {
+    if (ps.sides[i] == WindingSide::On) {
       out[numOut++] = p1;
       continue;
     }
-    if (sides[i] == WindingSide::Front) out[numOut++] = p1;
-    if (sides[i + 1] == WindingSide::On || sides[i + 1] == sides[i]) continue;
+    if (ps.sides[i] == WindingSide::Front) out[numOut++] = p1;
+    if (ps.sides[i + 1] == WindingSide::On || ps.sides[i + 1] == ps.sides[i]) continue;
     const Vec3& p2 = points_[(i + 1) % n];
-    out[numOut++] = splitPoint(p1, p2, dists[i], dists[i + 1], plane);
+    out[numOut++] = splitPoint(p1, p2, ps.dists[i], ps.dists[i + 1], plane);
   }
-  points_.assign(out, out + numOut);
+  points_.assign(out.data(), out.data() + numOut);
 }
 
 WindingSide Winding::split(Winding& back, const Plane& plane, Real epsilon) {
   const std::size_t n = points_.size();
-  Real distsBuf[kStackPoints];
-  WindingSide sidesBuf[kStackPoints];
-  std::vector<Real> distsHeap;
-  std::vector<WindingSide> sidesHeap;
-  Real* dists = distsBuf;
-  WindingSide* sides = sidesBuf;
-  if (n + 1 > kStackPoints) {
-    distsHeap.resize(n + 1);
-    sidesHeap.resize(n + 1);
-    dists = distsHeap.data();
-    sides = sidesHeap.data();
-  }
-  int counts[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    dists[i] = plane.distance(points_[i]);
-    sides[i] = classify(dists[i], epsilon);
-    counts[static_cast<int>(sides[i])]++;
-  }
-  if (counts[static_cast<int>(WindingSide::Back)] == 0) {
-    return counts[static_cast<int>(WindingSide::Front)] == 0 ? WindingSide::On : WindingSide::Front;
-  }
-  if (counts[static_cast<int>(WindingSide::Front)] == 0) return WindingSide::Back;
-  sides[n] = sides[0];
-  dists[n] = dists[0];
+  PointSides ps(points_, plane, epsilon);
+  if (ps.count(WindingSide::Back) == 0)
+    return ps.count(WindingSide::Front) == 0 ? WindingSide::On : WindingSide::Front;
+  if (ps.count(WindingSide::Front) == 0) return WindingSide::Back;
 
-  Vec3 frontBuf[kStackPoints];
-  std::vector<Vec3> frontHeap;
-  Vec3* front = frontBuf;
-  if (n + 4 > kStackPoints) {
-    frontHeap.resize(n + 4);
-    front = frontHeap.data();
-  }
+  ScratchArray<Vec3> front(n + 4);
   std::size_t numFront = 0;
   back.points_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p1 = points_[i];
-    if (sides[i] == WindingSide::On) {
+    if (ps.sides[i] == WindingSide::On) {
       front[numFront++] = p1;
       back.points_.push_back(p1);
       continue;
     }
-    if (sides[i] == WindingSide::Front) front[numFront++] = p1;
-    if (sides[i] == WindingSide::Back) back.points_.push_back(p1);
-    if (sides[i + 1] == WindingSide::On || sides[i + 1] == sides[i]) continue;
+    if (ps.sides[i] == WindingSide::Front) front[numFront++] = p1;
+    if (ps.sides[i] == WindingSide::Back) back.points_.push_back(p1);
+    if (ps.sides[i + 1] == WindingSide::On || ps.sides[i + 1] == ps.sides[i]) continue;
     const Vec3& p2 = points_[(i + 1) % n];
-    const Vec3 mid = splitPoint(p1, p2, dists[i], dists[i + 1], plane);
+    const Vec3 mid = splitPoint(p1, p2, ps.dists[i], ps.dists[i + 1], plane);
     front[numFront++] = mid;
     back.points_.push_back(mid);
   }
-  points_.assign(front, front + numFront);
+  points_.assign(front.data(), front.data() + numFront);
   return WindingSide::Cross;
 }
 
