@@ -176,15 +176,7 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis
   }
   tw.size.clear();
   for (int i = 0; i < tw.numVerts; ++i) tw.size.addPoint(tw.vertices[std::size_t(i)].p - tw.start);
-  for (int i = 1; i <= tw.numEdges; ++i) {
-    WorkEdge& e = tw.edges[std::size_t(i)];
-    e.vertexNum[0] = trm.edge(i).v[0];
-    e.vertexNum[1] = trm.edge(i).v[1];
-    e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-    e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-    e.pl = Pluecker::fromLine(e.start, e.end);
-    e.used = true;
-  }
+  for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, trm, i);
   const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * placement.axis.transposed() : trmAxis;
   for (int i = 0; i < tw.numPolys; ++i) {
     const TrmPolygon& tp = trm.polygon(i);

@@ -144,14 +144,8 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   if (!point) {
     const TraceModel& trm = *q.trm;
     for (int i = 1; i <= tw.numEdges; ++i) {
-      WorkEdge& e = tw.edges[std::size_t(i)];
+      const WorkEdge& e = placeTrmEdge(tw, trm, i);
       RotEdge& re = rw.edges[std::size_t(i)];
-      e.vertexNum[0] = trm.edge(i).v[0];
-      e.vertexNum[1] = trm.edge(i).v[1];
-      e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-      e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-      e.pl = Pluecker::fromLine(e.start, e.end);
-      e.used = true;
       re.used =
           rw.vertices[std::size_t(e.vertexNum[0])].used || rw.vertices[std::size_t(e.vertexNum[1])].used;
       re.bounds = rw.vertices[std::size_t(e.vertexNum[0])].bounds;

@@ -211,6 +211,10 @@ void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> 
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
                       const Mat3& modelAxis, bool used);
 
+/// Sets trace-model edge i from the trace model and tw's placed vertices
+/// (vertex numbers, ends, line), marked used.
+WorkEdge& placeTrmEdge(TraceWork& tw, const TraceModel& trm, int i);
+
 /// Sets up tw for a position test of `trm` (not a point) at `position`.
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
                        std::uint32_t mask, const Placement& placement);

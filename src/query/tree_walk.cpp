@@ -183,6 +183,17 @@ void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis,
   }
 }
 
+WorkEdge& placeTrmEdge(TraceWork& tw, const TraceModel& trm, int i) {
+  WorkEdge& e = tw.edges[std::size_t(i)];
+  e.vertexNum[0] = trm.edge(i).v[0];
+  e.vertexNum[1] = trm.edge(i).v[1];
+  e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
+  e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+  e.pl = Pluecker::fromLine(e.start, e.end);
+  e.used = true;
+  return e;
+}
+
 void traceBoxThroughModel(TraceWork& tw, const Bounds& box) {
   if (tw.model.nodes.empty()) return;
   traceBoxThroughTree(tw, 0, box);
