@@ -52,7 +52,16 @@ ModelBuilder::ModelBuilder(const MapEntity& entity, std::string name, MaterialCa
     : entity_(entity), name_(std::move(name)), materials_(materials), warnings_(warnings) {}
 
 void ModelBuilder::warn(const std::string& message) {
-  if (warnings_) warnings_->push_back("model \"" + name_ + "\": " + message);
+  if (!warnings_) return;
+  std::string line = "model \"" + name_ + "\": " + message;
+  // A message this model gave before (a degenerate patch can drop thousands
+  // of polygons) updates its first line with a count instead of repeating.
+  auto [it, first] = warningSlots_.try_emplace(message, WarningSlot{warnings_->size(), 0});
+  if (++it->second.count > 1) {
+    (*warnings_)[it->second.index] = line + " (" + std::to_string(it->second.count) + " times)";
+    return;
+  }
+  warnings_->push_back(std::move(line));
 }
 
 CollisionModel ModelBuilder::build() {

@@ -190,6 +190,11 @@ class ModelBuilder {
   std::string name_;
   MaterialCache& materials_;
   std::vector<std::string>* warnings_;
+  struct WarningSlot {
+    std::size_t index;  ///< of its line in *warnings_
+    int count;          ///< how often this model gave it
+  };
+  std::unordered_map<std::string, WarningSlot> warningSlots_;  ///< by message (see warn)
 
   std::vector<Vec3> vertices_;
   std::vector<BEdge> edges_;  ///< edges_[0] is the dummy once an edge exists

@@ -384,6 +384,14 @@ TEST(BuildBadInput, EnormousPatchPointsStillGiveClosedOutlines) {
   ASSERT_EQ(b.models.size(), 2u);
   for (const ModelPtr& m : b.models) checkInvariants(*m);
   EXPECT_GT(b.models[1]->polygons.size(), 0u);
+  // Hundreds of dropped polygons give one line per message, with a count.
+  const std::set<std::string> distinct(b.warnings.begin(), b.warnings.end());
+  EXPECT_EQ(distinct.size(), b.warnings.size());
+  EXPECT_LE(b.warnings.size(), 3u);
+  bool counted = false;
+  for (const std::string& w : b.warnings)
+    counted |= w.find("reaches the world limit; dropped (") != std::string::npos;
+  EXPECT_TRUE(counted) << (b.warnings.empty() ? "" : b.warnings.front());
 }
 
 TEST(BuildBadInput, ProgressIsReported) {
