@@ -18,6 +18,7 @@
 //    ranges of polygonRefs / brushRefs, in traversal order.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -125,6 +126,17 @@ struct CollisionModel {
   std::int32_t edgeStart(std::int32_t signedEdge) const {
     return signedEdge > 0 ? edges[std::size_t(signedEdge)].vertex[0]
                           : edges[std::size_t(-signedEdge)].vertex[1];
+  }
+  /// Where a polygon's edges stop outlining it: the index in edgesOf(p) of
+  /// the first edge that does not start where the one before it ends, or -1
+  /// when they form a loop. Edge and vertex numbers must be in range.
+  std::ptrdiff_t brokenEdgeLoopAt(const CmPolygon& p) const {
+    const auto list = edgesOf(p);
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::int32_t prev = list[k == 0 ? list.size() - 1 : k - 1];
+      if (edgeStart(list[k]) != edgeStart(-prev)) return std::ptrdiff_t(k);  // -prev starts where prev ends
+    }
+    return -1;
   }
   /// Material name, or "" for none.
   std::string_view materialName(std::int32_t material) const {

@@ -219,17 +219,16 @@ struct ModelReader {
       }
       // Each edge must start where the previous one ends (the point and edge
       // tests take the edges as the polygon's outline).
-      const auto edges = model.edgesOf(model.polygons[i]);
-      for (std::size_t k = 0; k < edges.size(); ++k) {
-        const std::int32_t prev = edges[k == 0 ? edges.size() - 1 : k - 1];
-        if (model.edgeStart(-prev) != model.edgeStart(edges[k])) {
-          CmCursor::failAt(polygonOffsets[i], "polygon " + std::to_string(i) +
-                                                  ": its edges do not form a loop (edge " +
-                                                  std::to_string(edges[k]) + " starts at vertex " +
-                                                  std::to_string(model.edgeStart(edges[k])) +
-                                                  ", the edge before it ends at vertex " +
-                                                  std::to_string(model.edgeStart(-prev)) + ")");
-        }
+      const CmPolygon& p = model.polygons[i];
+      if (const std::ptrdiff_t k = model.brokenEdgeLoopAt(p); k >= 0) {
+        const auto edges = model.edgesOf(p);
+        const std::int32_t e = edges[std::size_t(k)];
+        const std::int32_t prev = edges[k == 0 ? edges.size() - 1 : std::size_t(k) - 1];
+        CmCursor::failAt(polygonOffsets[i], "polygon " + std::to_string(i) +
+                                                ": its edges do not form a loop (edge " + std::to_string(e) +
+                                                " starts at vertex " + std::to_string(model.edgeStart(e)) +
+                                                ", the edge before it ends at vertex " +
+                                                std::to_string(model.edgeStart(-prev)) + ")");
       }
     }
   }

@@ -30,11 +30,13 @@ class Validator {
   }
 
  private:
-  void report(const char* kind, std::int64_t item, std::string message) {
-    if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), Violation::Structure});
+  void report(const char* kind, std::int64_t item, std::string message,
+              Violation::Kind violation = Violation::Structure) {
+    if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), violation});
   }
+  /// An odd shape rather than corrupt data (see Violation::Kind).
   void reportGeometry(const char* kind, std::int64_t item, std::string message) {
-    if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), Violation::Geometry});
+    report(kind, item, std::move(message), Violation::Geometry);
   }
   static std::string str(Real v) {
     char buf[32];
@@ -120,14 +122,8 @@ class Validator {
       }
       if (!verticesOk) continue;  // reported with the edge
       // Continuity: each edge starts where the previous one ends.
-      for (std::size_t k = 0; k < list.size(); ++k) {
-        const std::int32_t prev = list[(k + list.size() - 1) % list.size()];
-        const std::int32_t prevEnd = m_.edgeStart(-prev);  // the end of prev = the start of -prev
-        if (m_.edgeStart(list[k]) != prevEnd) {
-          report("polygon", item, "edge loop broken before edge " + std::to_string(list[k]));
-          break;
-        }
-      }
+      if (const std::ptrdiff_t k = m_.brokenEdgeLoopAt(p); k >= 0)
+        report("polygon", item, "edge loop broken before edge " + std::to_string(list[std::size_t(k)]));
       if (!unitLength(p.plane.normal)) reportGeometry("polygon", item, "normal is not unit length");
       Real worst = 0;
       bool outside = false;
