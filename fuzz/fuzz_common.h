@@ -9,9 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <span>
-#include <string>
 #include <string_view>
 
 #include "cmkit/model.h"
