@@ -69,6 +69,20 @@ class TempDirGuard {
   fs::path dir_;
 };
 
+/// Closes a file descriptor (when valid) on every way out.
+class FdGuard {
+ public:
+  explicit FdGuard(int fd) : fd_(fd) {}
+  ~FdGuard() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FdGuard(const FdGuard&) = delete;
+  FdGuard& operator=(const FdGuard&) = delete;
+
+ private:
+  int fd_;
+};
+
 /// Ctrl-C (SIGINT) and SIGTERM as a file descriptor to poll: the signals are
 /// blocked for the process and read from the descriptor instead, so the
 /// serve loop ends normally and cleans up (no handler, no global flag).
@@ -191,6 +205,10 @@ int runView(const ViewOptions& o) {
   }
   const fs::path sceneDir = tmpl;
   const TempDirGuard removeSceneDir(sceneDir);
+  // From here on Ctrl-C / SIGTERM only end the serve loop (taken before the
+  // URL is printed: whoever reads it may stop the server at once).
+  const int stopSignals = openStopSignals();
+  const FdGuard closeStopSignals(stopSignals);
   ExportOptions exportOptions;
   exportOptions.placements = modelPlacements(o.models, models->size());
   if (Status s = saveScene((sceneDir / kSceneFile).string(), *models, *traces, exportOptions); !s) {
@@ -226,7 +244,6 @@ int runView(const ViewOptions& o) {
              ntohs(addr.sin_port), kSceneFile, kResultsFile);
   std::fflush(stdout);
 
-  const int stopSignals = openStopSignals();
   const auto start = std::chrono::steady_clock::now();
   while (o.exitAfter <= 0 ||
          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < o.exitAfter) {
@@ -242,7 +259,6 @@ int runView(const ViewOptions& o) {
     serveClient(client, sceneDir, viewerDir);
     ::close(client);
   }
-  if (stopSignals >= 0) ::close(stopSignals);
   ::close(server);
   return 0;
 }
