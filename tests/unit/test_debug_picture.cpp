@@ -183,6 +183,9 @@ TEST(DebugPicture, CliViewRemovesItsSceneFolderWhenStopped) {
   fs::create_directories(viewer);
   std::ofstream(viewer / "index.html") << "<html></html>\n";
   const fs::path out = dir / "out.txt";
+  // A stale out.txt of an earlier run would be read before the new server
+  // writes it (the shell opens it in the background job).
+  fs::remove(out);
   // Background jobs of a non-interactive shell ignore SIGINT, so the test
   // stops the server with SIGTERM (which takes the same way out as Ctrl-C).
   std::ofstream(dir / "run.sh") << "\"" << CMKIT_CLI_PATH << "\" view \"" << (dir / "box_room.map").string()
