@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -70,7 +71,14 @@ struct QueryWork::Scratch {
   std::vector<Pluecker> polygonEdgeLines;         ///< per edge of the current polygon
   std::vector<Pluecker> polygonVertexRays;        ///< per start vertex of the current polygon's edges
   std::vector<std::uint32_t> polygonEdgesToTest;  ///< translation: edges of the current polygon to test
-  TrmFeatures trm;                                ///< the trace model of the current query
+  /// A part of the move still to walk: node, fractions and points at its ends.
+  struct WalkSegment {
+    std::int32_t node;
+    Real p1f, p2f;
+    Vec3 p1, p2;
+  };
+  std::vector<WalkSegment> walkStack;  ///< the far sides the tree walk has still to visit
+  TrmFeatures trm;                     ///< the trace model of the current query
 
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
@@ -176,6 +184,8 @@ void traceThroughModel(TraceWork& tw);
 
 /// Translation tests of one polygon; true when it blocks completely.
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
+/// The same for a point trace and a list of polygons (a node's).
+bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 
 /// Walks the model's tree with a box (every node the box touches) and tests
 /// the items met; used by rotations (the box of a part of the arc).
@@ -189,7 +199,15 @@ bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);
 bool testTrmInPolygon(TraceWork& tw, std::int32_t polygon);
 
 /// Distance of a box to a plane: 0 when it straddles the plane.
-Real boundsPlaneDistance(const Bounds& b, const Plane& plane);
+inline Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
+  const Vec3 c = b.center();
+  const Real d1 = plane.distance(c);
+  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
+                  std::fabs((b.max.z - c.z) * plane.normal.z);
+  if (d1 - d2 > 0) return d1 - d2;
+  if (d1 + d2 < 0) return d1 + d2;
+  return 0;
+}
 
 /// What the plane test of a polygon against the trace bounds decides.
 enum class PlaneCull {

@@ -49,22 +49,20 @@ void setContact(TraceWork& tw, const CmPolygon& poly, ContactType type, std::int
   tw.c.trmFeature = trmFeature;
 }
 
-// A point trace (no edges, no polygons) through a polygon.
+// A point trace (no edges, no polygons) through a polygon. The edge sides
+// are not cached: a point meets few polygons, and computing a side costs less
+// than reading a cache entry of a large model.
 void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
   const CollisionModel& m = tw.model;
-  QueryWork::Scratch& s = tw.scratch;
-  WorkVertex& v = tw.vertices[0];
+  const WorkVertex& v = tw.vertices[0];
   const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
   if (!(f < tw.fraction)) return;
   for (std::int32_t edgeNum : m.edgesOf(poly)) {
-    const std::size_t e = std::size_t(std::abs(edgeNum));
-    const CmEdge& edge = m.edges[e];
-    const unsigned side = s.edgeSideBit(e, 0, [&] {
-      return Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])],
-                                m.vertices[std::size_t(edge.vertex[1])])
-          .permutedInnerProduct(v.pl);
-    });
-    if (unsigned(edgeNum < 0) ^ side) return;  // passes the edge on the outside
+    const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+    const Real product =
+        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])])
+            .permutedInnerProduct(v.pl);
+    if (unsigned(edgeNum < 0) ^ unsigned(signBitSet(product))) return;  // passes the edge on the outside
   }
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = poly.plane.normal;
@@ -189,20 +187,55 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
   if (tw.gettingContacts()) tw.addContact();
 }
 
+// Culling: contents, bounds, back faces, distance from the heart planes.
+// True when the polygon may be touched.
+inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
+  return (poly.contents & tw.contentMask) && tw.bounds.intersects(poly.bounds) &&
+         !(poly.plane.normal.dot(tw.dir) > 0) &&  // only front faces collide
+         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) &&
+         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
+}
+
+// A nearer hit shrinks the trace bounds (not when collecting contacts).
+void shrinkTraceBounds(TraceWork& tw) {
+  if (tw.fraction < 1 && !tw.gettingContacts()) {
+    const Vec3 endp = tw.start + tw.dir * tw.fraction;
+    for (int i = 0; i < 3; ++i) {
+      if (tw.start[i] < endp[i]) {
+        tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
+        tw.bounds.max[i] = endp[i] + tw.size.max[i] + tol::kBoxEpsilon;
+      } else {
+        tw.bounds.min[i] = endp[i] + tw.size.min[i] - tol::kBoxEpsilon;
+        tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
+      }
+    }
+  }
+}
+
 }  // namespace
+
+bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
+  QueryWork::Scratch& s = tw.scratch;
+  for (const std::int32_t polyNum : polygons) {
+    if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    if (!mayTouch(tw, poly)) continue;
+    const Real before = tw.fraction;
+    translatePointThroughPolygon(tw, polyNum, poly);
+    if (tw.fraction != before) {
+      shrinkTraceBounds(tw);
+      if (tw.fraction == 0) return true;
+    }
+  }
+  return false;
+}
 
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CollisionModel& m = tw.model;
   QueryWork::Scratch& s = tw.scratch;
   if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
-
-  // Culling: contents, bounds, back faces, distance from the heart planes.
-  if (!(poly.contents & tw.contentMask)) return false;
-  if (!tw.bounds.intersects(poly.bounds)) return false;
-  if (poly.plane.normal.dot(tw.dir) > 0) return false;  // only front faces collide
-  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
-  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2) return false;
+  if (!mayTouch(tw, poly)) return false;
 
   if (tw.pointTrace) {
     translatePointThroughPolygon(tw, polyNum, poly);
@@ -253,19 +286,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     }
   }
 
-  // A nearer hit shrinks the trace bounds (not when collecting contacts).
-  if (tw.fraction < 1 && !tw.gettingContacts()) {
-    const Vec3 endp = tw.start + tw.dir * tw.fraction;
-    for (int i = 0; i < 3; ++i) {
-      if (tw.start[i] < endp[i]) {
-        tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
-        tw.bounds.max[i] = endp[i] + tw.size.max[i] + tol::kBoxEpsilon;
-      } else {
-        tw.bounds.min[i] = endp[i] + tw.size.min[i] - tol::kBoxEpsilon;
-        tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
-      }
-    }
-  }
+  shrinkTraceBounds(tw);
   return tw.fraction == 0;
 }
 

@@ -50,6 +50,10 @@ void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
       if (rotateTrmThroughPolygon(tw, p)) return;
     return;
   }
+  if (tw.pointTrace) {
+    translatePointThroughPolygons(tw, m.polygonsAt(node));
+    return;
+  }
   for (std::int32_t p : m.polygonsAt(node))
     if (translateTrmThroughPolygon(tw, p)) return;
 }
@@ -70,75 +74,80 @@ void traceBoxThroughTree(TraceWork& tw, std::int32_t nodeNum, const Bounds& box)
   }
 }
 
-void traceThroughTree(TraceWork& tw, std::int32_t nodeNum, Real p1f, Real p2f, const Vec3& p1,
-                      const Vec3& p2) {
-  while (nodeNum >= 0) {
-    if (tw.quickExit) return;
-    if (tw.fraction <= p1f) return;  // something nearer was hit already
-    const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
-    if (node.numPolygonRefs || (tw.positionTest && node.numBrushRefs)) traceTrmThroughNode(tw, node);
-    if (tw.positionTest && tw.fraction == 0) return;
-    if (node.isLeaf()) return;
+// The walk along the segment, near side before far side at every split, as
+// the original's recursion does. The far sides wait on a stack in the
+// caller's scratch (no recursion: a degenerate deep tree cannot overflow the
+// thread's stack, and a point trace saves the calls).
+void traceThroughTree(TraceWork& tw) {
+  using Segment = QueryWork::Scratch::WalkSegment;
+  std::vector<Segment>& pending = tw.scratch.walkStack;
+  pending.clear();
+  Segment cur{0, 0, 1, tw.start, tw.end};
+  for (;;) {
+    std::int32_t nodeNum = cur.node;
+    while (nodeNum >= 0) {
+      if (tw.quickExit) return;
+      if (tw.fraction <= cur.p1f) break;  // something nearer was hit already
+      const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+      if (node.numPolygonRefs || (tw.positionTest && node.numBrushRefs)) traceTrmThroughNode(tw, node);
+      if (tw.positionTest && tw.fraction == 0) break;
+      if (node.isLeaf()) break;
 
-    // Distances of the segment ends to the split plane, and the trace model's
-    // extent along its axis: both ends farther than the extent on one side
-    // visit that side only.
-    const int axis = node.planeType;
-    const Real t1 = p1[axis] - node.planeDist;
-    const Real t2 = p2[axis] - node.planeDist;
-    const Real offset = tw.extents[axis];
-    if (t1 >= offset && t2 >= offset) {
-      nodeNum = node.children[0];
-      continue;
+      // Distances of the segment ends to the split plane, and the trace
+      // model's extent along its axis: both ends farther than the extent on
+      // one side visit that side only.
+      const int axis = node.planeType;
+      const Real t1 = cur.p1[axis] - node.planeDist;
+      const Real t2 = cur.p2[axis] - node.planeDist;
+      const Real offset = tw.extents[axis];
+      if (t1 >= offset && t2 >= offset) {
+        nodeNum = node.children[0];
+        continue;
+      }
+      if (t1 < -offset && t2 < -offset) {
+        nodeNum = node.children[1];
+        continue;
+      }
+      // The segment crosses the slab around the plane: the near side up to
+      // where the trace leaves the slab's far face (now), the far side from
+      // where it enters the near face (later).
+      int side;
+      Real frac, frac2;
+      if (t1 < t2) {
+        const Real idist = Real(1) / (t1 - t2);
+        side = 1;
+        frac2 = (t1 + offset) * idist;
+        frac = (t1 - offset) * idist;
+      } else if (t1 > t2) {
+        const Real idist = Real(1) / (t1 - t2);
+        side = 0;
+        frac2 = (t1 - offset) * idist;
+        frac = (t1 + offset) * idist;
+      } else {
+        side = 0;
+        frac = 1;
+        frac2 = 0;
+      }
+      const Vec3 p1 = cur.p1, p2 = cur.p2;
+      frac2 = std::clamp(frac2, Real(0), Real(1));
+      pending.push_back(
+          {node.children[side ^ 1],
+           cur.p1f + (cur.p2f - cur.p1f) * frac2,
+           cur.p2f,
+           {p1.x + frac2 * (p2.x - p1.x), p1.y + frac2 * (p2.y - p1.y), p1.z + frac2 * (p2.z - p1.z)},
+           p2});
+      frac = std::clamp(frac, Real(0), Real(1));
+      cur.p2f = cur.p1f + (cur.p2f - cur.p1f) * frac;
+      cur.p2 = {p1.x + frac * (p2.x - p1.x), p1.y + frac * (p2.y - p1.y), p1.z + frac * (p2.z - p1.z)};
+      nodeNum = node.children[side];
     }
-    if (t1 < -offset && t2 < -offset) {
-      nodeNum = node.children[1];
-      continue;
-    }
-    // The segment crosses the slab around the plane: visit the near side up
-    // to where the trace leaves the slab's far face, then the far side from
-    // where it enters the near face.
-    int side;
-    Real frac, frac2;
-    if (t1 < t2) {
-      const Real idist = Real(1) / (t1 - t2);
-      side = 1;
-      frac2 = (t1 + offset) * idist;
-      frac = (t1 - offset) * idist;
-    } else if (t1 > t2) {
-      const Real idist = Real(1) / (t1 - t2);
-      side = 0;
-      frac2 = (t1 - offset) * idist;
-      frac = (t1 + offset) * idist;
-    } else {
-      side = 0;
-      frac = 1;
-      frac2 = 0;
-    }
-    frac = std::clamp(frac, Real(0), Real(1));
-    Real midf = p1f + (p2f - p1f) * frac;
-    Vec3 mid{p1.x + frac * (p2.x - p1.x), p1.y + frac * (p2.y - p1.y), p1.z + frac * (p2.z - p1.z)};
-    traceThroughTree(tw, node.children[side], p1f, midf, p1, mid);
-
-    frac2 = std::clamp(frac2, Real(0), Real(1));
-    midf = p1f + (p2f - p1f) * frac2;
-    mid = {p1.x + frac2 * (p2.x - p1.x), p1.y + frac2 * (p2.y - p1.y), p1.z + frac2 * (p2.z - p1.z)};
-    traceThroughTree(tw, node.children[side ^ 1], midf, p2f, mid, p2);
-    return;
+    if (pending.empty()) return;
+    cur = pending.back();
+    pending.pop_back();
   }
 }
 
 }  // namespace
-
-Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
-  const Vec3 c = b.center();
-  const Real d1 = plane.distance(c);
-  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
-                  std::fabs((b.max.z - c.z) * plane.normal.z);
-  if (d1 - d2 > 0) return d1 - d2;
-  if (d1 + d2 < 0) return d1 + d2;
-  return 0;
-}
 
 PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
   switch (tw.bounds.planeSide(plane)) {
@@ -201,7 +210,7 @@ void traceBoxThroughModel(TraceWork& tw, const Bounds& box) {
 
 void traceThroughModel(TraceWork& tw) {
   if (tw.model.nodes.empty()) return;
-  traceThroughTree(tw, 0, 0, 1, tw.start, tw.end);
+  traceThroughTree(tw);
 }
 
 }  // namespace cmkit
