@@ -1,10 +1,12 @@
 // Query benchmarks on lt4 (shared/maps/lt4/lt4.map, or the bundled copy in
 // data/maps/lt4): the lines of shared/reference/lt4.queries.txt of each kind,
-// parsed once, run through the library (results not formatted).
+// parsed once, run through the library (results not formatted). lt4/raycast
+// runs the point-translation lines as RayIndex casts.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -13,6 +15,7 @@
 #include "cmkit/build.h"
 #include "cmkit/map.h"
 #include "cmkit/query_file.h"
+#include "cmkit/ray_index.h"
 
 namespace {
 
@@ -100,6 +103,38 @@ void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
   state.counters["queries"] = double(queries.size());
 }
 
+/// The point-translation lines as ray casts (an index per model they use,
+/// built before timing).
+void runRayCasts(benchmark::State& state, Lt4Scene& scene) {
+  std::call_once(scene.once, [&scene] { scene.load(); });
+  if (!scene.error.empty()) {
+    state.SkipWithError(scene.error.c_str());
+    return;
+  }
+  std::vector<const cmkit::ParsedQuery*> queries;
+  std::map<std::size_t, std::unique_ptr<cmkit::RayIndex>> indexes;
+  for (const auto& q : scene.queries) {
+    if (!matches(Kind::PointTranslation, q)) continue;
+    queries.push_back(&q);
+    auto& index = indexes[q.model];
+    if (!index) index = std::make_unique<cmkit::RayIndex>(*scene.models[q.model]);
+  }
+  if (queries.empty()) {
+    state.SkipWithError("no point translations in lt4.queries.txt");
+    return;
+  }
+  std::vector<const cmkit::RayIndex*> indexOf;
+  for (const auto* q : queries) indexOf.push_back(indexes[q->model].get());
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const cmkit::ParsedQuery& q = *queries[i];
+    benchmark::DoNotOptimize(indexOf[i]->cast(q.position, q.end, q.contentMask, q.placement));
+    if (++i == queries.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["queries"] = double(queries.size());
+}
+
 /// Registers the lt4 benchmarks (they share one lazily loaded scene).
 bool registerLt4Benchmarks() {
   auto scene = std::make_shared<Lt4Scene>();
@@ -112,6 +147,7 @@ bool registerLt4Benchmarks() {
   for (const auto& [name, kind] : kinds)
     benchmark::RegisterBenchmark(name,
                                  [scene, kind = kind](benchmark::State& s) { runKind(s, *scene, kind); });
+  benchmark::RegisterBenchmark("lt4/raycast", [scene](benchmark::State& s) { runRayCasts(s, *scene); });
   return true;
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cmkit/query.h"
+#include "cmkit/ray_index.h"
 #include "cmkit/trace_model.h"
 #include "cmkit/validate.h"
 
@@ -26,7 +27,9 @@ void exerciseModels(std::span<const ModelPtr> models) {
   const auto box = TraceModel::box(Bounds{{-8, -8, -8}, {8, 8, 8}});
   std::vector<ContactInfo> contactsOut;
   for (const ModelPtr& m : models) {
-    if (!m || m->bounds.isCleared()) continue;
+    if (!m) continue;
+    const RayIndex rays(*m);  // any model, even an empty one, can be indexed
+    if (m->bounds.isCleared()) continue;
     const Vec3 lo = m->bounds.min, hi = m->bounds.max;
     const Vec3 mid = (lo + hi) * Real(0.5);
     // Moves across the bounds along each axis and a diagonal, point and box.
@@ -54,6 +57,7 @@ void exerciseModels(std::span<const ModelPtr> models) {
         (void)contacts(*m, k, work, contactsOut);
       }
       (void)pointContents(*m, e[0]);
+      (void)rays.cast(e[0], e[1], ~0u);
     }
     if (box) {
       RotationQuery r;

@@ -3,7 +3,9 @@
 // btBvhTriangleMeshShape of the world model's polygons; rayTest for points)
 // and, when built with Embree (Debian libembree-dev), the points through
 // rtcIntersect1 against the same triangles, in the same run: ns/query, the
-// ratio cmkit/peer, and the hit agreement. Each timing is the fastest of
+// ratio cmkit/peer, and the hit agreement. The points run twice in cmkit:
+// as point translations (the original's point trace) and as RayIndex casts
+// (the first surface crossing, what the peers compute). Each timing is the fastest of
 // --passes runs over all the queries (robust against a busy machine).
 //
 //   cmkit_peers [MAP] [--times N] [--passes N]
@@ -29,6 +31,7 @@
 #include "cmkit/build.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
+#include "cmkit/ray_index.h"
 #include "cmkit/speed_test.h"
 
 namespace {
@@ -235,6 +238,16 @@ int main(int argc, char** argv) {
   agreement(pointCmp, cmkitPoint, peerPoint);
   print(pointCmp, times);
 
+  // The same rays through a RayIndex of the world model.
+  const cmkit::RayIndex rayIndex(world);
+  std::vector<char> cmkitRay(n);
+  Comparison rayCmp{"ray cast (point)", "bullet"};
+  rayCmp.cmkitNs = fastestPass(
+      n, passes, [&](std::size_t i) { cmkitRay[i] = rayIndex.cast(origin, ends[i], kMask).hit(); });
+  rayCmp.peerNs = pointCmp.peerNs;
+  agreement(rayCmp, cmkitRay, peerPoint);
+  print(rayCmp, times);
+
 #ifdef CMKIT_HAVE_EMBREE
   Comparison embreeCmp{"translation (point)", "embree"};
   embreeCmp.cmkitNs = pointCmp.cmkitNs;
@@ -257,6 +270,11 @@ int main(int argc, char** argv) {
   });
   agreement(embreeCmp, cmkitPoint, peerPoint);
   print(embreeCmp, times);
+  Comparison embreeRayCmp{"ray cast (point)", "embree"};
+  embreeRayCmp.cmkitNs = rayCmp.cmkitNs;
+  embreeRayCmp.peerNs = embreeCmp.peerNs;
+  agreement(embreeRayCmp, cmkitRay, peerPoint);
+  print(embreeRayCmp, times);
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);
 #else

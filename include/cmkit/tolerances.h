@@ -38,6 +38,20 @@ inline constexpr int kMaxRotationWalkPieces = 16;
 /// contact are parallel: their crossing equation is float noise, no contact.
 inline constexpr Real kRotationParallelEdgeSine = 1e-5f;
 
+/// cmkit (RayIndex): a polygon accepts a ray crossing only within its bounds
+/// padded by this fraction of its largest coordinate magnitude plus one
+/// unit. The Plücker edge tests decide "inside"; this keeps a crossing that
+/// rounding lets through (near an edge, or anywhere for a tiny polygon far
+/// from the origin) near its polygon, so that the index's boxes provably
+/// contain every crossing a polygon accepts. 1/65536 is about 0.06 units at
+/// lt4's coordinates, far above float rounding there.
+inline constexpr Real kRayAcceptPadding = 1.0f / 65536;
+/// cmkit (RayIndex): node boxes are padded by this fraction (of their
+/// largest coordinate magnitude plus a unit) beyond the acceptance boxes, to
+/// cover the rounding of the float slab test; enough for rays that start
+/// within a few hundred model sizes of the model.
+inline constexpr Real kRayNodePadding = 1.0f / 16384;
+
 // ---- Building models -------------------------------------------------------
 
 /// original: vertex coordinates this close to an integer are snapped to it

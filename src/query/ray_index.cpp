@@ -1,0 +1,447 @@
+// RayIndex: a 4-wide bounding volume hierarchy over a model's polygons for
+// closest-crossing ray casts (see cmkit/ray_index.h for the contract).
+//
+// Build: a binary hierarchy by binned surface-area heuristic, collapsed into
+// 4-wide nodes (each node's children are tested at once with SSE). Cast:
+// front-to-back, nearest child first, children farther than the best crossing
+// so far skipped. Every polygon test is exact in the sense that the index
+// returns precisely what testing every polygon would return (tests compare it
+// with that brute force): node boxes are padded beyond the region in which a
+// polygon accepts a crossing.
+#include "cmkit/ray_index.h"
+
+#include <emmintrin.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace cmkit {
+namespace {
+
+/// Polygons per leaf the builder aims for (the surface-area heuristic may
+/// stop earlier); more than this and a node is always split.
+constexpr std::uint32_t kMaxLeafPolygons = 4;
+/// Below this depth splits follow the surface-area heuristic; deeper ones cut
+/// at the median, so that no input (at most 2^32 polygons) makes the
+/// hierarchy deeper than kMaxDepth, which sizes the traversal stack.
+constexpr int kSahDepthLimit = 36;
+constexpr int kMaxDepth = kSahDepthLimit + 32;
+/// The surface-area heuristic's cost of visiting a node, in polygon tests.
+constexpr Real kNodeCost = 1;
+/// Bins of the surface-area heuristic per axis.
+constexpr int kBins = 16;
+/// Reciprocal of a zero (or denormal) direction component: large but finite,
+/// so that the slab test never computes 0 * infinity.
+constexpr float kHugeInverse = 1e30f;
+
+Real maxAbs(const Bounds& b) {
+  Real m = 0;
+  for (int k = 0; k < 3; ++k) m = std::max({m, std::fabs(b.min[k]), std::fabs(b.max[k])});
+  return m;
+}
+
+Bounds padded(const Bounds& b, Real relative) {
+  const Real pad = relative * (maxAbs(b) + 1);
+  return Bounds{b.min - Vec3{pad, pad, pad}, b.max + Vec3{pad, pad, pad}};
+}
+
+Real halfArea(const Bounds& b) {
+  const Vec3 d = b.max - b.min;
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+/// The temporary binary hierarchy.
+struct BinaryNode {
+  Bounds bounds;
+  std::uint32_t first = 0, count = 0;  ///< polygons (leaves)
+  std::uint32_t left = 0, right = 0;   ///< children (inner nodes: count == 0)
+  std::uint32_t contents = 0;
+};
+
+class BinaryBuilder {
+ public:
+  BinaryBuilder(std::vector<Bounds> boxes, std::vector<std::uint32_t> contents)
+      : boxes_(std::move(boxes)), contents_(std::move(contents)) {
+    order_.resize(boxes_.size());
+    centres_.resize(boxes_.size());
+    for (std::uint32_t i = 0; i < order_.size(); ++i) {
+      order_[i] = i;
+      centres_[i] = boxes_[i].center();
+    }
+    nodes_.reserve(2 * boxes_.size() + 1);
+    nodes_.emplace_back();
+    build(0, 0, std::uint32_t(order_.size()), 0);
+  }
+  const std::vector<BinaryNode>& nodes() const { return nodes_; }
+  const std::vector<std::uint32_t>& order() const { return order_; }
+
+ private:
+  void build(std::uint32_t nodeIndex, std::uint32_t first, std::uint32_t count, int depth) {
+    Bounds box, centres;
+    std::uint32_t contents = 0;
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      box.addBounds(boxes_[order_[i]]);
+      centres.addPoint(centres_[order_[i]]);
+      contents |= contents_[order_[i]];
+    }
+    nodes_[nodeIndex].bounds = box;
+    nodes_[nodeIndex].contents = contents;
+    const auto leaf = [&] {
+      nodes_[nodeIndex].first = first;
+      nodes_[nodeIndex].count = count;
+    };
+    if (count <= 1) return leaf();
+
+    std::uint32_t leftCount = 0;
+    if (depth < kSahDepthLimit) {
+      const Split split = bestSplit(first, count, centres);
+      if (count <= kMaxLeafPolygons &&
+          (split.axis < 0 || split.cost + kNodeCost * halfArea(box) >= halfArea(box) * Real(count)))
+        return leaf();
+      if (split.axis >= 0) {
+        const auto mid = std::partition(
+            order_.begin() + first, order_.begin() + first + count,
+            [&](std::uint32_t p) { return binOf(centres_[p], centres, split.axis) < split.bin; });
+        leftCount = std::uint32_t(mid - (order_.begin() + first));
+      }
+    } else if (count <= kMaxLeafPolygons) {
+      return leaf();
+    }
+    if (leftCount == 0 || leftCount == count) {  // no useful split: halves along the widest axis
+      const Vec3 extent = centres.max - centres.min;
+      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+      leftCount = count / 2;
+      std::nth_element(
+          order_.begin() + first, order_.begin() + first + leftCount, order_.begin() + first + count,
+          [&](std::uint32_t a, std::uint32_t b) { return centres_[a][axis] < centres_[b][axis]; });
+    }
+    const auto left = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    build(left, first, leftCount, depth + 1);
+    const auto right = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    build(right, first + leftCount, count - leftCount, depth + 1);
+    nodes_[nodeIndex].left = left;
+    nodes_[nodeIndex].right = right;
+  }
+
+  struct Split {
+    int axis = -1;
+    int bin = 0;
+    Real cost = std::numeric_limits<Real>::max();
+  };
+  static int binOf(const Vec3& c, const Bounds& centres, int axis) {
+    const Real lo = centres.min[axis], hi = centres.max[axis];
+    return std::clamp(int((c[axis] - lo) / (hi - lo) * kBins), 0, kBins - 1);
+  }
+  Split bestSplit(std::uint32_t first, std::uint32_t count, const Bounds& centres) const {
+    Split best;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(centres.max[axis] > centres.min[axis])) continue;
+      std::array<Bounds, kBins> bins;
+      std::array<std::uint32_t, kBins> binCount{};
+      for (std::uint32_t i = first; i < first + count; ++i) {
+        const int b = binOf(centres_[order_[i]], centres, axis);
+        bins[std::size_t(b)].addBounds(boxes_[order_[i]]);
+        ++binCount[std::size_t(b)];
+      }
+      // Areas and counts left of each cut, then sweep from the right.
+      std::array<Real, kBins> leftArea{};
+      std::array<std::uint32_t, kBins> leftCount{};
+      Bounds acc;
+      std::uint32_t n = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        if (binCount[std::size_t(b)]) acc.addBounds(bins[std::size_t(b)]);
+        n += binCount[std::size_t(b)];
+        leftArea[std::size_t(b)] = n ? halfArea(acc) : 0;
+        leftCount[std::size_t(b)] = n;
+      }
+      acc.clear();
+      n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        if (binCount[std::size_t(b)]) acc.addBounds(bins[std::size_t(b)]);
+        n += binCount[std::size_t(b)];
+        const std::uint32_t nl = leftCount[std::size_t(b - 1)];
+        if (nl == 0 || n == 0) continue;
+        const Real cost = leftArea[std::size_t(b - 1)] * Real(nl) + halfArea(acc) * Real(n);
+        if (cost < best.cost) best = {axis, b, cost};
+      }
+    }
+    return best;
+  }
+
+  std::vector<Bounds> boxes_;
+  std::vector<std::uint32_t> contents_;
+  std::vector<Vec3> centres_;
+  std::vector<std::uint32_t> order_;
+  std::vector<BinaryNode> nodes_;
+};
+
+bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
+
+}  // namespace
+
+RayIndex::RayIndex(const CollisionModel& model) {
+  // The polygons that can be crossed: finite plane and bounds, an outline.
+  std::vector<std::uint32_t> usable;
+  std::vector<Bounds> boxes;
+  std::vector<std::uint32_t> contents;
+  for (std::size_t i = 0; i < model.polygons.size(); ++i) {
+    const CmPolygon& p = model.polygons[i];
+    if (p.numEdges < 3 || !isFinite(p.bounds) || !p.plane.normal.isFinite() || !std::isfinite(p.plane.dist))
+      continue;
+    usable.push_back(std::uint32_t(i));
+    boxes.push_back(padded(p.bounds, tol::kRayAcceptPadding));
+    contents.push_back(p.contents);
+  }
+  if (usable.empty()) return;
+
+  const BinaryBuilder binary(boxes, contents);
+  const std::vector<BinaryNode>& bn = binary.nodes();
+
+  // Polygons and their edge lines in leaf order.
+  polygons_.reserve(usable.size());
+  details_.reserve(usable.size());
+  for (const std::uint32_t k : binary.order()) {
+    const CmPolygon& p = model.polygons[usable[k]];
+    Polygon r;
+    r.normal = p.plane.normal;
+    r.dist = p.plane.dist;
+    r.contents = p.contents;
+    r.index = std::int32_t(usable[k]);
+    r.firstEdge = std::uint32_t(edges_.size());
+    r.numEdges = p.numEdges;
+    for (const std::int32_t e : model.edgesOf(p)) {
+      const CmEdge& edge = model.edges[std::size_t(std::abs(e))];
+      const Pluecker line = Pluecker::fromLine(model.vertices[std::size_t(edge.vertex[0])],
+                                               model.vertices[std::size_t(edge.vertex[1])]);
+      EdgeLine l{};
+      for (int c = 0; c < 6; ++c) l.p[c] = line[c];
+      l.reversed = e < 0;
+      edges_.push_back(l);
+    }
+    polygons_.push_back(r);
+    details_.push_back({boxes[k], p.material});
+  }
+
+  // Collapse: each 4-wide node takes the binary node's children, then opens
+  // the largest inner child until it has four.
+  const auto collapse = [&](auto&& self, std::uint32_t b, int depth) -> std::uint32_t {
+    std::array<std::uint32_t, 4> kids{};
+    std::size_t n = 0;
+    if (bn[b].count) {
+      kids[n++] = b;
+    } else {
+      kids[n++] = bn[b].left;
+      kids[n++] = bn[b].right;
+    }
+    while (n < 4) {
+      std::size_t open = n;
+      for (std::size_t k = 0; k < n; ++k)
+        if (!bn[kids[k]].count &&
+            (open == n || halfArea(bn[kids[k]].bounds) > halfArea(bn[kids[open]].bounds)))
+          open = k;
+      if (open == n) break;
+      const std::uint32_t inner = kids[open];
+      kids[open] = bn[inner].left;
+      kids[n++] = bn[inner].right;
+    }
+    const auto me = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    depth_ = std::max(depth_, depth + 1);
+    std::array<std::uint32_t, 4> refs{};
+    for (std::size_t k = 0; k < n; ++k) {
+      const BinaryNode& c = bn[kids[k]];
+      if (c.count) {
+        refs[k] = kLeaf | std::uint32_t(leaves_.size());
+        leaves_.push_back({c.first, c.count});
+      } else {
+        refs[k] = self(self, kids[k], depth + 1);
+      }
+    }
+    Node& node = nodes_[me];
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (k >= n) {  // an empty slot: a box nothing enters, no contents
+        for (int a = 0; a < 3; ++a) {
+          node.min[a][k] = std::numeric_limits<float>::max();
+          node.max[a][k] = -std::numeric_limits<float>::max();
+        }
+        node.child[k] = kLeaf;
+        node.contents[k] = 0;
+        continue;
+      }
+      const Bounds box = padded(bn[kids[k]].bounds, tol::kRayNodePadding);
+      for (int a = 0; a < 3; ++a) {
+        node.min[a][k] = float(box.min[a]);
+        node.max[a][k] = float(box.max[a]);
+      }
+      node.child[k] = refs[k];
+      node.contents[k] = bn[kids[k]].contents;
+    }
+    return me;
+  };
+  collapse(collapse, 0, 0);
+}
+
+std::size_t RayIndex::memoryBytes() const {
+  return nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
+         polygons_.capacity() * sizeof(Polygon) + edges_.capacity() * sizeof(EdgeLine) +
+         details_.capacity() * sizeof(PolygonDetail);
+}
+
+void RayIndex::testPolygon(const Polygon& p, const PolygonDetail& detail, const Vec3& start, const Vec3& end,
+                           const Vec3& dir, const Pluecker& ray, Best& found) const {
+  if (!(p.normal.dot(dir) < 0)) return;  // only front faces
+  const Real d1 = p.normal.dot(start) - p.dist;
+  if (d1 < 0) return;  // starts behind
+  const Real d2 = p.normal.dot(end) - p.dist;
+  if (d2 > 0) return;  // ends in front
+  const Real denom = d1 - d2;
+  if (!(denom > 0)) return;
+  const Real t = d1 / denom;
+  if (t > found.t || (t == found.t && p.index > found.index)) return;
+  const EdgeLine* lines = edges_.data() + p.firstEdge;
+  for (std::uint32_t j = 0; j < p.numEdges; ++j) {
+    const float* l = lines[j].p;
+    const Real product =
+        l[0] * ray[4] + l[1] * ray[5] + l[2] * ray[3] + l[4] * ray[0] + l[5] * ray[1] + l[3] * ray[2];
+    if (lines[j].reversed ^ std::uint32_t(signBitSet(product))) return;  // passes outside this edge
+  }
+  if (!detail.acceptBox.containsPoint(start + dir * t)) return;
+  found = {t, p.index, &p};
+}
+
+RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t contentMask,
+                      const Placement& placement) const {
+  RayHit result;
+  if (nodes_.empty() || !worldStart.isFinite() || !worldEnd.isFinite() || worldStart == worldEnd)
+    return result;
+  const bool rotated = !placement.axis.isIdentity();
+  Vec3 start = worldStart - placement.origin, end = worldEnd - placement.origin;
+  if (rotated) {
+    start = placement.axis * start;
+    end = placement.axis * end;
+  }
+  const Vec3 dir = end - start;
+  if (!dir.isFinite()) return result;
+  const Pluecker ray = Pluecker::fromRay(start, dir);
+
+  // The best crossing so far; ties go to the lower polygon index.
+  Best found;
+  // Slab tests of four children at once. The near face of each axis is the
+  // min or the max depending on the direction's sign: nearRow / farRow are
+  // the byte offsets of those rows in a Node. The reciprocals are finite, so
+  // no product is NaN.
+  float inv[3];
+  std::size_t nearRow[3], farRow[3];
+  for (int k = 0; k < 3; ++k) {
+    inv[k] = std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
+    const bool negative = dir[k] < 0;
+    nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
+                          : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
+    farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
+                         : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
+  }
+  const __m128 originX = _mm_set1_ps(float(start.x)), originY = _mm_set1_ps(float(start.y)),
+               originZ = _mm_set1_ps(float(start.z));
+  const __m128 invX = _mm_set1_ps(inv[0]), invY = _mm_set1_ps(inv[1]), invZ = _mm_set1_ps(inv[2]);
+  const __m128i mask = _mm_set1_epi32(int(contentMask));
+
+  struct Pending {
+    std::uint32_t ref;
+    float t;  ///< where the ray enters the child's box
+  };
+  // At most three children wait per level.
+  std::array<Pending, 3 * kMaxDepth + 4> stack;
+  std::size_t sp = 0;
+  std::uint32_t ref = 0;
+  for (;;) {
+    if (ref & kLeaf) {
+      const Leaf& leaf = leaves_[ref & ~kLeaf];
+      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
+        if (polygons_[i].contents & contentMask)
+          testPolygon(polygons_[i], details_[i], start, end, dir, ray, found);
+    } else {
+      const Node& n = nodes_[ref];
+      const auto* base = reinterpret_cast<const char*>(&n);
+      const auto row = [base](std::size_t offset) {
+        return _mm_load_ps(reinterpret_cast<const float*>(base + offset));
+      };
+      const __m128 nearX = _mm_mul_ps(_mm_sub_ps(row(nearRow[0]), originX), invX);
+      const __m128 nearY = _mm_mul_ps(_mm_sub_ps(row(nearRow[1]), originY), invY);
+      const __m128 nearZ = _mm_mul_ps(_mm_sub_ps(row(nearRow[2]), originZ), invZ);
+      const __m128 farX = _mm_mul_ps(_mm_sub_ps(row(farRow[0]), originX), invX);
+      const __m128 farY = _mm_mul_ps(_mm_sub_ps(row(farRow[1]), originY), invY);
+      const __m128 farZ = _mm_mul_ps(_mm_sub_ps(row(farRow[2]), originZ), invZ);
+      // Where the ray enters and leaves each box, clipped to [0, best so far].
+      const __m128 tNear = _mm_max_ps(_mm_max_ps(nearY, nearX), _mm_max_ps(nearZ, _mm_setzero_ps()));
+      const __m128 tFar = _mm_min_ps(_mm_min_ps(farY, farX), _mm_min_ps(farZ, _mm_set1_ps(float(found.t))));
+      const __m128i noContents =
+          _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents)), mask),
+                          _mm_setzero_si128());
+      const int hits =
+          _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
+      if (hits) {
+        const int first = std::countr_zero(unsigned(hits));
+        const unsigned rest = unsigned(hits) & (unsigned(hits) - 1);
+        if (rest == 0) {  // one child: no ordering
+          ref = n.child[first];
+          continue;
+        }
+        alignas(16) float entry[4];
+        _mm_store_ps(entry, tNear);
+        if ((rest & (rest - 1)) == 0) {  // two: the farther one waits
+          const int second = std::countr_zero(rest);
+          const bool swap = entry[second] < entry[first];
+          const int near = swap ? second : first, far = swap ? first : second;
+          stack[sp++] = Pending{n.child[far], entry[far]};
+          ref = n.child[near];
+          continue;
+        }
+        // Three or four: sorted, farthest first; all but the nearest wait.
+        std::array<Pending, 4> order{};
+        std::size_t count = 0;
+        for (int k = 0; k < 4; ++k) {
+          if (!(hits >> k & 1)) continue;
+          const Pending p{n.child[k], entry[k]};
+          std::size_t j = count++;
+          for (; j > 0 && order[j - 1].t < p.t; --j) order[j] = order[j - 1];
+          order[j] = p;
+        }
+        // (three fixed copies, not a loop the compiler turns into memcpy)
+        stack[sp] = order[0];
+        stack[sp + 1] = order[1];
+        stack[sp + 2] = order[2];
+        sp += count - 1;
+        ref = order[count - 1].ref;
+        continue;
+      }
+    }
+    // Next waiting child that may still hold a nearer crossing.
+    for (;;) {
+      if (sp == 0) {
+        if (const Polygon* best = found.polygon) {
+          result.fraction = found.t;
+          result.polygon = best->index;
+          result.contents = best->contents;
+          result.material = details_[std::size_t(best - polygons_.data())].material;
+          result.point = worldStart + (worldEnd - worldStart) * found.t;
+          result.normal = rotated ? best->normal * placement.axis : best->normal;
+          result.dist = best->dist + placement.origin.dot(result.normal);
+        }
+        return result;
+      }
+      const Pending p = stack[--sp];
+      if (p.t <= found.t) {
+        ref = p.ref;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace cmkit
