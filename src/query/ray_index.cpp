@@ -10,7 +10,11 @@
 // polygon accepts a crossing.
 #include "cmkit/ray_index.h"
 
+// SSE2 on x86-64; any other target (or -DCMKIT_NO_SIMD, to test it) uses the
+// portable loop in enteredChildren, which does the same arithmetic.
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
 #include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -183,6 +187,52 @@ class BinaryBuilder {
 
 bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
 
+/// Per-ray constants of the slab tests (see RayIndex::cast).
+struct SlabRay {
+  float origin[3];
+  float inv[3];
+  std::size_t nearRow[3], farRow[3];
+  std::uint32_t mask;
+};
+
+/// Which children of a node the ray enters before `best` and that hold
+/// contents of the mask (bit k for child k), and where it enters each box
+/// (`entry`, clipped to [0, best]).
+int enteredChildren(const RayIndex::Node& n, const SlabRay& r, float best, float entry[4]) {
+  const auto* base = reinterpret_cast<const char*>(&n);
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+  const auto row = [base](std::size_t offset) {
+    return _mm_load_ps(reinterpret_cast<const float*>(base + offset));
+  };
+  const auto along = [&](int axis, const std::size_t* rows) {
+    return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.origin[axis])), _mm_set1_ps(r.inv[axis]));
+  };
+  const __m128 tNear = _mm_max_ps(_mm_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
+                                  _mm_max_ps(along(2, r.nearRow), _mm_setzero_ps()));
+  const __m128 tFar = _mm_min_ps(_mm_min_ps(along(1, r.farRow), along(0, r.farRow)),
+                                 _mm_min_ps(along(2, r.farRow), _mm_set1_ps(best)));
+  const __m128i noContents =
+      _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents)),
+                                    _mm_set1_epi32(int(r.mask))),
+                      _mm_setzero_si128());
+  _mm_store_ps(entry, tNear);
+  return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
+#else  // the same arithmetic one child at a time
+  int hits = 0;
+  for (int k = 0; k < 4; ++k) {
+    float tNear = 0, tFar = best;
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto* nearRow = reinterpret_cast<const float*>(base + r.nearRow[axis]);
+      const auto* farRow = reinterpret_cast<const float*>(base + r.farRow[axis]);
+      tNear = std::max(tNear, (nearRow[k] - r.origin[axis]) * r.inv[axis]);
+      tFar = std::min(tFar, (farRow[k] - r.origin[axis]) * r.inv[axis]);
+    }
+    entry[k] = tNear;
+    if (tNear <= tFar && (n.contents[k] & r.mask)) hits |= 1 << k;
+  }
+  return hits;
+#endif
+}
 }  // namespace
 
 RayIndex::RayIndex(const CollisionModel& model) {
@@ -293,8 +343,8 @@ std::size_t RayIndex::memoryBytes() const {
          details_.capacity() * sizeof(PolygonDetail);
 }
 
-void RayIndex::testPolygon(const Polygon& p, const PolygonDetail& detail, const Vec3& start, const Vec3& end,
-                           const Vec3& dir, const Pluecker& ray, Best& found) const {
+inline void RayIndex::testPolygon(const Polygon& p, const PolygonDetail& detail, const Vec3& start,
+                                  const Vec3& end, const Vec3& dir, const Pluecker& ray, Best& found) const {
   if (!(p.normal.dot(dir) < 0)) return;  // only front faces
   const Real d1 = p.normal.dot(start) - p.dist;
   if (d1 < 0) return;  // starts behind
@@ -332,24 +382,22 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
 
   // The best crossing so far; ties go to the lower polygon index.
   Best found;
-  // Slab tests of four children at once. The near face of each axis is the
+  // Per-ray constants of the slab tests. The near face of each axis is the
   // min or the max depending on the direction's sign: nearRow / farRow are
   // the byte offsets of those rows in a Node. The reciprocals are finite, so
   // no product is NaN.
-  float inv[3];
-  std::size_t nearRow[3], farRow[3];
+  SlabRay slab;
   for (int k = 0; k < 3; ++k) {
-    inv[k] = std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
+    slab.origin[k] = float(start[k]);
+    slab.inv[k] =
+        std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
     const bool negative = dir[k] < 0;
-    nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
-                          : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
-    farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
-                         : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
+    slab.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
+                               : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
+    slab.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
+                              : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
   }
-  const __m128 originX = _mm_set1_ps(float(start.x)), originY = _mm_set1_ps(float(start.y)),
-               originZ = _mm_set1_ps(float(start.z));
-  const __m128 invX = _mm_set1_ps(inv[0]), invY = _mm_set1_ps(inv[1]), invZ = _mm_set1_ps(inv[2]);
-  const __m128i mask = _mm_set1_epi32(int(contentMask));
+  slab.mask = contentMask;
 
   struct Pending {
     std::uint32_t ref;
@@ -367,24 +415,8 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
           testPolygon(polygons_[i], details_[i], start, end, dir, ray, found);
     } else {
       const Node& n = nodes_[ref];
-      const auto* base = reinterpret_cast<const char*>(&n);
-      const auto row = [base](std::size_t offset) {
-        return _mm_load_ps(reinterpret_cast<const float*>(base + offset));
-      };
-      const __m128 nearX = _mm_mul_ps(_mm_sub_ps(row(nearRow[0]), originX), invX);
-      const __m128 nearY = _mm_mul_ps(_mm_sub_ps(row(nearRow[1]), originY), invY);
-      const __m128 nearZ = _mm_mul_ps(_mm_sub_ps(row(nearRow[2]), originZ), invZ);
-      const __m128 farX = _mm_mul_ps(_mm_sub_ps(row(farRow[0]), originX), invX);
-      const __m128 farY = _mm_mul_ps(_mm_sub_ps(row(farRow[1]), originY), invY);
-      const __m128 farZ = _mm_mul_ps(_mm_sub_ps(row(farRow[2]), originZ), invZ);
-      // Where the ray enters and leaves each box, clipped to [0, best so far].
-      const __m128 tNear = _mm_max_ps(_mm_max_ps(nearY, nearX), _mm_max_ps(nearZ, _mm_setzero_ps()));
-      const __m128 tFar = _mm_min_ps(_mm_min_ps(farY, farX), _mm_min_ps(farZ, _mm_set1_ps(float(found.t))));
-      const __m128i noContents =
-          _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents)), mask),
-                          _mm_setzero_si128());
-      const int hits =
-          _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
+      alignas(16) float entry[4];
+      const int hits = enteredChildren(n, slab, float(found.t), entry);
       if (hits) {
         const int first = std::countr_zero(unsigned(hits));
         const unsigned rest = unsigned(hits) & (unsigned(hits) - 1);
@@ -392,8 +424,6 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
           ref = n.child[first];
           continue;
         }
-        alignas(16) float entry[4];
-        _mm_store_ps(entry, tNear);
         if ((rest & (rest - 1)) == 0) {  // two: the farther one waits
           const int second = std::countr_zero(rest);
           const bool swap = entry[second] < entry[first];
