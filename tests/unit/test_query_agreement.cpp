@@ -126,12 +126,7 @@ std::vector<ModelPtr> referenceModels(const std::string& name) {
   for (const auto& dir : fs::directory_iterator(maps)) {
     const fs::path map = dir.path() / (name + ".map");
     if (!fs::exists(map)) continue;
-    auto parsed = loadMapFile(map.string());
-    EXPECT_TRUE(parsed.ok()) << (parsed.ok() ? "" : parsed.error().toString());
-    if (!parsed.ok()) return {};
-    auto built = buildCollisionModels(*parsed, MaterialTable{});
-    EXPECT_TRUE(built.ok());
-    return built.ok() ? *built : std::vector<ModelPtr>{};
+    return test::buildMapModels(map);
   }
   ADD_FAILURE() << "no map or .cm for reference " << name;
   return {};

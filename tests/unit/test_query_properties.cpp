@@ -19,12 +19,7 @@ using namespace cmkit;
 namespace {
 
 std::vector<ModelPtr> buildMap(const std::string& relative) {
-  auto map = loadMapFile((test::sharedDir() / "maps" / relative).string());
-  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
-  if (!map.ok()) return {};
-  auto models = buildCollisionModels(*map, MaterialTable{});
-  EXPECT_TRUE(models.ok());
-  return models.ok() ? *models : std::vector<ModelPtr>{};
+  return test::buildMapModels(test::sharedDir() / "maps" / relative);
 }
 
 bool finite(const TraceResult& r) {

@@ -116,15 +116,6 @@ int expectSameAsEveryPolygon(const CollisionModel& m, unsigned seed, int count, 
   return hits;
 }
 
-std::vector<ModelPtr> buildMapFile(const std::filesystem::path& path) {
-  auto map = loadMapFile(path.string());
-  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
-  if (!map.ok()) return {};
-  auto models = buildCollisionModels(*map, MaterialTable{});
-  EXPECT_TRUE(models.ok());
-  return models.ok() ? *models : std::vector<ModelPtr>{};
-}
-
 std::filesystem::path bundledLt4() {
   return std::filesystem::path(CMKIT_SOURCE_DIR) / "data" / "maps" / "lt4" / "lt4.map";
 }
@@ -276,10 +267,11 @@ TEST(RayIndex, BadInputMisses) {
 TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
   // lt4's world (11 489 polygons) and its inline models, the feature test
   // map, and the .cm files of the test data.
-  std::vector<ModelPtr> models = buildMapFile(bundledLt4());
+  std::vector<ModelPtr> models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   models.resize(std::min<std::size_t>(models.size(), 12));
-  for (const auto& m : buildMapFile(test::testDataDir() / "maps" / "features.map")) models.push_back(m);
+  for (const auto& m : test::buildMapModels(test::testDataDir() / "maps" / "features.map"))
+    models.push_back(m);
   for (const char* cm : {"opentechbfg_test.cm", "blender_misc_model1.cm"}) {
     auto loaded = loadCmFile((test::testDataDir() / "cm" / cm).string(), MaterialTable{});
     ASSERT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().toString());
@@ -301,7 +293,7 @@ TEST(RayIndex, PointTranslationStopsNoLater) {
   // (which stops 0.25 in front of surfaces, and also at ones it only comes
   // near) stops at a fraction no larger; where the point trace passes, so
   // does the ray. Most hits are on the same polygon.
-  const auto models = buildMapFile(bundledLt4());
+  const auto models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   const CollisionModel& world = *models.front();
   const RayIndex index(world);
@@ -323,7 +315,7 @@ TEST(RayIndex, PointTranslationStopsNoLater) {
 }
 
 TEST(RayIndex, SameResultsFromManyThreads) {
-  const auto models = buildMapFile(bundledLt4());
+  const auto models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   const RayIndex index(*models.front());
   const auto segments = randomSegments(models.front()->bounds, 5, 4000);

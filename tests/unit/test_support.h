@@ -10,6 +10,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "cmkit/build.h"
+#include "cmkit/map.h"
 
 namespace cmkit::test {
 
@@ -43,6 +47,17 @@ inline std::string runCapture(const std::string& command, int& exitCode) {
   const int status = pclose(p);
   exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
+}
+
+/// Loads a .map and builds its models (no materials: the built-in rules).
+/// A failure is a test failure and gives no models.
+inline std::vector<ModelPtr> buildMapModels(const std::filesystem::path& path) {
+  auto map = loadMapFile(path.string());
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
+  if (!map.ok()) return {};
+  auto models = buildCollisionModels(*map, MaterialTable{});
+  EXPECT_TRUE(models.ok()) << (models.ok() ? "" : models.error().toString());
+  return models.ok() ? *models : std::vector<ModelPtr>{};
 }
 
 }  // namespace cmkit::test
