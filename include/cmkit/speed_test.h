@@ -11,6 +11,9 @@
 //   thread count; only the timings change.
 // - --walk chains the moves of a chunk: each move starts where the previous
 //   one ended (position and orientation); every chunk starts at the origin.
+// - `rays` (not in the original) also casts the translations' moves as rays
+//   through a RayIndex of the model (built once, untimed): the first surface
+//   each segment crosses. In walk mode a ray's next start is its hit point.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +39,7 @@ struct SpeedTestOptions {
   bool randomMany = false;  ///< cm_testRandomMany: one shared end point (and rotation) for all
   bool walk = false;        ///< cm_testWalk: chained moves (see the contract)
   bool rotations = true;    ///< cm_testRotation: also run the rotation batch
+  bool rays = false;        ///< cmkit: also cast the moves as RayIndex rays
   std::uint32_t seed = 0;   ///< seed of the generator (the original: always 0)
   int threads = 1;          ///< worker threads, each with its own QueryWork
   std::uint32_t contentMask = contents::kSolid | contents::kPlayerClip;
@@ -64,6 +68,7 @@ struct SpeedTestBatch {
 struct SpeedTestReport {
   SpeedTestBatch translation;
   SpeedTestBatch rotation;  ///< count 0 when options.rotations is false
+  SpeedTestBatch rays;      ///< ray casts; count 0 unless options.rays
   int threads = 1;
 };
 

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <thread>
 
+#include "cmkit/ray_index.h"
+
 namespace cmkit {
 
 namespace {
@@ -174,6 +176,21 @@ SpeedTestReport runSpeedTest(const CollisionModel& model, const TraceModel& trm,
   } else {
     report.rotation.kind = "rotation";
     report.rotation.hash = kFnvOffsetBasis;
+  }
+  report.rays.kind = "ray cast";
+  report.rays.hash = kFnvOffsetBasis;
+  if (options.rays) {
+    const RayIndex index(model);
+    report.rays = runBatch("ray cast", n, options, [&](int i, const Pose& pose, QueryWork&) {
+      const Vec3 end = pose.position + plan.moves[std::size_t(i)];
+      const RayHit hit = index.cast(pose.position, end, options.contentMask, options.model);
+      TraceResult r;
+      r.fraction = hit.fraction;
+      r.endPos = hit.hit() ? hit.point : end;
+      r.endAxis = pose.axis;
+      r.contact.normal = hit.normal;
+      return r;
+    });
   }
   return report;
 }

@@ -51,6 +51,33 @@ TEST(SpeedTest, SameResultsOnOneAndTwoThreads) {
   }
 }
 
+TEST(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
+  const ModelPtr world = featuresWorld();
+  ASSERT_TRUE(world);
+  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
+  ASSERT_TRUE(trm);
+  for (bool walk : {false, true}) {
+    SpeedTestOptions o;
+    o.times = kTestTimes;
+    o.walk = walk;
+    o.rays = true;
+    o.rotations = false;
+    // Above the map (its centre is inside a brush, from where every ray
+    // leaves through back faces): the rays going down hit its top.
+    o.origin = {0, 0, world->bounds.max.z + 40};
+    o.length = 256;
+    const SpeedTestReport one = runSpeedTest(*world, *trm, o);
+    o.threads = 2;
+    const SpeedTestReport two = runSpeedTest(*world, *trm, o);
+    SCOPED_TRACE(walk ? "walk" : "plain");
+    EXPECT_EQ(one.rays.count, kTestTimes);
+    EXPECT_GT(one.rays.hits, walk ? 0 : kTestTimes / 10);  // a walk wanders off into the open
+    EXPECT_LT(one.rays.hits, kTestTimes);
+    EXPECT_EQ(one.rays.hash, two.rays.hash);
+    EXPECT_EQ(one.rays.hits, two.rays.hits);
+  }
+}
+
 TEST(SpeedTest, SeedChangesTheQueries) {
   const ModelPtr world = featuresWorld();
   ASSERT_TRUE(world);
@@ -65,6 +92,7 @@ TEST(SpeedTest, SeedChangesTheQueries) {
   const auto b = runSpeedTest(*world, *trm, o);
   EXPECT_NE(a.translation.hash, b.translation.hash);
   EXPECT_EQ(a.rotation.count, 0);
+  EXPECT_EQ(a.rays.count, 0);  // not asked for
 }
 
 TEST(SpeedTest, RandomManySharesOneEndPoint) {

@@ -59,28 +59,31 @@ bool runAndPrintSpeedTest(const CollisionModel& model, const TraceModel& trm, co
   fmt::print("speed test on model \"{}\" ({} polygons, {} brushes): trm {}, origin ({} {} {})\n", model.name,
              model.polygons.size(), model.brushes.size(), trmSpec, options.origin.x, options.origin.y,
              options.origin.z);
-  fmt::print("  {} translations (end within +-{} per axis){}, mask {:#x}, seed {}{}{}\n", options.times,
+  fmt::print("  {} translations (end within +-{} per axis){}, mask {:#x}, seed {}{}{}{}\n", options.times,
              options.length,
              options.rotations ? fmt::format(" + {} rotations of {} deg (origins within +-{})", options.times,
                                              options.angle, options.radius)
                                : std::string(),
              options.contentMask, options.seed, options.randomMany ? ", random-many" : "",
-             options.walk ? ", walk" : "");
+             options.walk ? ", walk" : "", options.rays ? ", the moves again as ray casts" : "");
   SpeedTestOptions single = options;
   single.threads = 1;
   const SpeedTestReport one = runSpeedTest(model, trm, single);
   fmt::print("1 thread:\n");
   printSpeedTestBatch(one.translation);
   if (options.rotations) printSpeedTestBatch(one.rotation);
+  if (options.rays) printSpeedTestBatch(one.rays);
   if (options.threads <= 1) return true;
 
   const SpeedTestReport many = runSpeedTest(model, trm, options);
   fmt::print("{} threads:\n", options.threads);
   printSpeedTestBatch(many.translation);
   if (options.rotations) printSpeedTestBatch(many.rotation);
+  if (options.rays) printSpeedTestBatch(many.rays);
   bool same = true;
-  for (const auto& [a, b] :
-       {std::pair{&one.translation, &many.translation}, {&one.rotation, &many.rotation}}) {
+  for (const auto& [a, b] : {std::pair{&one.translation, &many.translation},
+                             {&one.rotation, &many.rotation},
+                             {&one.rays, &many.rays}}) {
     if (a->count == 0) continue;
     const bool equal = a->hash == b->hash && a->hits == b->hits;
     same = same && equal;
@@ -231,12 +234,15 @@ void registerBench(CLI::App& app) {
       "within +-length per axis (mask solid|playerclip), then --times rotations of --angle degrees\n"
       "about random axes through points within +-radius of the origin. Every query is timed;\n"
       "per kind it prints the total, min/avg/max, the hits (fraction < 1) and a hash of all\n"
-      "results, which is the same at any --threads.\n\n"
+      "results, which is the same at any --threads. --rays also casts the moves as rays through\n"
+      "a RayIndex (cmkit's fast ray casts: the first surface crossed, not the original's point\n"
+      "trace).\n\n"
       "--suite DIR times every NAME.queries.txt of DIR (e.g. shared/reference) against its map\n"
       "(DIR/../maps/*/NAME.map or DIR/../maps/rbdoom-unittests/NAME.cm): ns/query per kind.\n\n"
       "Examples:\n"
       "  cmkit bench data/maps/lt4/lt4.map\n"
       "  cmkit bench data/maps/lt4/lt4.map --threads 2 --walk\n"
+      "  cmkit bench data/maps/lt4/lt4.map --rays --no-rotation\n"
       "  cmkit bench --suite ../shared/reference");
   cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file; the first model is tested");
   cmd->add_option("--trm", o->trm, "trace model (query-format syntax)")->capture_default_str();
@@ -252,6 +258,7 @@ void registerBench(CLI::App& app) {
   cmd->add_flag("--random-many", o->test.randomMany, "one shared end point / rotation (cm_testRandomMany)");
   cmd->add_flag("--walk", o->test.walk, "chained moves: each starts where the previous ended (cm_testWalk)");
   cmd->add_flag("--no-rotation", o->noRotation, "translations only");
+  cmd->add_flag("--rays", o->test.rays, "also cast the moves as RayIndex rays (not in the original)");
   cmd->add_option("--seed", o->test.seed, "seed of the random generator")->capture_default_str();
   cmd->add_option("-j,--threads", o->test.threads, "also run on this many threads and compare")
       ->capture_default_str()
