@@ -27,6 +27,7 @@
 #include "cmkit/contents.h"
 #include "cmkit/materials.h"
 #include "cmkit/model.h"
+#include "cmkit/ray_index.h"
 #include "cmkit/result.h"
 #include "cmkit/trace_model.h"
 
@@ -126,6 +127,10 @@ class ModelManager {
   Result<std::string> printModel(ModelHandle handle) const;
   /// A convex model back as a trace model (see traceModelFromCollisionModel).
   Result<TraceModel> trmFromModel(ModelHandle handle) const;
+  /// The model's RayIndex (ray_index.h), built on first use (outside the
+  /// lock) and kept until the model is freed or replaced. Two threads asking
+  /// for a new one at once may both build it; one is kept for both.
+  Result<std::shared_ptr<const RayIndex>> rayIndex(ModelHandle handle) const;
 
  private:
   std::string handleError(ModelHandle handle) const;  // call with the lock held
@@ -133,6 +138,7 @@ class ModelManager {
   mutable std::shared_mutex mutex_;
   std::vector<ModelPtr> models_;  // nullptr: freed
   std::unordered_map<std::string, std::vector<std::int32_t>> byName_;
+  mutable std::unordered_map<std::int32_t, std::shared_ptr<const RayIndex>> rayIndexes_;  // by handle
 };
 
 /// The collision model of a trace model (the original's SetupTrmModel): its

@@ -61,6 +61,7 @@ Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const Ma
   std::unique_lock lock(mutex_);
   models_.clear();
   byName_.clear();
+  rayIndexes_.clear();
   for (ModelPtr& m : models) {
     const auto index = std::int32_t(models_.size());
     byName_[m->name].push_back(index);
@@ -133,6 +134,7 @@ Status ModelManager::free(ModelHandle handle) {
   if (!handle.valid() || std::size_t(handle.index) >= models_.size() || !models_[std::size_t(handle.index)])
     return Error(handleError(handle));
   released = std::move(models_[std::size_t(handle.index)]);
+  rayIndexes_.erase(handle.index);
   auto it = byName_.find(released->name);
   if (it != byName_.end()) {
     std::erase(it->second, handle.index);
@@ -146,6 +148,25 @@ void ModelManager::clear() {
   std::unique_lock lock(mutex_);
   released.swap(models_);
   byName_.clear();
+  rayIndexes_.clear();
+}
+
+Result<std::shared_ptr<const RayIndex>> ModelManager::rayIndex(ModelHandle handle) const {
+  ModelPtr model;
+  {
+    std::shared_lock lock(mutex_);
+    if (!handle.valid() || std::size_t(handle.index) >= models_.size() || !models_[std::size_t(handle.index)])
+      return Error(handleError(handle));
+    if (auto it = rayIndexes_.find(handle.index); it != rayIndexes_.end()) return it->second;
+    model = models_[std::size_t(handle.index)];
+  }
+  auto built = std::make_shared<const RayIndex>(*model);  // outside the lock: queries never wait
+  std::unique_lock lock(mutex_);
+  // The handle may have been freed or reused meanwhile: keep the index only
+  // for the same model.
+  if (std::size_t(handle.index) >= models_.size() || models_[std::size_t(handle.index)] != model)
+    return built;
+  return rayIndexes_.try_emplace(handle.index, std::move(built)).first->second;
 }
 
 std::vector<ModelListEntry> ModelManager::list() const {

@@ -280,5 +280,53 @@ TEST(Manager, LoadingIsSafeWhileOtherThreadsQuery) {
   EXPECT_EQ(mm.size(), 4u);
 }
 
+TEST(Manager, RayIndexIsBuiltOnceAndDroppedWithItsModel) {
+  ModelManager mm;
+  const MaterialTable materials;
+  ASSERT_TRUE(mm.loadCm(cmData("opentechbfg_test.cm"), materials).ok());
+  const ModelHandle world = kWorldModelHandle;
+  Result<std::shared_ptr<const RayIndex>> a = mm.rayIndex(world);
+  ASSERT_TRUE(a.ok()) << a.error().toString();
+  ASSERT_TRUE(*a);
+  EXPECT_EQ((*a)->numPolygons(), mm.get(world)->polygons.size());
+  Result<std::shared_ptr<const RayIndex>> b = mm.rayIndex(world);
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(a->get(), b->get()) << "built again";
+  // A ray down through the middle of the world hits what the index says.
+  const Bounds box = mm.get(world)->bounds;
+  const Vec3 mid = (box.min + box.max) * Real(0.5);
+  const RayHit hit = (*a)->cast({mid.x, mid.y, box.max.z + 64}, {mid.x, mid.y, box.min.z - 64}, ~0u);
+  EXPECT_TRUE(hit.hit());
+
+  EXPECT_FALSE(mm.rayIndex(ModelHandle{7}).ok());
+  ASSERT_TRUE(mm.free(world).ok());
+  EXPECT_FALSE(mm.rayIndex(world).ok()) << "a freed model has no index";
+  EXPECT_TRUE((*a)->numNodes() > 0) << "an index handed out stays usable";
+  mm.clear();
+  ASSERT_TRUE(mm.loadCm(cmData("blender_misc_model1.cm"), materials).ok());
+  Result<std::shared_ptr<const RayIndex>> c = mm.rayIndex(world);
+  ASSERT_TRUE(c.ok());
+  EXPECT_EQ((*c)->numPolygons(), mm.get(world)->polygons.size()) << "an index of the new model";
+}
+
+TEST(Manager, RayIndexFromManyThreadsAtOnce) {
+  ModelManager mm;
+  ASSERT_TRUE(mm.loadCm(cmData("ep1.cm"), MaterialTable{}).ok());
+  std::vector<std::shared_ptr<const RayIndex>> got(4);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < got.size(); ++t)
+    threads.emplace_back([&, t] {
+      auto r = mm.rayIndex(kWorldModelHandle);
+      if (r.ok()) got[t] = *r;
+    });
+  for (std::thread& t : threads) t.join();
+  for (const auto& index : got) {
+    ASSERT_TRUE(index);
+    EXPECT_EQ(index->numPolygons(), got[0]->numPolygons());
+  }
+  // Afterwards every caller gets the one that was kept.
+  EXPECT_EQ(mm.rayIndex(kWorldModelHandle)->get(), mm.rayIndex(kWorldModelHandle)->get());
+}
+
 }  // namespace
 }  // namespace cmkit
