@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "cmkit/build.h"
 #include "cmkit/map.h"
@@ -16,27 +17,41 @@ namespace {
 /// Queries per kind in the tests (small: the tests must stay fast).
 constexpr int kTestTimes = 300;
 
-ModelPtr featuresWorld() {
-  auto map = loadMapFile((test::testDataDir() / "maps" / "features.map").string());
-  if (!map) return nullptr;
-  auto models = buildCollisionModels(*map, MaterialTable{});
-  if (!models || models->empty()) return nullptr;
-  return models->front();
-}
-
-TEST(SpeedTest, SameResultsOnOneAndTwoThreads) {
-  const ModelPtr world = featuresWorld();
-  ASSERT_TRUE(world);
-  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
-  ASSERT_TRUE(trm);
-  for (bool walk : {false, true}) {
-    SpeedTestOptions o;
-    o.times = kTestTimes;
-    o.walk = walk;
-    o.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
-    const SpeedTestReport one = runSpeedTest(*world, *trm, o);
+/// The world model of the feature test map and the speed test's box, and
+/// options with kTestTimes queries from the map's centre.
+class SpeedTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto map = loadMapFile((test::testDataDir() / "maps" / "features.map").string());
+    ASSERT_TRUE(map.ok());
+    auto models = buildCollisionModels(*map, MaterialTable{});
+    ASSERT_TRUE(models.ok() && !models->empty());
+    world = models->front();
+    auto box = TraceModel::parse("box:-16,-16,0,16,16,64");
+    ASSERT_TRUE(box.ok());
+    trm = *box;
+    options.times = kTestTimes;
+    options.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
+  }
+  SpeedTestReport run(const SpeedTestOptions& o) const { return runSpeedTest(*world, trm, o); }
+  /// The same options on 1 and on 2 threads.
+  std::pair<SpeedTestReport, SpeedTestReport> runOnOneAndTwoThreads(SpeedTestOptions o) const {
+    o.threads = 1;
+    SpeedTestReport one = run(o);
     o.threads = 2;
-    const SpeedTestReport two = runSpeedTest(*world, *trm, o);
+    return {std::move(one), run(o)};
+  }
+
+  ModelPtr world;
+  TraceModel trm;
+  SpeedTestOptions options;
+};
+
+TEST_F(SpeedTest, SameResultsOnOneAndTwoThreads) {
+  for (bool walk : {false, true}) {
+    SpeedTestOptions o = options;
+    o.walk = walk;
+    const auto [one, two] = runOnOneAndTwoThreads(o);
     SCOPED_TRACE(walk ? "walk" : "plain");
     EXPECT_EQ(one.translation.count, kTestTimes);
     EXPECT_EQ(one.rotation.count, kTestTimes);
@@ -51,14 +66,9 @@ TEST(SpeedTest, SameResultsOnOneAndTwoThreads) {
   }
 }
 
-TEST(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
-  const ModelPtr world = featuresWorld();
-  ASSERT_TRUE(world);
-  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
-  ASSERT_TRUE(trm);
+TEST_F(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
   for (bool walk : {false, true}) {
-    SpeedTestOptions o;
-    o.times = kTestTimes;
+    SpeedTestOptions o = options;
     o.walk = walk;
     o.rays = true;
     o.rotations = false;
@@ -66,9 +76,7 @@ TEST(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
     // leaves through back faces): the rays going down hit its top.
     o.origin = {0, 0, world->bounds.max.z + 40};
     o.length = 256;
-    const SpeedTestReport one = runSpeedTest(*world, *trm, o);
-    o.threads = 2;
-    const SpeedTestReport two = runSpeedTest(*world, *trm, o);
+    const auto [one, two] = runOnOneAndTwoThreads(o);
     SCOPED_TRACE(walk ? "walk" : "plain");
     EXPECT_EQ(one.rays.count, kTestTimes);
     EXPECT_GT(one.rays.hits, walk ? 0 : kTestTimes / 10);  // a walk wanders off into the open
@@ -78,39 +86,27 @@ TEST(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
   }
 }
 
-TEST(SpeedTest, SeedChangesTheQueries) {
-  const ModelPtr world = featuresWorld();
-  ASSERT_TRUE(world);
-  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
-  ASSERT_TRUE(trm);
-  SpeedTestOptions o;
-  o.times = kTestTimes;
+TEST_F(SpeedTest, SeedChangesTheQueries) {
+  SpeedTestOptions o = options;
   o.rotations = false;
-  o.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
-  const auto a = runSpeedTest(*world, *trm, o);
+  const auto a = run(o);
   o.seed = 1;
-  const auto b = runSpeedTest(*world, *trm, o);
+  const auto b = run(o);
   EXPECT_NE(a.translation.hash, b.translation.hash);
   EXPECT_EQ(a.rotation.count, 0);
   EXPECT_EQ(a.rays.count, 0);  // not asked for
 }
 
-TEST(SpeedTest, RandomManySharesOneEndPoint) {
-  const ModelPtr world = featuresWorld();
-  ASSERT_TRUE(world);
-  auto trm = TraceModel::parse("box:-16,-16,0,16,16,64");
-  ASSERT_TRUE(trm);
-  SpeedTestOptions o;
-  o.times = kTestTimes;
+TEST_F(SpeedTest, RandomManySharesOneEndPoint) {
+  SpeedTestOptions o = options;
   o.randomMany = true;
-  o.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
-  const auto r = runSpeedTest(*world, *trm, o);
+  const auto r = run(o);
   // Every query is the same: all hit or none does.
   EXPECT_TRUE(r.translation.hits == 0 || r.translation.hits == kTestTimes);
   EXPECT_TRUE(r.rotation.hits == 0 || r.rotation.hits == kTestTimes);
 }
 
-TEST(SpeedTest, CliBenchPrintsStatistics) {
+TEST_F(SpeedTest, CliBenchPrintsStatistics) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
   const auto map = std::filesystem::path(CMKIT_SOURCE_DIR) / "data" / "maps" / "lt4" / "lt4.map";
   if (!std::filesystem::exists(map)) GTEST_SKIP() << "no " << map;
