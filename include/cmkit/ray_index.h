@@ -123,7 +123,6 @@ class RayIndex {
   std::vector<Polygon> polygons_;
   std::vector<EdgeLine> edges_;
   std::vector<PolygonDetail> details_;  ///< parallel to polygons_
-  int depth_ = 0;                       ///< levels of nodes (bounds the traversal stack)
 };
 
 }  // namespace cmkit

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 namespace cmkit {
 namespace {
@@ -48,10 +49,8 @@ Real maxAbs(const Bounds& b) {
   return m;
 }
 
-Bounds padded(const Bounds& b, Real relative) {
-  const Real pad = relative * (maxAbs(b) + 1);
-  return Bounds{b.min - Vec3{pad, pad, pad}, b.max + Vec3{pad, pad, pad}};
-}
+/// The box padded by `relative` times its largest coordinate magnitude plus one.
+Bounds padded(const Bounds& b, Real relative) { return b.expanded(relative * (maxAbs(b) + 1)); }
 
 Real halfArea(const Bounds& b) {
   const Vec3 d = b.max - b.min;
@@ -250,7 +249,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
   }
   if (usable.empty()) return;
 
-  const BinaryBuilder binary(boxes, contents);
+  const BinaryBuilder binary(boxes, std::move(contents));
   const std::vector<BinaryNode>& bn = binary.nodes();
 
   // Polygons and their edge lines in leaf order.
@@ -280,7 +279,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
 
   // Collapse: each 4-wide node takes the binary node's children, then opens
   // the largest inner child until it has four.
-  const auto collapse = [&](auto&& self, std::uint32_t b, int depth) -> std::uint32_t {
+  const auto collapse = [&](auto&& self, std::uint32_t b) -> std::uint32_t {
     std::array<std::uint32_t, 4> kids{};
     std::size_t n = 0;
     if (bn[b].count) {
@@ -302,7 +301,6 @@ RayIndex::RayIndex(const CollisionModel& model) {
     }
     const auto me = std::uint32_t(nodes_.size());
     nodes_.emplace_back();
-    depth_ = std::max(depth_, depth + 1);
     std::array<std::uint32_t, 4> refs{};
     for (std::size_t k = 0; k < n; ++k) {
       const BinaryNode& c = bn[kids[k]];
@@ -310,7 +308,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
         refs[k] = kLeaf | std::uint32_t(leaves_.size());
         leaves_.push_back({c.first, c.count});
       } else {
-        refs[k] = self(self, kids[k], depth + 1);
+        refs[k] = self(self, kids[k]);
       }
     }
     Node& node = nodes_[me];
@@ -334,7 +332,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
     }
     return me;
   };
-  collapse(collapse, 0, 0);
+  collapse(collapse, 0);
 }
 
 std::size_t RayIndex::memoryBytes() const {
