@@ -222,6 +222,7 @@ int runView(const ViewOptions& o) {
 
   // Listen on the loopback address only.
   const int server = ::socket(AF_INET, SOCK_STREAM, 0);
+  const FdGuard closeServer(server);
   if (server < 0) {
     fmt::print(stderr, "cmkit view: cannot open a socket\n");
     return kExitBadInput;
@@ -235,7 +236,6 @@ int runView(const ViewOptions& o) {
   if (::bind(server, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
       ::listen(server, kListenBacklog) != 0) {
     fmt::print(stderr, "cmkit view: cannot listen on 127.0.0.1:{} (in use? try --port 0)\n", o.port);
-    ::close(server);
     return kExitBadInput;
   }
   socklen_t len = sizeof addr;
@@ -259,7 +259,6 @@ int runView(const ViewOptions& o) {
     serveClient(client, sceneDir, viewerDir);
     ::close(client);
   }
-  ::close(server);
   return 0;
 }
 
