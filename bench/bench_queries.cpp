@@ -1,7 +1,10 @@
 // Query benchmarks on lt4 (shared/maps/lt4/lt4.map, or the bundled copy in
 // data/maps/lt4): the lines of shared/reference/lt4.queries.txt of each kind,
 // parsed once, run through the library (results not formatted). lt4/raycast
-// runs the point-translation lines as RayIndex casts.
+// runs the point-translation lines as RayIndex casts. lt4/speedtest_* run the
+// speed test's 1000 point moves from lt4's centre (as cmkit_peers): as point
+// translations, as the same with each move repeated 100 times in a row (every
+// branch predicted, everything cached), and as ray casts.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -16,6 +19,7 @@
 #include "cmkit/map.h"
 #include "cmkit/query_file.h"
 #include "cmkit/ray_index.h"
+#include "cmkit/speed_test.h"
 
 namespace {
 
@@ -24,7 +28,8 @@ namespace fs = std::filesystem;
 /// lt4 built and its queries parsed, loaded on first use by any benchmark.
 struct Lt4Scene {
   std::once_flag once;
-  std::string error;  ///< why the scene is missing (benchmarks skip with it)
+  std::string error;         ///< why the models are missing (benchmarks skip with it)
+  std::string queriesError;  ///< why the queries are missing
   std::vector<cmkit::ModelPtr> models;
   std::vector<cmkit::ParsedQuery> queries;
 
@@ -34,8 +39,8 @@ struct Lt4Scene {
     fs::path map = shared / "maps" / "lt4" / "lt4.map";
     if (!fs::exists(map)) map = source / "data" / "maps" / "lt4" / "lt4.map";
     const fs::path queryFile = shared / "reference" / "lt4.queries.txt";
-    if (!fs::exists(map) || !fs::exists(queryFile)) {
-      error = "lt4.map or shared/reference/lt4.queries.txt is absent";
+    if (!fs::exists(map)) {
+      error = "lt4.map is absent";
       return;
     }
     auto parsed = cmkit::loadMapFile(map.string());
@@ -49,6 +54,10 @@ struct Lt4Scene {
       return;
     }
     models = std::move(*built);
+    if (!fs::exists(queryFile)) {
+      queriesError = "shared/reference/lt4.queries.txt is absent";
+      return;
+    }
     std::ifstream in(queryFile);
     for (std::string line; std::getline(in, line);) {
       if (!cmkit::isQueryLine(line)) continue;
@@ -81,8 +90,8 @@ bool matches(Kind kind, const cmkit::ParsedQuery& q) {
 
 void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
   std::call_once(scene.once, [&scene] { scene.load(); });
-  if (!scene.error.empty()) {
-    state.SkipWithError(scene.error.c_str());
+  if (const std::string& why = scene.error.empty() ? scene.queriesError : scene.error; !why.empty()) {
+    state.SkipWithError(why.c_str());
     return;
   }
   std::vector<const cmkit::ParsedQuery*> queries;
@@ -107,8 +116,8 @@ void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
 /// built before timing).
 void runRayCasts(benchmark::State& state, Lt4Scene& scene) {
   std::call_once(scene.once, [&scene] { scene.load(); });
-  if (!scene.error.empty()) {
-    state.SkipWithError(scene.error.c_str());
+  if (const std::string& why = scene.error.empty() ? scene.queriesError : scene.error; !why.empty()) {
+    state.SkipWithError(why.c_str());
     return;
   }
   std::vector<const cmkit::ParsedQuery*> queries;
@@ -135,6 +144,44 @@ void runRayCasts(benchmark::State& state, Lt4Scene& scene) {
   state.counters["queries"] = double(queries.size());
 }
 
+/// How lt4/speedtest_* run the speed test's point moves.
+enum class SpeedTestRays { Translate, TranslateRepeated, Cast };
+
+void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays how) {
+  std::call_once(scene.once, [&scene] { scene.load(); });
+  if (!scene.error.empty()) {
+    state.SkipWithError(scene.error.c_str());
+    return;
+  }
+  constexpr int kMoves = 1000;           // cm_testTimes
+  constexpr cmkit::Real kLength = 1024;  // cm_testLength
+  constexpr int kRepeats = 100;          // TranslateRepeated: each move this many times in a row
+  constexpr std::uint32_t kMask = cmkit::contents::kSolid | cmkit::contents::kPlayerClip;
+  const cmkit::CollisionModel& world = *scene.models.front();
+  const cmkit::Vec3 origin = world.bounds.center();
+  cmkit::SpeedTestRandom random(0);
+  std::vector<cmkit::Vec3> ends(kMoves);
+  for (cmkit::Vec3& e : ends)
+    for (int k = 0; k < 3; ++k) e[k] = origin[k] + random.signedUniform() * kLength;
+  const cmkit::RayIndex index(world);
+  cmkit::QueryWork work;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const cmkit::Vec3& end = ends[how == SpeedTestRays::TranslateRepeated ? i / kRepeats : i];
+    if (how == SpeedTestRays::Cast) {
+      benchmark::DoNotOptimize(index.cast(origin, end, kMask));
+    } else {
+      cmkit::TranslationQuery q;
+      q.start = origin;
+      q.end = end;
+      q.contentMask = kMask;
+      benchmark::DoNotOptimize(cmkit::translate(world, q, work));
+    }
+    if (++i == (how == SpeedTestRays::TranslateRepeated ? ends.size() * kRepeats : ends.size())) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 /// Registers the lt4 benchmarks (they share one lazily loaded scene).
 bool registerLt4Benchmarks() {
   auto scene = std::make_shared<Lt4Scene>();
@@ -148,6 +195,13 @@ bool registerLt4Benchmarks() {
     benchmark::RegisterBenchmark(name,
                                  [scene, kind = kind](benchmark::State& s) { runKind(s, *scene, kind); });
   benchmark::RegisterBenchmark("lt4/raycast", [scene](benchmark::State& s) { runRayCasts(s, *scene); });
+  const std::pair<const char*, SpeedTestRays> rays[] = {
+      {"lt4/speedtest_point", SpeedTestRays::Translate},
+      {"lt4/speedtest_point_repeated", SpeedTestRays::TranslateRepeated},
+      {"lt4/speedtest_raycast", SpeedTestRays::Cast}};
+  for (const auto& [name, how] : rays)
+    benchmark::RegisterBenchmark(
+        name, [scene, how = how](benchmark::State& s) { runSpeedTestRays(s, *scene, how); });
   return true;
 }
 

@@ -16,6 +16,7 @@
 //   each segment crosses. In walk mode a ray's next start is its hit point.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -69,6 +70,11 @@ struct SpeedTestReport {
   SpeedTestBatch translation;
   SpeedTestBatch rotation;  ///< count 0 when options.rotations is false
   SpeedTestBatch rays;      ///< ray casts; count 0 unless options.rays
+  /// The RayIndex of the ray casts (zero unless options.rays).
+  struct RayIndexStats {
+    std::size_t nodes = 0, polygons = 0, bytes = 0;
+    double buildMs = 0;
+  } rayIndex;
   int threads = 1;
 };
 

@@ -79,6 +79,9 @@ TEST_F(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
     const auto [one, two] = runOnOneAndTwoThreads(o);
     SCOPED_TRACE(walk ? "walk" : "plain");
     EXPECT_EQ(one.rays.count, kTestTimes);
+    EXPECT_GT(one.rayIndex.nodes, 0u);
+    EXPECT_GT(one.rayIndex.polygons, 0u);
+    EXPECT_LE(one.rayIndex.polygons, world->polygons.size());
     EXPECT_GT(one.rays.hits, walk ? 0 : kTestTimes / 10);  // a walk wanders off into the open
     EXPECT_LT(one.rays.hits, kTestTimes);
     EXPECT_EQ(one.rays.hash, two.rays.hash);

@@ -69,6 +69,9 @@ bool runAndPrintSpeedTest(const CollisionModel& model, const TraceModel& trm, co
   SpeedTestOptions single = options;
   single.threads = 1;
   const SpeedTestReport one = runSpeedTest(model, trm, single);
+  if (options.rays)
+    fmt::print("  ray index: {} nodes, {} polygons, {:.1f} MB, built in {:.1f} ms\n", one.rayIndex.nodes,
+               one.rayIndex.polygons, double(one.rayIndex.bytes) / (1024.0 * 1024.0), one.rayIndex.buildMs);
   fmt::print("1 thread:\n");
   printSpeedTestBatch(one.translation);
   if (options.rotations) printSpeedTestBatch(one.rotation);
