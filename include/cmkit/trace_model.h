@@ -63,13 +63,15 @@ struct TrmEdge {
 };
 
 /// A polygon of a trace model.
+/// (The fields a query reads, normal to the first edges, come first: they
+/// share one cache line.)
 struct TrmPolygon {
   Vec3 normal;    ///< outward unit normal
   Real dist = 0;  ///< normal . p = dist on the polygon
-  Bounds bounds;
   int numEdges = 0;
   /// Signed edge numbers, counter-clockwise around the normal.
   std::array<int, kMaxTrmPolygonEdges> edges{};
+  Bounds bounds;
 
   std::span<const int> edgeList() const { return {edges.data(), size_t(numEdges)}; }
   /// The vertex the signed edge `edges[i]` starts at.
@@ -168,16 +170,19 @@ class TraceModel {
 
  private:
   friend class TraceModelBuilder;
+  // What a query's set-up reads first is at the front (the counts, bounds,
+  // offset and vertices): the fixed-size arrays are mostly unused, and a
+  // query should touch few of their cache lines.
   TrmShape shape_ = TrmShape::Point;
   bool isConvex_ = false;
   int numVertices_ = 0;
   int numEdges_ = 0;
   int numPolygons_ = 0;
+  Bounds bounds_;
+  Vec3 offset_;
   std::array<Vec3, kMaxTrmVertices> vertices_{};
   std::array<TrmEdge, kMaxTrmEdges + 1> edges_{};
   std::array<TrmPolygon, kMaxTrmPolygons> polygons_{};
-  Bounds bounds_;
-  Vec3 offset_;
 };
 
 inline int TrmPolygon::startVertex(const TraceModel& trm, int i) const {

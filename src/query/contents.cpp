@@ -108,7 +108,7 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
     std::size_t j = 0;
     for (; j < edges.size(); ++j) {
       const std::int32_t edgeNum = edges[j];
-      const unsigned side = s.edgeSideBit(std::size_t(std::abs(edgeNum)), unsigned(i),
+      const unsigned side = s.edgeSideBit(std::size_t(std::abs(edgeNum)), trmEdgeBit(i),
                                           [&] { return te.pl.permutedInnerProduct(s.polygonEdgeLines[j]); });
       if (unsigned(edgeNum < 0) ^ side ^ flip) break;
     }
@@ -138,9 +138,8 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
       for (; k < tp.numEdges; ++k) {
         const int trmEdgeNum = tp.edges[std::size_t(k)];
         const WorkEdge& te = tw.edges[std::size_t(std::abs(trmEdgeNum))];
-        const unsigned side = s.edgeSideBit(e, unsigned(std::abs(trmEdgeNum)), [&] {
-          return te.pl.permutedInnerProduct(s.polygonEdgeLines[i]);
-        });
+        const unsigned side = s.edgeSideBit(
+            e, trmEdgeBit(trmEdgeNum), [&] { return te.pl.permutedInnerProduct(s.polygonEdgeLines[i]); });
         if (unsigned(trmEdgeNum < 0) ^ side ^ flip) break;
       }
       if (k >= tp.numEdges) {
@@ -182,7 +181,7 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis
     const TrmPolygon& tp = trm.polygon(i);
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.numEdges = tp.numEdges;
-    wp.edges = tp.edges;
+    wp.edges = tp.edges.data();
     wp.used = true;
     Vec3 n = tp.normal;
     if (trmRotated)

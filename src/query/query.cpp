@@ -89,7 +89,7 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     const TrmPolygon& tp = trm.polygon(i);
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.numEdges = tp.numEdges;
-    wp.edges = tp.edges;
+    wp.edges = tp.edges.data();
     Vec3 n = tp.normal;
     if (trmRotated)
       n = n * planeAxis;
@@ -108,12 +108,15 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     }
   }
   tw.size.clear();
+  auto& lines = tw.scratch.trm.vertexLines;
   for (int i = 0; i < tw.numVerts; ++i) {
     WorkVertex& v = tw.vertices[std::size_t(i)];
+    for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = 0;
     if (!v.used) continue;
     tw.size.addPoint(v.p - tw.start);
     v.endp = v.p + tw.dir;
     v.pl = Pluecker::fromRay(v.p, tw.dir);
+    for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = v.pl[k];
   }
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];

@@ -404,13 +404,13 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   // tested with the first polygon even when its culls had skipped trm
   // edges, so it depended on polygon order and missed collisions). The
   // tested pairs are bits of the edge's side cache, unused by rotations.
-  std::uint64_t trmEdgesHere = 0;  // bit j: trm edge j passes this polygon's culls
+  std::uint32_t trmEdgesHere = 0;  // bit trmEdgeBit(j): trm edge j passes this polygon's culls
   for (int j = 1; j <= tw.numEdges; ++j) {
     const RotEdge& re = rw.edges[std::size_t(j)];
     const WorkEdge& te = tw.edges[std::size_t(j)];
     if (!re.used || (behind[te.vertexNum[0]] && behind[te.vertexNum[1]])) continue;
     if (!re.bounds.intersects(poly.bounds) || re.bounds.planeSide(poly.plane) != Side::Cross) continue;
-    trmEdgesHere |= std::uint64_t(1) << j;
+    trmEdgesHere |= std::uint32_t(1) << trmEdgeBit(j);
   }
   for (std::size_t i = 0; i < edges.size() && trmEdgesHere; ++i) {
     const std::int32_t edgeNum = edges[i];
@@ -418,7 +418,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const CmEdge& edge = m.edges[e];
     if (edge.internal) continue;
     QueryWork::Scratch::Feature& cache = s.touchCache(s.edges[e]);
-    const std::uint64_t todo = trmEdgesHere & ~cache.side;
+    const std::uint32_t todo = trmEdgesHere & ~cache.side;
     if (!todo) continue;
     cache.side |= todo;
     const Vec3& v0 = m.vertices[std::size_t(edge.vertex[0])];
@@ -429,7 +429,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     edgeBounds.addPoint(v0 + shift);
     edgeBounds.addPoint(v1 + shift);
     for (int j = 1; j <= tw.numEdges; ++j) {
-      if (!(todo >> j & 1u) || !rw.edges[std::size_t(j)].bounds.intersects(edgeBounds)) continue;
+      if (!(todo >> trmEdgeBit(j) & 1u) || !rw.edges[std::size_t(j)].bounds.intersects(edgeBounds)) continue;
       rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, j);
     }
   }

@@ -157,7 +157,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
       WorkPolygon& wp = tw.polys[std::size_t(i)];
       RotPolygon& rp = rw.polygons[std::size_t(i)];
       wp.numEdges = tp.numEdges;
-      wp.edges = tp.edges;
+      wp.edges = tp.edges.data();
       wp.used = true;
       Vec3 n = tp.normal;
       if (trmRotated) n = n * q.trmAxis;

@@ -34,7 +34,10 @@ struct WorkEdge {
 struct WorkPolygon {
   Plane plane;
   int numEdges = 0;
-  std::array<int, kMaxTrmPolygonEdges> edges{};
+  /// The trace model's signed edge numbers (numEdges of them), not a copy:
+  /// a query reads only the polygons' first few, and copying the whole
+  /// fixed-size lists read cache lines of the trace model it never used.
+  const int* edges = nullptr;
   bool used = false;
 };
 
@@ -46,6 +49,11 @@ struct TrmFeatures {
   std::array<WorkVertex, kMaxTrmVertices> vertices;
   std::array<WorkEdge, kMaxTrmEdges + 1> edges;
   std::array<WorkPolygon, kMaxTrmPolygons> polys;
+  /// Translation: the lines of the vertices' movement (WorkVertex::pl), one
+  /// array per Plücker coordinate, zero for the vertices not used, so that
+  /// the sides of a polygon edge for every vertex are one loop
+  /// (sidesOfTrmVertices in translate.cpp).
+  std::array<std::array<Real, kMaxTrmVertices>, 6> vertexLines;
 };
 
 /// Per-model-feature marks and caches, valid for one query. A mark or cache
@@ -55,13 +63,15 @@ struct QueryWork::Scratch {
   /// Everything a query keeps about one model edge or vertex, together so
   /// that one cache line serves the mark and the side caches (the marks are
   /// read for every edge of every polygon met, mostly cache misses on a
-  /// large model).
+  /// large model). 16 bytes: four to a cache line.
   struct Feature {
     std::uint32_t checked = 0;   ///< tested this query (== generation)
     std::uint32_t cacheGen = 0;  ///< side / sideSet valid (== generation)
-    std::uint64_t side = 0;      ///< cached side bits, one per trace-model feature
-    std::uint64_t sideSet = 0;   ///< which bits of `side` are known
+    std::uint32_t side = 0;      ///< cached side bits, one per trace-model feature (trmEdgeBit, ...)
+    std::uint32_t sideSet = 0;   ///< which bits of `side` are known
   };
+  static_assert(kMaxTrmVertices <= 32 && kMaxTrmEdges <= 32 && kMaxTrmPolygons <= 32,
+                "a Feature has one side bit per trace-model vertex, edge or polygon");
 
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> polygonChecked;      ///< polygon tested this query
@@ -71,6 +81,9 @@ struct QueryWork::Scratch {
   std::vector<Pluecker> polygonEdgeLines;         ///< per edge of the current polygon
   std::vector<Pluecker> polygonVertexRays;        ///< per start vertex of the current polygon's edges
   std::vector<std::uint32_t> polygonEdgesToTest;  ///< translation: edges of the current polygon to test
+  /// Translation: per edge of the current polygon, bit v set when the path of
+  /// trace-model vertex v passes the edge's line on its negative side.
+  std::vector<std::uint32_t> polygonEdgeSides;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
     std::int32_t node;
@@ -107,7 +120,7 @@ struct QueryWork::Scratch {
   /// `product()` (side = sign bit of the product) when not yet known.
   template <class F>
   static unsigned sideBit(Feature& f, unsigned bit, F product) {
-    const std::uint64_t m = std::uint64_t(1) << bit;
+    const std::uint32_t m = std::uint32_t(1) << bit;
     if (!(f.sideSet & m)) {
       if (signBitSet(product()))
         f.side |= m;
@@ -126,6 +139,9 @@ struct QueryWork::Scratch {
     return sideBit(touchCache(vertices[v]), bit, product);
   }
 };
+
+/// The side-cache bit of trace-model edge n (signed or not; 1 <= |n| <= 32).
+inline unsigned trmEdgeBit(int n) { return unsigned(std::abs(n) - 1); }
 
 struct RotationWork;
 

@@ -72,20 +72,43 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
   if (tw.gettingContacts()) tw.addContact();
 }
 
+// Which side of each edge line of the current polygon the path of every
+// trace-model vertex passes: bit v of s.polygonEdgeSides[i] is the sign bit of
+// polygonEdgeLines[i] . (vertex v's line), the product the original caches
+// per model edge. The product depends only on the edge and the vertex, so
+// computing all of a polygon's at once gives the same bits as the cache,
+// without its branches and scattered memory.
+void sidesOfTrmVertices(TraceWork& tw, std::size_t numEdges) {
+  QueryWork::Scratch& s = tw.scratch;
+  if (s.polygonEdgeSides.size() < numEdges) s.polygonEdgeSides.resize(numEdges);
+  const auto& c = s.trm.vertexLines;
+  const int numVerts = tw.numVerts;
+  for (std::size_t i = 0; i < numEdges; ++i) {
+    const Pluecker& l = s.polygonEdgeLines[i];
+    std::uint32_t bits = 0;
+    for (int v = 0; v < numVerts; ++v) {
+      const std::size_t k = std::size_t(v);
+      // Pluecker::permutedInnerProduct, term for term in the same order.
+      const Real product =
+          l[0] * c[4][k] + l[1] * c[5][k] + l[2] * c[3][k] + l[4] * c[0][k] + l[5] * c[1][k] + l[3] * c[2][k];
+      bits |= std::uint32_t(signBitSet(product)) << v;
+    }
+    s.polygonEdgeSides[i] = bits;
+  }
+}
+
 void translateTrmVertexThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
                                       int vertexNum) {
   const CollisionModel& m = tw.model;
-  QueryWork::Scratch& s = tw.scratch;
+  const QueryWork::Scratch& s = tw.scratch;
   WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
   const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
   if (!(f < tw.fraction)) return;
   // The vertex's path must pass inside every polygon edge.
   const auto edges = m.edgesOf(poly);
   for (std::size_t i = 0; i < edges.size(); ++i) {
-    const std::int32_t edgeNum = edges[i];
-    const unsigned side = s.edgeSideBit(std::size_t(std::abs(edgeNum)), unsigned(vertexNum),
-                                        [&] { return s.polygonEdgeLines[i].permutedInnerProduct(v.pl); });
-    if (unsigned(edgeNum < 0) ^ side) return;
+    const unsigned side = (s.polygonEdgeSides[i] >> vertexNum) & 1u;
+    if (unsigned(edges[i] < 0) ^ side) return;
   }
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = poly.plane.normal;
@@ -107,19 +130,14 @@ void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int tr
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
     const CmEdge& edge = m.edges[e];
-    const Pluecker& pl = s.polygonEdgeLines[i];
     // The trm edge's two vertices must pass the polygon edge on different sides...
-    const unsigned a0 = s.edgeSideBit(e, unsigned(te.vertexNum[0]), [&] {
-      return pl.permutedInnerProduct(tw.vertices[std::size_t(te.vertexNum[0])].pl);
-    });
-    const unsigned a1 = s.edgeSideBit(e, unsigned(te.vertexNum[1]), [&] {
-      return pl.permutedInnerProduct(tw.vertices[std::size_t(te.vertexNum[1])].pl);
-    });
-    if (a0 == a1) continue;
+    const std::uint32_t sides = s.polygonEdgeSides[i];
+    if (!((sides >> te.vertexNum[0] ^ sides >> te.vertexNum[1]) & 1u)) continue;
+    const Pluecker& pl = s.polygonEdgeLines[i];
     // ... and the polygon edge's two vertices must pass the trm edge on different sides.
     const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
     const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
-    const unsigned bit = unsigned(trmEdgeNum);
+    const unsigned bit = trmEdgeBit(trmEdgeNum);
     const unsigned b1 =
         s.vertexSideBit(v1, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i]); });
     const unsigned b2 =
@@ -173,8 +191,8 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
   for (int i = 0; i < tp.numEdges; ++i) {
     const int edgeNum = tp.edges[std::size_t(i)];
     const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
-    const unsigned side = s.vertexSideBit(vertexNum, unsigned(std::abs(edgeNum)),
-                                          [&] { return pl.permutedInnerProduct(te.pl); });
+    const unsigned side =
+        s.vertexSideBit(vertexNum, trmEdgeBit(edgeNum), [&] { return pl.permutedInnerProduct(te.pl); });
     if (unsigned(edgeNum < 0) ^ side) return;
   }
   tw.fraction = f < 0 ? Real(0) : f;
@@ -249,6 +267,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     for (std::size_t i = 0; i < edges.size(); ++i)
       s.polygonVertexRays[i] = Pluecker::fromRay(m.vertices[std::size_t(m.edgeStart(edges[i]))], -tw.dir);
     s.polygonVertexRays[edges.size()] = s.polygonVertexRays[0];
+    sidesOfTrmVertices(tw, edges.size());
     // The polygon edges the trace-model edges are tested against: not
     // internal, not tested with an earlier polygon (the marks are set below,
     // after the edge tests, so this list holds for every trace-model edge).
