@@ -118,6 +118,9 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     v.pl = Pluecker::fromRay(v.p, tw.dir);
     for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = v.pl[k];
   }
+  // Up to a multiple of four too: the SIMD loop reads whole groups of four.
+  for (int i = tw.numVerts; i % 4 != 0; ++i)
+    for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = 0;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     if (!e.used) continue;

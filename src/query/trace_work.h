@@ -53,7 +53,7 @@ struct TrmFeatures {
   /// array per Plücker coordinate, zero for the vertices not used, so that
   /// the sides of a polygon edge for every vertex are one loop
   /// (sidesOfTrmVertices in translate.cpp).
-  std::array<std::array<Real, kMaxTrmVertices>, 6> vertexLines;
+  alignas(16) std::array<std::array<Real, kMaxTrmVertices>, 6> vertexLines;
 };
 
 /// Per-model-feature marks and caches, valid for one query. A mark or cache

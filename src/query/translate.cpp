@@ -2,9 +2,18 @@
 // TranslateTrmThroughPolygon and the tests it runs): trace-model vertex
 // through polygon, trace-model edge through polygon edge, model vertex
 // through trace-model polygon. Model space throughout.
+#include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "query/trace_work.h"
+
+// SSE2 on x86-64 (four trace-model vertices at a time); any other target, or
+// -DCMKIT_NO_SIMD, uses the portable loop, which does the same arithmetic.
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+#include <emmintrin.h>
+#define CMKIT_SIDES_SSE2 1
+#endif
 
 namespace cmkit {
 namespace {
@@ -86,6 +95,26 @@ void sidesOfTrmVertices(TraceWork& tw, std::size_t numEdges) {
   for (std::size_t i = 0; i < numEdges; ++i) {
     const Pluecker& l = s.polygonEdgeLines[i];
     std::uint32_t bits = 0;
+#ifdef CMKIT_SIDES_SSE2
+    // The same products, four lanes at a time (IEEE single precision in
+    // each lane, the same order of operations): the same sign bits. The
+    // arrays hold kMaxTrmVertices entries, a multiple of four, so reading
+    // up to the next multiple of four stays inside them (the set-up zeroes
+    // the lanes past numVerts; their bits are never read).
+    static_assert(kMaxTrmVertices % 4 == 0);
+    const __m128 l0 = _mm_set1_ps(l[0]), l1 = _mm_set1_ps(l[1]), l2 = _mm_set1_ps(l[2]);
+    const __m128 l3 = _mm_set1_ps(l[3]), l4 = _mm_set1_ps(l[4]), l5 = _mm_set1_ps(l[5]);
+    for (int v = 0; v < numVerts; v += 4) {
+      const std::size_t k = std::size_t(v);
+      __m128 p = _mm_mul_ps(l0, _mm_load_ps(&c[4][k]));
+      p = _mm_add_ps(p, _mm_mul_ps(l1, _mm_load_ps(&c[5][k])));
+      p = _mm_add_ps(p, _mm_mul_ps(l2, _mm_load_ps(&c[3][k])));
+      p = _mm_add_ps(p, _mm_mul_ps(l4, _mm_load_ps(&c[0][k])));
+      p = _mm_add_ps(p, _mm_mul_ps(l5, _mm_load_ps(&c[1][k])));
+      p = _mm_add_ps(p, _mm_mul_ps(l3, _mm_load_ps(&c[2][k])));
+      bits |= std::uint32_t(_mm_movemask_ps(p)) << v;
+    }
+#else
     for (int v = 0; v < numVerts; ++v) {
       const std::size_t k = std::size_t(v);
       // Pluecker::permutedInnerProduct, term for term in the same order.
@@ -93,23 +122,14 @@ void sidesOfTrmVertices(TraceWork& tw, std::size_t numEdges) {
           l[0] * c[4][k] + l[1] * c[5][k] + l[2] * c[3][k] + l[4] * c[0][k] + l[5] * c[1][k] + l[3] * c[2][k];
       bits |= std::uint32_t(signBitSet(product)) << v;
     }
+#endif
     s.polygonEdgeSides[i] = bits;
   }
 }
 
-void translateTrmVertexThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
-                                      int vertexNum) {
-  const CollisionModel& m = tw.model;
-  const QueryWork::Scratch& s = tw.scratch;
+// A trace-model vertex reaches the polygon at fraction f: the nearest hit so far.
+void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, int vertexNum, Real f) {
   WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
-  const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
-  if (!(f < tw.fraction)) return;
-  // The vertex's path must pass inside every polygon edge.
-  const auto edges = m.edgesOf(poly);
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const unsigned side = (s.polygonEdgeSides[i] >> vertexNum) & 1u;
-    if (unsigned(edges[i] < 0) ^ side) return;
-  }
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = poly.plane.normal;
   tw.c.dist = poly.plane.dist;
@@ -121,63 +141,100 @@ void translateTrmVertexThroughPolygon(TraceWork& tw, std::int32_t polyNum, const
   }
 }
 
-void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
+// The trace-model vertices through a polygon, in vertex order. A vertex's
+// path must pass inside every polygon edge (bit set in `inside`, from the
+// edge sides) and reach the plane before the nearest hit so far.
+void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+  const CollisionModel& m = tw.model;
+  const QueryWork::Scratch& s = tw.scratch;
+  const auto edges = m.edgesOf(poly);
+  std::uint32_t inside = ~std::uint32_t(0);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    inside &= edges[i] < 0 ? s.polygonEdgeSides[i] : ~s.polygonEdgeSides[i];
+  if (tw.numVerts < 32) inside &= (std::uint32_t(1) << tw.numVerts) - 1;
+  for (; inside; inside &= inside - 1) {
+    const int vertexNum = std::countr_zero(inside);
+    WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
+    if (!v.used) continue;
+    const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
+    if (!(f < tw.fraction)) continue;
+    hitByTrmVertex(tw, polyNum, poly, vertexNum, f);
+  }
+}
+
+// Trace-model edge trmEdgeNum against edge i of the polygon, whose line
+// its two vertices pass on different sides.
+void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum, std::size_t i) {
   const CollisionModel& m = tw.model;
   QueryWork::Scratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const auto edges = m.edgesOf(poly);
-  for (const std::uint32_t i : s.polygonEdgesToTest) {
-    const std::int32_t edgeNum = edges[i];
-    const std::size_t e = std::size_t(std::abs(edgeNum));
-    const CmEdge& edge = m.edges[e];
-    // The trm edge's two vertices must pass the polygon edge on different sides...
-    const std::uint32_t sides = s.polygonEdgeSides[i];
-    if (!((sides >> te.vertexNum[0] ^ sides >> te.vertexNum[1]) & 1u)) continue;
-    const Pluecker& pl = s.polygonEdgeLines[i];
-    // ... and the polygon edge's two vertices must pass the trm edge on different sides.
-    const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
-    const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
-    const unsigned bit = trmEdgeBit(trmEdgeNum);
-    const unsigned b1 =
-        s.vertexSideBit(v1, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i]); });
-    const unsigned b2 =
-        s.vertexSideBit(v2, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i + 1]); });
-    if (b1 == b2) continue;
+  const std::int32_t edgeNum = m.edgesOf(poly)[i];
+  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  const Pluecker& pl = s.polygonEdgeLines[i];
+  // The polygon edge's two vertices must pass the trm edge on different sides.
+  const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
+  const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
+  const unsigned bit = trmEdgeBit(trmEdgeNum);
+  const unsigned b1 =
+      s.vertexSideBit(v1, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i]); });
+  const unsigned b2 =
+      s.vertexSideBit(v2, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i + 1]); });
+  if (b1 == b2) return;
 
-    Real f1;
-    if (!translateEdgeThroughEdge(te.cross, te.pl, pl, f1)) continue;
-    if (f1 < 0) continue;  // moving away from the edge
-    // The same against the edge moved out along its normal by the clip epsilon.
-    const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
-    const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
-    const Pluecker epsPl =
-        Pluecker::fromLine(start + edge.normal * tol::kClipEpsilon, end + edge.normal * tol::kClipEpsilon);
-    Real f2;
-    if (!translateEdgeThroughEdge(te.cross, te.pl, epsPl, f2)) continue;
-    if (f2 > 1 || f1 < f2) continue;
-    if (f2 < 0) f2 = 0;
-    if (!(f2 < tw.fraction)) continue;
+  Real f1;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, pl, f1)) return;
+  if (f1 < 0) return;  // moving away from the edge
+  // The same against the edge moved out along its normal by the clip epsilon.
+  const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
+  const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
+  const Pluecker epsPl =
+      Pluecker::fromLine(start + edge.normal * tol::kClipEpsilon, end + edge.normal * tol::kClipEpsilon);
+  Real f2;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, epsPl, f2)) return;
+  if (f2 > 1 || f1 < f2) return;
+  if (f2 < 0) f2 = 0;
+  if (!(f2 < tw.fraction)) return;
 
-    tw.fraction = f2;
-    // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
-    Vec3 normal = (end - start).cross(te.end - te.start);
-    normal.normalize();
-    Real dist = normal.dot(start);
-    if (normal.dot(te.start) - dist < 0) {
-      normal = -normal;
-      dist = -dist;
+  tw.fraction = f2;
+  // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
+  Vec3 normal = (end - start).cross(te.end - te.start);
+  normal.normalize();
+  Real dist = normal.dot(start);
+  if (normal.dot(te.start) - dist < 0) {
+    normal = -normal;
+    dist = -dist;
+  }
+  tw.c.normal = normal;
+  tw.c.dist = dist;
+  // Contact point on the model edge: where the plane swept by the trm edge cuts it.
+  const Vec3 sweepNormal{te.cross[2], -te.cross[1], te.cross[0]};
+  const Real sweepDist = sweepNormal.dot(te.start);
+  const Real d1 = sweepNormal.dot(start) - sweepDist;
+  const Real d2 = sweepNormal.dot(end) - sweepDist;
+  const Real t = std::fabs(d1 - d2) > std::numeric_limits<Real>::epsilon() ? d1 / (d1 - d2) : Real(0);
+  tw.c.point = start + (end - start) * t;
+  setContact(tw, poly, ContactType::Edge, edgeNum, trmEdgeNum);
+  if (tw.gettingContacts()) tw.addContact();
+}
+
+// Trace-model edge trmEdgeNum against the polygon edges to test, in their
+// order. Those whose line the trm edge's vertices pass on the same side
+// (sides from s.polygonEdgeSides) are skipped without a branch each: a mask
+// of the rest, 64 edges at a time.
+void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
+  const QueryWork::Scratch& s = tw.scratch;
+  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
+  const std::size_t n = s.polygonEdgesToTest.size();
+  for (std::size_t base = 0; base < n; base += 64) {
+    const std::size_t count = std::min<std::size_t>(64, n - base);
+    std::uint64_t crossing = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t sides = s.polygonEdgeSides[s.polygonEdgesToTest[base + k]];
+      crossing |= std::uint64_t((sides >> te.vertexNum[0] ^ sides >> te.vertexNum[1]) & 1u) << k;
     }
-    tw.c.normal = normal;
-    tw.c.dist = dist;
-    // Contact point on the model edge: where the plane swept by the trm edge cuts it.
-    const Vec3 sweepNormal{te.cross[2], -te.cross[1], te.cross[0]};
-    const Real sweepDist = sweepNormal.dot(te.start);
-    const Real d1 = sweepNormal.dot(start) - sweepDist;
-    const Real d2 = sweepNormal.dot(end) - sweepDist;
-    const Real t = std::fabs(d1 - d2) > std::numeric_limits<Real>::epsilon() ? d1 / (d1 - d2) : Real(0);
-    tw.c.point = start + (end - start) * t;
-    setContact(tw, poly, ContactType::Edge, edgeNum, trmEdgeNum);
-    if (tw.gettingContacts()) tw.addContact();
+    for (; crossing; crossing &= crossing - 1)
+      translateTrmEdgeThroughEdge(tw, poly, trmEdgeNum,
+                                  s.polygonEdgesToTest[base + std::size_t(std::countr_zero(crossing))]);
   }
 }
 
@@ -280,8 +337,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
       }
     }
 
-    for (int i = 0; i < tw.numVerts; ++i)
-      if (tw.vertices[std::size_t(i)].used) translateTrmVertexThroughPolygon(tw, polyNum, poly, i);
+    translateTrmVerticesThroughPolygon(tw, polyNum, poly);
     if (!s.polygonEdgesToTest.empty())
       for (int i = 1; i <= tw.numEdges; ++i)
         if (tw.edges[std::size_t(i)].used) translateTrmEdgeThroughPolygon(tw, poly, i);
