@@ -108,19 +108,15 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     }
   }
   tw.size.clear();
-  auto& lines = tw.scratch.trm.vertexLines;
+  tw.movingVertices = 0;
   for (int i = 0; i < tw.numVerts; ++i) {
     WorkVertex& v = tw.vertices[std::size_t(i)];
-    for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = 0;
     if (!v.used) continue;
+    tw.movingVertices |= std::uint32_t(1) << i;
     tw.size.addPoint(v.p - tw.start);
     v.endp = v.p + tw.dir;
     v.pl = Pluecker::fromRay(v.p, tw.dir);
-    for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = v.pl[k];
   }
-  // Up to a multiple of four too: the SIMD loop reads whole groups of four.
-  for (int i = tw.numVerts; i % 4 != 0; ++i)
-    for (int k = 0; k < 6; ++k) lines[std::size_t(k)][std::size_t(i)] = 0;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     if (!e.used) continue;

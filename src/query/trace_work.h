@@ -49,12 +49,10 @@ struct TrmFeatures {
   std::array<WorkVertex, kMaxTrmVertices> vertices;
   std::array<WorkEdge, kMaxTrmEdges + 1> edges;
   std::array<WorkPolygon, kMaxTrmPolygons> polys;
-  /// Translation: the lines of the vertices' movement (WorkVertex::pl), one
-  /// array per Plücker coordinate, zero for the vertices not used, so that
-  /// the sides of a polygon edge for every vertex are one loop
-  /// (sidesOfTrmVertices in translate.cpp).
-  alignas(16) std::array<std::array<Real, kMaxTrmVertices>, 6> vertexLines;
 };
+
+/// Polygon edges per bit mask in the translation's edge tests.
+inline constexpr std::size_t kEdgeGroup = 64;
 
 /// Per-model-feature marks and caches, valid for one query. A mark or cache
 /// entry is valid when its generation equals the current one, so starting a
@@ -74,16 +72,21 @@ struct QueryWork::Scratch {
                 "a Feature has one side bit per trace-model vertex, edge or polygon");
 
   std::uint32_t generation = 0;
-  std::vector<std::uint32_t> polygonChecked;      ///< polygon tested this query
-  std::vector<std::uint32_t> brushChecked;        ///< brush tested this query
-  std::vector<Feature> edges;                     ///< per model edge
-  std::vector<Feature> vertices;                  ///< per model vertex
-  std::vector<Pluecker> polygonEdgeLines;         ///< per edge of the current polygon
-  std::vector<Pluecker> polygonVertexRays;        ///< per start vertex of the current polygon's edges
-  std::vector<std::uint32_t> polygonEdgesToTest;  ///< translation: edges of the current polygon to test
-  /// Translation: per edge of the current polygon, bit v set when the path of
-  /// trace-model vertex v passes the edge's line on its negative side.
-  std::vector<std::uint32_t> polygonEdgeSides;
+  std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
+  std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
+  std::vector<Feature> edges;                 ///< per model edge
+  std::vector<Feature> vertices;              ///< per model vertex
+  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon
+  std::vector<Pluecker> polygonVertexRays;    ///< per start vertex of the current polygon's edges
+  // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
+  // of a group's mask standing for edge kEdgeGroup * group + i.
+  /// Bit i of vertexEdgeSides[group * kMaxTrmVertices + v]: the path of
+  /// trace-model vertex v passes edge i's line on the negative side.
+  std::vector<std::uint64_t> vertexEdgeSides;
+  std::vector<std::uint64_t> edgesReversed;  ///< per group: edges used backwards (negative edge number)
+  std::vector<std::uint64_t> edgesToTest;    ///< per group: edges to test against the trace-model edges
+  /// One group's edge lines, one array per Plücker coordinate (SIMD loads).
+  alignas(16) std::array<std::array<Real, kEdgeGroup>, 6> edgeLineCoords;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
     std::int32_t node;
@@ -167,6 +170,9 @@ struct TraceWork {
   bool positionTest = false;
   bool pointTrace = false;
   bool quickExit = false;
+  /// Translation: bit v set for the trace-model vertices used at the set-up
+  /// (whose movement line WorkVertex::pl is set).
+  std::uint32_t movingVertices = 0;
 
   // the result so far
   Real fraction = 1;

@@ -82,48 +82,69 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 }
 
 // Which side of each edge line of the current polygon the path of every
-// trace-model vertex passes: bit v of s.polygonEdgeSides[i] is the sign bit of
+// moving trace-model vertex passes, and which edges are used backwards (see
+// the masks in QueryWork::Scratch). A side is the sign bit of
 // polygonEdgeLines[i] . (vertex v's line), the product the original caches
-// per model edge. The product depends only on the edge and the vertex, so
-// computing all of a polygon's at once gives the same bits as the cache,
-// without its branches and scattered memory.
-void sidesOfTrmVertices(TraceWork& tw, std::size_t numEdges) {
+// per model edge. It depends only on the edge and the vertex, so computing
+// all of a polygon's at once gives the same bits as the cache, without its
+// branches and scattered memory.
+void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
   QueryWork::Scratch& s = tw.scratch;
-  if (s.polygonEdgeSides.size() < numEdges) s.polygonEdgeSides.resize(numEdges);
-  const auto& c = s.trm.vertexLines;
-  const int numVerts = tw.numVerts;
-  for (std::size_t i = 0; i < numEdges; ++i) {
-    const Pluecker& l = s.polygonEdgeLines[i];
-    std::uint32_t bits = 0;
+  const std::size_t groups = (edges.size() + kEdgeGroup - 1) / kEdgeGroup;
+  if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
+    s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
+    s.edgesReversed.resize(groups);
+    s.edgesToTest.resize(groups);
+  }
+  auto& c = s.edgeLineCoords;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t first = g * kEdgeGroup;
+    const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
+    std::uint64_t reversed = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const Pluecker& l = s.polygonEdgeLines[first + i];
+      for (int k = 0; k < 6; ++k) c[std::size_t(k)][i] = l[k];
+      reversed |= std::uint64_t(edges[first + i] < 0) << i;
+    }
+    s.edgesReversed[g] = reversed;
+    const std::uint64_t valid = count == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << count) - 1;
+    std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
 #ifdef CMKIT_SIDES_SSE2
-    // The same products, four lanes at a time (IEEE single precision in
-    // each lane, the same order of operations): the same sign bits. The
-    // arrays hold kMaxTrmVertices entries, a multiple of four, so reading
-    // up to the next multiple of four stays inside them (the set-up zeroes
-    // the lanes past numVerts; their bits are never read).
-    static_assert(kMaxTrmVertices % 4 == 0);
-    const __m128 l0 = _mm_set1_ps(l[0]), l1 = _mm_set1_ps(l[1]), l2 = _mm_set1_ps(l[2]);
-    const __m128 l3 = _mm_set1_ps(l[3]), l4 = _mm_set1_ps(l[4]), l5 = _mm_set1_ps(l[5]);
-    for (int v = 0; v < numVerts; v += 4) {
-      const std::size_t k = std::size_t(v);
-      __m128 p = _mm_mul_ps(l0, _mm_load_ps(&c[4][k]));
-      p = _mm_add_ps(p, _mm_mul_ps(l1, _mm_load_ps(&c[5][k])));
-      p = _mm_add_ps(p, _mm_mul_ps(l2, _mm_load_ps(&c[3][k])));
-      p = _mm_add_ps(p, _mm_mul_ps(l4, _mm_load_ps(&c[0][k])));
-      p = _mm_add_ps(p, _mm_mul_ps(l5, _mm_load_ps(&c[1][k])));
-      p = _mm_add_ps(p, _mm_mul_ps(l3, _mm_load_ps(&c[2][k])));
-      bits |= std::uint32_t(_mm_movemask_ps(p)) << v;
+    // Four edges at a time: the same products (IEEE single precision in each
+    // lane, the same order of operations), so the same sign bits. The lanes
+    // past `count` (at most three, inside the arrays) are masked off.
+    static_assert(kEdgeGroup % 4 == 0);
+    for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+      const int v = std::countr_zero(moving);
+      const Pluecker& r = tw.vertices[std::size_t(v)].pl;
+      const __m128 r0 = _mm_set1_ps(r[0]), r1 = _mm_set1_ps(r[1]), r2 = _mm_set1_ps(r[2]);
+      const __m128 r3 = _mm_set1_ps(r[3]), r4 = _mm_set1_ps(r[4]), r5 = _mm_set1_ps(r[5]);
+      std::uint64_t bits = 0;
+      for (std::size_t i = 0; i < count; i += 4) {
+        __m128 p = _mm_mul_ps(_mm_load_ps(&c[0][i]), r4);
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[1][i]), r5));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[2][i]), r3));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[4][i]), r0));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[5][i]), r1));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[3][i]), r2));
+        bits |= std::uint64_t(_mm_movemask_ps(p)) << i;
+      }
+      sides[v] = bits & valid;
     }
 #else
-    for (int v = 0; v < numVerts; ++v) {
-      const std::size_t k = std::size_t(v);
-      // Pluecker::permutedInnerProduct, term for term in the same order.
-      const Real product =
-          l[0] * c[4][k] + l[1] * c[5][k] + l[2] * c[3][k] + l[4] * c[0][k] + l[5] * c[1][k] + l[3] * c[2][k];
-      bits |= std::uint32_t(signBitSet(product)) << v;
+    for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+      const int v = std::countr_zero(moving);
+      const Pluecker& r = tw.vertices[std::size_t(v)].pl;
+      std::uint64_t bits = 0;
+      for (std::size_t i = 0; i < count; ++i) {
+        // Pluecker::permutedInnerProduct, term for term in the same order.
+        const Real product = c[0][i] * r[4] + c[1][i] * r[5] + c[2][i] * r[3] + c[4][i] * r[0] +
+                             c[5][i] * r[1] + c[3][i] * r[2];
+        bits |= std::uint64_t(signBitSet(product)) << i;
+      }
+      sides[v] = bits & valid;
     }
 #endif
-    s.polygonEdgeSides[i] = bits;
   }
 }
 
@@ -142,16 +163,20 @@ void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, 
 }
 
 // The trace-model vertices through a polygon, in vertex order. A vertex's
-// path must pass inside every polygon edge (bit set in `inside`, from the
-// edge sides) and reach the plane before the nearest hit so far.
+// path must pass inside every polygon edge (on the negative side of the
+// edges used backwards, the positive of the others) and reach the plane
+// before the nearest hit so far.
 void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
-  const CollisionModel& m = tw.model;
   const QueryWork::Scratch& s = tw.scratch;
-  const auto edges = m.edgesOf(poly);
-  std::uint32_t inside = ~std::uint32_t(0);
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    inside &= edges[i] < 0 ? s.polygonEdgeSides[i] : ~s.polygonEdgeSides[i];
-  if (tw.numVerts < 32) inside &= (std::uint32_t(1) << tw.numVerts) - 1;
+  const std::size_t groups = (poly.numEdges + kEdgeGroup - 1) / kEdgeGroup;
+  std::uint32_t inside = 0;
+  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+    const int v = std::countr_zero(moving);
+    std::uint64_t outside = 0;
+    for (std::size_t g = 0; g < groups; ++g)
+      outside |= s.vertexEdgeSides[g * kMaxTrmVertices + std::size_t(v)] ^ s.edgesReversed[g];
+    inside |= std::uint32_t(outside == 0) << v;
+  }
   for (; inside; inside &= inside - 1) {
     const int vertexNum = std::countr_zero(inside);
     WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
@@ -218,23 +243,18 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
 }
 
 // Trace-model edge trmEdgeNum against the polygon edges to test, in their
-// order. Those whose line the trm edge's vertices pass on the same side
-// (sides from s.polygonEdgeSides) are skipped without a branch each: a mask
-// of the rest, 64 edges at a time.
+// order: those whose line its two vertices pass on different sides.
 void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
   const QueryWork::Scratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const std::size_t n = s.polygonEdgesToTest.size();
-  for (std::size_t base = 0; base < n; base += 64) {
-    const std::size_t count = std::min<std::size_t>(64, n - base);
-    std::uint64_t crossing = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::uint32_t sides = s.polygonEdgeSides[s.polygonEdgesToTest[base + k]];
-      crossing |= std::uint64_t((sides >> te.vertexNum[0] ^ sides >> te.vertexNum[1]) & 1u) << k;
-    }
+  const std::size_t groups = (poly.numEdges + kEdgeGroup - 1) / kEdgeGroup;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
+    std::uint64_t crossing =
+        (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & s.edgesToTest[g];
     for (; crossing; crossing &= crossing - 1)
       translateTrmEdgeThroughEdge(tw, poly, trmEdgeNum,
-                                  s.polygonEdgesToTest[base + std::size_t(std::countr_zero(crossing))]);
+                                  g * kEdgeGroup + std::size_t(std::countr_zero(crossing)));
   }
 }
 
@@ -324,21 +344,25 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     for (std::size_t i = 0; i < edges.size(); ++i)
       s.polygonVertexRays[i] = Pluecker::fromRay(m.vertices[std::size_t(m.edgeStart(edges[i]))], -tw.dir);
     s.polygonVertexRays[edges.size()] = s.polygonVertexRays[0];
-    sidesOfTrmVertices(tw, edges.size());
+    sidesOfPolygonEdges(tw, edges);
     // The polygon edges the trace-model edges are tested against: not
     // internal, not tested with an earlier polygon (the marks are set below,
-    // after the edge tests, so this list holds for every trace-model edge).
-    s.polygonEdgesToTest.clear();
+    // after the edge tests, so these masks hold for every trace-model edge).
+    bool anyToTest = false;
     if (tw.numEdges > 0) {
-      for (std::size_t i = 0; i < edges.size(); ++i) {
-        const std::size_t e = std::size_t(std::abs(edges[i]));
-        if (!s.isChecked(s.edges[e]) && !m.edges[e].internal)
-          s.polygonEdgesToTest.push_back(std::uint32_t(i));
+      for (std::size_t first = 0; first < edges.size(); first += kEdgeGroup) {
+        std::uint64_t toTest = 0;
+        for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size()); ++i) {
+          const std::size_t e = std::size_t(std::abs(edges[i]));
+          toTest |= std::uint64_t(!s.isChecked(s.edges[e]) && !m.edges[e].internal) << (i - first);
+        }
+        s.edgesToTest[first / kEdgeGroup] = toTest;
+        anyToTest |= toTest != 0;
       }
     }
 
     translateTrmVerticesThroughPolygon(tw, polyNum, poly);
-    if (!s.polygonEdgesToTest.empty())
+    if (anyToTest)
       for (int i = 1; i <= tw.numEdges; ++i)
         if (tw.edges[std::size_t(i)].used) translateTrmEdgeThroughPolygon(tw, poly, i);
     // Model vertices through the trace model's front polygons; every edge and
