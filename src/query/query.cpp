@@ -117,9 +117,11 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     v.endp = v.p + tw.dir;
     v.pl = Pluecker::fromRay(v.p, tw.dir);
   }
+  tw.movingEdges = 0;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     if (!e.used) continue;
+    tw.movingEdges |= std::uint64_t(1) << i;
     e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
     e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
     e.pl = Pluecker::fromLine(e.start, e.end);
@@ -127,9 +129,12 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     e.cross = {a[0] * tw.dir[1] - a[1] * tw.dir[0], a[0] * tw.dir[2] - a[2] * tw.dir[0],
                a[1] * tw.dir[2] - a[2] * tw.dir[1]};
   }
+  tw.movingPolygons = 0;
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
-    if (wp.used) wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+    if (!wp.used) continue;
+    tw.movingPolygons |= std::uint32_t(1) << i;
+    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
   }
   for (int i = 0; i < 3; ++i) {
     if (tw.start[i] < tw.end[i]) {

@@ -170,9 +170,12 @@ struct TraceWork {
   bool positionTest = false;
   bool pointTrace = false;
   bool quickExit = false;
-  /// Translation: bit v set for the trace-model vertices used at the set-up
-  /// (whose movement line WorkVertex::pl is set).
+  // Translation: the trace-model features used (facing the movement), as
+  // bit masks set up once: bit v for vertex v (whose movement line
+  // WorkVertex::pl is set), bit i for edge i, bit j for polygon j.
   std::uint32_t movingVertices = 0;
+  std::uint64_t movingEdges = 0;
+  std::uint32_t movingPolygons = 0;
 
   // the result so far
   Real fraction = 1;

@@ -363,8 +363,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
 
     translateTrmVerticesThroughPolygon(tw, polyNum, poly);
     if (anyToTest)
-      for (int i = 1; i <= tw.numEdges; ++i)
-        if (tw.edges[std::size_t(i)].used) translateTrmEdgeThroughPolygon(tw, poly, i);
+      for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1)
+        translateTrmEdgeThroughPolygon(tw, poly, std::countr_zero(moving));
     // Model vertices through the trace model's front polygons; every edge and
     // vertex once per query.
     for (std::int32_t edgeNum : edges) {
@@ -379,8 +379,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
         if (!tw.bounds.containsPoint(p)) continue;
         const Vec3 endp = p - tw.dir;
         const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
-        for (int j = 0; j < tw.numPolys; ++j)
-          if (tw.polys[std::size_t(j)].used) translateVertexThroughTrmPolygon(tw, poly, j, vn, p, endp, pl);
+        for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
+          translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp, pl);
       }
     }
   }
