@@ -67,11 +67,21 @@ struct Lt4Scene {
 };
 
 /// Which queries a benchmark runs.
-enum class Kind { BoxTranslation, PointTranslation, Rotation, Contents, PointContents, Contacts };
+enum class Kind {
+  Translation,
+  BoxTranslation,
+  PointTranslation,
+  Rotation,
+  Contents,
+  PointContents,
+  Contacts
+};
 
 bool matches(Kind kind, const cmkit::ParsedQuery& q) {
   const bool point = !q.trm || q.trm->isPoint();
   switch (kind) {
+    case Kind::Translation:
+      return q.op == cmkit::QueryOp::Translation;
     case Kind::BoxTranslation:
       return q.op == cmkit::QueryOp::Translation && !point;
     case Kind::PointTranslation:
@@ -185,7 +195,8 @@ void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays ho
 /// Registers the lt4 benchmarks (they share one lazily loaded scene).
 bool registerLt4Benchmarks() {
   auto scene = std::make_shared<Lt4Scene>();
-  const std::pair<const char*, Kind> kinds[] = {{"lt4/translation_box", Kind::BoxTranslation},
+  const std::pair<const char*, Kind> kinds[] = {{"lt4/translation", Kind::Translation},
+                                                {"lt4/translation_box", Kind::BoxTranslation},
                                                 {"lt4/translation_point", Kind::PointTranslation},
                                                 {"lt4/rotation", Kind::Rotation},
                                                 {"lt4/contents", Kind::Contents},

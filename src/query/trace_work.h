@@ -77,7 +77,6 @@ struct QueryWork::Scratch {
   std::vector<Feature> edges;                 ///< per model edge
   std::vector<Feature> vertices;              ///< per model vertex
   std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon
-  std::vector<Pluecker> polygonVertexRays;    ///< per start vertex of the current polygon's edges
   // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
   // of a group's mask standing for edge kEdgeGroup * group + i.
   /// Bit i of vertexEdgeSides[group * kMaxTrmVertices + v]: the path of
@@ -245,7 +244,7 @@ enum class PlaneCull {
 PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
-/// edges' stored direction) and makes room for polygonVertexRays.
+/// edges' stored direction).
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryWork::Scratch& s);
 
 /// Sets tw's feature counts from `trm` and its vertices at tw.start (turned by

@@ -200,10 +200,10 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
   const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
   const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
   const unsigned bit = trmEdgeBit(trmEdgeNum);
-  const unsigned b1 =
-      s.vertexSideBit(v1, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i]); });
-  const unsigned b2 =
-      s.vertexSideBit(v2, bit, [&] { return te.pl.permutedInnerProduct(s.polygonVertexRays[i + 1]); });
+  const unsigned b1 = s.vertexSideBit(
+      v1, bit, [&] { return te.pl.permutedInnerProduct(Pluecker::fromRay(m.vertices[v1], -tw.dir)); });
+  const unsigned b2 = s.vertexSideBit(
+      v2, bit, [&] { return te.pl.permutedInnerProduct(Pluecker::fromRay(m.vertices[v2], -tw.dir)); });
   if (b1 == b2) return;
 
   Real f1;
@@ -337,13 +337,10 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   } else {
     if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
       return cull == PlaneCull::Stop;
-    // Lines of the polygon's edges (stored direction) and of its vertices'
-    // movement relative to the trace model (-dir).
+    // Lines of the polygon's edges (stored direction) and the sides of them
+    // the trace-model vertices pass.
     const auto edges = m.edgesOf(poly);
     setPolygonEdgeLines(m, edges, s);
-    for (std::size_t i = 0; i < edges.size(); ++i)
-      s.polygonVertexRays[i] = Pluecker::fromRay(m.vertices[std::size_t(m.edgeStart(edges[i]))], -tw.dir);
-    s.polygonVertexRays[edges.size()] = s.polygonVertexRays[0];
     sidesOfPolygonEdges(tw, edges);
     // The polygon edges the trace-model edges are tested against: not
     // internal, not tested with an earlier polygon (the marks are set below,

@@ -33,6 +33,15 @@ void QueryWork::Scratch::begin(const CollisionModel& model) {
 
 namespace {
 
+/// A hint to load the cache line at p (no effect on results).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 // Tests the items referenced at one node.
 void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
   const CollisionModel& m = tw.model;
@@ -89,6 +98,9 @@ void traceThroughTree(TraceWork& tw) {
       if (tw.quickExit) return;
       if (tw.fraction <= cur.p1f) break;  // something nearer was hit already
       const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+      // The walk goes on to one child or both: start loading the back one
+      // (the front one follows in memory) while this node's items are tested.
+      if (!node.isLeaf()) prefetch(&tw.model.nodes[std::size_t(node.children[1])]);
       if (node.numPolygonRefs || (tw.positionTest && node.numBrushRefs)) traceTrmThroughNode(tw, node);
       if (tw.positionTest && tw.fraction == 0) break;
       if (node.isLeaf()) break;
@@ -166,10 +178,7 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
 
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
                          QueryWork::Scratch& s) {
-  if (s.polygonEdgeLines.size() < edges.size() + 1) {
-    s.polygonEdgeLines.resize(edges.size() + 1);
-    s.polygonVertexRays.resize(edges.size() + 1);
-  }
+  if (s.polygonEdgeLines.size() < edges.size()) s.polygonEdgeLines.resize(edges.size());
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
     s.polygonEdgeLines[i] =
@@ -188,7 +197,9 @@ void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis,
     if (trmRotated) p = p * trmAxis;
     p += tw.start;
     if (modelRotated) p = modelAxis * p;  // into the model's frame
-    tw.vertices[std::size_t(i)] = WorkVertex{p, {}, {}, used};
+    WorkVertex& v = tw.vertices[std::size_t(i)];
+    v.p = p;
+    v.used = used;  // endp and pl are set by the query kinds that use them
   }
 }
 
