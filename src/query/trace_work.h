@@ -206,8 +206,9 @@ struct TraceWork {
 /// Walks the model's tree along tw.start -> tw.end and tests the items met.
 void traceThroughModel(TraceWork& tw);
 
-/// Translation tests of one polygon; true when it blocks completely.
-bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
+/// Translation tests of a list of polygons (a node's) for a trace model;
+/// true when one blocks completely.
+bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 /// The same for a point trace and a list of polygons (a node's).
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 

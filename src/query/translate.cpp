@@ -307,6 +307,62 @@ void shrinkTraceBounds(TraceWork& tw) {
   }
 }
 
+// A polygon that passed the culls of translateTrmThroughPolygons: the plane
+// test, then the trace-model vertices, edges and the model vertices against
+// it. True when the trace model is blocked completely.
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
+    return cull == PlaneCull::Stop;
+  // Lines of the polygon's edges (stored direction) and the sides of them
+  // the trace-model vertices pass.
+  const auto edges = m.edgesOf(poly);
+  setPolygonEdgeLines(m, edges, s);
+  sidesOfPolygonEdges(tw, edges);
+  // The polygon edges the trace-model edges are tested against: not
+  // internal, not tested with an earlier polygon (the marks are set below,
+  // after the edge tests, so these masks hold for every trace-model edge).
+  bool anyToTest = false;
+  if (tw.numEdges > 0) {
+    for (std::size_t first = 0; first < edges.size(); first += kEdgeGroup) {
+      std::uint64_t toTest = 0;
+      for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size()); ++i) {
+        const std::size_t e = std::size_t(std::abs(edges[i]));
+        toTest |= std::uint64_t(!s.isChecked(s.edges[e]) && !m.edges[e].internal) << (i - first);
+      }
+      s.edgesToTest[first / kEdgeGroup] = toTest;
+      anyToTest |= toTest != 0;
+    }
+  }
+
+  translateTrmVerticesThroughPolygon(tw, polyNum, poly);
+  if (anyToTest)
+    for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1)
+      translateTrmEdgeThroughPolygon(tw, poly, std::countr_zero(moving));
+  // Model vertices through the trace model's front polygons; every edge and
+  // vertex once per query.
+  for (std::int32_t edgeNum : edges) {
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    if (s.testAndMark(s.edges[e])) continue;
+    const CmEdge& edge = m.edges[e];
+    if (edge.internal) continue;
+    for (int k = 0; k < 2; ++k) {
+      const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
+      if (s.testAndMark(s.vertices[vn])) continue;
+      const Vec3& p = m.vertices[vn];
+      if (!tw.bounds.containsPoint(p)) continue;
+      const Vec3 endp = p - tw.dir;
+      const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
+      for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
+        translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp, pl);
+    }
+  }
+
+  shrinkTraceBounds(tw);
+  return tw.fraction == 0;
+}
+
 }  // namespace
 
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
@@ -325,65 +381,14 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
   return false;
 }
 
-bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
-  const CollisionModel& m = tw.model;
+bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryWork::Scratch& s = tw.scratch;
-  if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
-  const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
-  if (!mayTouch(tw, poly)) return false;
-
-  if (tw.pointTrace) {
-    translatePointThroughPolygon(tw, polyNum, poly);
-  } else {
-    if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
-      return cull == PlaneCull::Stop;
-    // Lines of the polygon's edges (stored direction) and the sides of them
-    // the trace-model vertices pass.
-    const auto edges = m.edgesOf(poly);
-    setPolygonEdgeLines(m, edges, s);
-    sidesOfPolygonEdges(tw, edges);
-    // The polygon edges the trace-model edges are tested against: not
-    // internal, not tested with an earlier polygon (the marks are set below,
-    // after the edge tests, so these masks hold for every trace-model edge).
-    bool anyToTest = false;
-    if (tw.numEdges > 0) {
-      for (std::size_t first = 0; first < edges.size(); first += kEdgeGroup) {
-        std::uint64_t toTest = 0;
-        for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size()); ++i) {
-          const std::size_t e = std::size_t(std::abs(edges[i]));
-          toTest |= std::uint64_t(!s.isChecked(s.edges[e]) && !m.edges[e].internal) << (i - first);
-        }
-        s.edgesToTest[first / kEdgeGroup] = toTest;
-        anyToTest |= toTest != 0;
-      }
-    }
-
-    translateTrmVerticesThroughPolygon(tw, polyNum, poly);
-    if (anyToTest)
-      for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1)
-        translateTrmEdgeThroughPolygon(tw, poly, std::countr_zero(moving));
-    // Model vertices through the trace model's front polygons; every edge and
-    // vertex once per query.
-    for (std::int32_t edgeNum : edges) {
-      const std::size_t e = std::size_t(std::abs(edgeNum));
-      if (s.testAndMark(s.edges[e])) continue;
-      const CmEdge& edge = m.edges[e];
-      if (edge.internal) continue;
-      for (int k = 0; k < 2; ++k) {
-        const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
-        if (s.testAndMark(s.vertices[vn])) continue;
-        const Vec3& p = m.vertices[vn];
-        if (!tw.bounds.containsPoint(p)) continue;
-        const Vec3 endp = p - tw.dir;
-        const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
-        for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
-          translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp, pl);
-      }
-    }
+  for (const std::int32_t polyNum : polygons) {
+    if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    if (mayTouch(tw, poly) && translateTrmThroughPolygon(tw, polyNum, poly)) return true;
   }
-
-  shrinkTraceBounds(tw);
-  return tw.fraction == 0;
+  return false;
 }
 
 }  // namespace cmkit

@@ -63,8 +63,7 @@ void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
     translatePointThroughPolygons(tw, m.polygonsAt(node));
     return;
   }
-  for (std::int32_t p : m.polygonsAt(node))
-    if (translateTrmThroughPolygon(tw, p)) return;
+  translateTrmThroughPolygons(tw, m.polygonsAt(node));
 }
 
 // Visits every node whose region the box touches (closed: a box touching a
