@@ -142,6 +142,15 @@ struct QueryWork::Scratch {
   }
 };
 
+/// A hint to start loading the cache line at p (no effect on results).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 /// The side-cache bit of trace-model edge n (signed or not; 1 <= |n| <= 32).
 inline unsigned trmEdgeBit(int n) { return unsigned(std::abs(n) - 1); }
 

@@ -383,6 +383,9 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 
 bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryWork::Scratch& s = tw.scratch;
+  // The culls' loads, started together (a mispredicted cull would otherwise
+  // hold up the next polygon's).
+  for (const std::int32_t polyNum : polygons) prefetch(&tw.model.polygons[std::size_t(polyNum)]);
   for (const std::int32_t polyNum : polygons) {
     if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];

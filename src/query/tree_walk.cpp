@@ -33,15 +33,6 @@ void QueryWork::Scratch::begin(const CollisionModel& model) {
 
 namespace {
 
-/// A hint to load the cache line at p (no effect on results).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
-
 // Tests the items referenced at one node.
 void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
   const CollisionModel& m = tw.model;
