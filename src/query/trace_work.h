@@ -61,7 +61,12 @@ struct QueryWork::Scratch {
   /// Everything a query keeps about one model edge or vertex, together so
   /// that one cache line serves the mark and the side caches (the marks are
   /// read for every edge of every polygon met, mostly cache misses on a
-  /// large model). 16 bytes: four to a cache line.
+  /// large model). 16 bytes: four to a cache line. Translations use the
+  /// side bits of vertices only (the edge sides are computed per polygon,
+  /// sidesOfPolygonEdges in translate.cpp): a model vertex's side of a
+  /// trace-model edge is computed by two tests with the product's operands
+  /// in different orders, whose float sums can differ in sign near zero, so
+  /// the first one computed must win, as in the original.
   struct Feature {
     std::uint32_t checked = 0;   ///< tested this query (== generation)
     std::uint32_t cacheGen = 0;  ///< side / sideSet valid (== generation)

@@ -291,6 +291,14 @@ inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
          !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
 }
 
+// Bounds::containsPoint with all six comparisons made: whether a model
+// vertex lies in the trace bounds is unpredictable (Bounds::containsPoint
+// stops at the first failed one, which suits point contents better).
+inline bool insideBox(const Bounds& b, const Vec3& p) {
+  return !((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
+           (p.z > b.max.z));
+}
+
 // A nearer hit shrinks the trace bounds (not when collecting contacts).
 void shrinkTraceBounds(TraceWork& tw) {
   if (tw.fraction < 1 && !tw.gettingContacts()) {
@@ -351,7 +359,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
       if (s.testAndMark(s.vertices[vn])) continue;
       const Vec3& p = m.vertices[vn];
-      if (!tw.bounds.containsPoint(p)) continue;
+      if (!insideBox(tw.bounds, p)) continue;
       const Vec3 endp = p - tw.dir;
       const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
       for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
