@@ -84,11 +84,12 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 // Which side of each edge line of the current polygon the path of every
 // moving trace-model vertex passes, and which edges are used backwards (see
 // the masks in QueryWork::Scratch). A side is the sign bit of
-// polygonEdgeLines[i] . (vertex v's line), the product the original caches
+// (edge i's line, stored direction) . (vertex v's line), the product the original caches
 // per model edge. It depends only on the edge and the vertex, so computing
 // all of a polygon's at once gives the same bits as the cache, without its
 // branches and scattered memory.
 void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
+  const CollisionModel& m = tw.model;
   QueryWork::Scratch& s = tw.scratch;
   const std::size_t groups = (edges.size() + kEdgeGroup - 1) / kEdgeGroup;
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
@@ -102,7 +103,9 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
     std::uint64_t reversed = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      const Pluecker& l = s.polygonEdgeLines[first + i];
+      const CmEdge& edge = m.edges[std::size_t(std::abs(edges[first + i]))];
+      const Pluecker l = Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])],
+                                            m.vertices[std::size_t(edge.vertex[1])]);
       for (int k = 0; k < 6; ++k) c[std::size_t(k)][i] = l[k];
       reversed |= std::uint64_t(edges[first + i] < 0) << i;
     }
@@ -195,7 +198,6 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::int32_t edgeNum = m.edgesOf(poly)[i];
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
-  const Pluecker& pl = s.polygonEdgeLines[i];
   // The polygon edge's two vertices must pass the trm edge on different sides.
   const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
   const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
@@ -206,12 +208,12 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
       v2, bit, [&] { return te.pl.permutedInnerProduct(Pluecker::fromRay(m.vertices[v2], -tw.dir)); });
   if (b1 == b2) return;
 
-  Real f1;
-  if (!translateEdgeThroughEdge(te.cross, te.pl, pl, f1)) return;
-  if (f1 < 0) return;  // moving away from the edge
-  // The same against the edge moved out along its normal by the clip epsilon.
   const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
   const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
+  Real f1;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, Pluecker::fromLine(start, end), f1)) return;
+  if (f1 < 0) return;  // moving away from the edge
+  // The same against the edge moved out along its normal by the clip epsilon.
   const Pluecker epsPl =
       Pluecker::fromLine(start + edge.normal * tol::kClipEpsilon, end + edge.normal * tol::kClipEpsilon);
   Real f2;
@@ -323,10 +325,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   QueryWork::Scratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
-  // Lines of the polygon's edges (stored direction) and the sides of them
-  // the trace-model vertices pass.
+  // The sides of the polygon's edge lines the trace-model vertices pass.
   const auto edges = m.edgesOf(poly);
-  setPolygonEdgeLines(m, edges, s);
   sidesOfPolygonEdges(tw, edges);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
