@@ -248,6 +248,16 @@ inline Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
   return 0;
 }
 
+/// fabs(boundsPlaneDistance(b, plane)) > maxDist for maxDist >= 0, without
+/// branches: the whole box is farther than maxDist from the plane.
+inline bool boxBeyondPlane(const Bounds& b, const Plane& plane, Real maxDist) {
+  const Vec3 c = b.center();
+  const Real d1 = plane.distance(c);
+  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
+                  std::fabs((b.max.z - c.z) * plane.normal.z);
+  return (d1 - d2 > maxDist) | (-(d1 + d2) > maxDist);
+}
+
 /// What the plane test of a polygon against the trace bounds decides.
 enum class PlaneCull {
   Test,  ///< the bounds straddle the plane: test the polygon

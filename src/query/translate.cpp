@@ -287,10 +287,11 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
 // Culling: contents, bounds, back faces, distance from the heart planes.
 // True when the polygon may be touched.
 inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
-  return (poly.contents & tw.contentMask) && tw.bounds.intersects(poly.bounds) &&
-         !(poly.plane.normal.dot(tw.dir) > 0) &&  // only front faces collide
-         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) &&
-         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
+  if (!(poly.contents & tw.contentMask) || !tw.bounds.intersects(poly.bounds)) return false;
+  // The rest without branches between them (their outcome is unpredictable).
+  const bool backFace = poly.plane.normal.dot(tw.dir) > 0;  // only front faces collide
+  return !(backFace | boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1) |
+           boxBeyondPlane(poly.bounds, tw.heartPlane2, tw.maxDistFromHeartPlane2));
 }
 
 // Bounds::containsPoint with all six comparisons made: whether a model
