@@ -46,12 +46,10 @@ struct Bounds {
   constexpr Vec3 center() const { return (min + max) * Real(0.5); }
   constexpr Vec3 size() const { return max - min; }
 
-  /// True when the boxes overlap or touch (closed intervals). All six
-  /// comparisons are made (| rather than ||): in the queries' culls the
-  /// outcome is unpredictable, and a mispredicted branch costs more.
+  /// True when the boxes overlap or touch (closed intervals).
   constexpr bool intersects(const Bounds& b) const {
-    return !((b.max.x < min.x) | (b.max.y < min.y) | (b.max.z < min.z) | (b.min.x > max.x) |
-             (b.min.y > max.y) | (b.min.z > max.z));
+    return !(b.max.x < min.x || b.max.y < min.y || b.max.z < min.z || b.min.x > max.x || b.min.y > max.y ||
+             b.min.z > max.z);
   }
   /// The common part (cleared when there is none).
   constexpr Bounds intersection(const Bounds& b) const {

@@ -285,21 +285,36 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
 }
 
 // Culling: contents, bounds, back faces, distance from the heart planes.
-// True when the polygon may be touched.
-inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
-  if (!(poly.contents & tw.contentMask) || !tw.bounds.intersects(poly.bounds)) return false;
-  // The rest without branches between them (their outcome is unpredictable).
-  const bool backFace = poly.plane.normal.dot(tw.dir) > 0;  // only front faces collide
-  return !(backFace | boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1) |
-           boxBeyondPlane(poly.bounds, tw.heartPlane2, tw.maxDistFromHeartPlane2));
+// True when the polygon may be touched. Point traces make each test only
+// when the ones before passed: a point's thin bounds reject most polygons at
+// once, predictably.
+inline bool pointMayTouch(const TraceWork& tw, const CmPolygon& poly) {
+  return (poly.contents & tw.contentMask) && tw.bounds.intersects(poly.bounds) &&
+         !(poly.plane.normal.dot(tw.dir) > 0) &&  // only front faces collide
+         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) &&
+         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
 }
 
-// Bounds::containsPoint with all six comparisons made: whether a model
-// vertex lies in the trace bounds is unpredictable (Bounds::containsPoint
-// stops at the first failed one, which suits point contents better).
+// The comparisons of Bounds::intersects and Bounds::containsPoint, all made
+// (| rather than ||): for a trace model's larger bounds which polygons and
+// vertices pass is unpredictable, and a mispredicted branch costs more than
+// the comparisons it would skip.
+inline bool boxesTouch(const Bounds& a, const Bounds& b) {
+  return !((b.max.x < a.min.x) | (b.max.y < a.min.y) | (b.max.z < a.min.z) | (b.min.x > a.max.x) |
+           (b.min.y > a.max.y) | (b.min.z > a.max.z));
+}
 inline bool insideBox(const Bounds& b, const Vec3& p) {
   return !((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
            (p.z > b.max.z));
+}
+
+// The same culls for a trace model: after contents and bounds, the rest
+// without branches between them.
+inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
+  if (!(poly.contents & tw.contentMask) || !boxesTouch(tw.bounds, poly.bounds)) return false;
+  const bool backFace = poly.plane.normal.dot(tw.dir) > 0;  // only front faces collide
+  return !(backFace | boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1) |
+           boxBeyondPlane(poly.bounds, tw.heartPlane2, tw.maxDistFromHeartPlane2));
 }
 
 // A nearer hit shrinks the trace bounds (not when collecting contacts).
@@ -379,7 +394,7 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
   for (const std::int32_t polyNum : polygons) {
     if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
-    if (!mayTouch(tw, poly)) continue;
+    if (!pointMayTouch(tw, poly)) continue;
     const Real before = tw.fraction;
     translatePointThroughPolygon(tw, polyNum, poly);
     if (tw.fraction != before) {
