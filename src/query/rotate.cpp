@@ -434,29 +434,19 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     }
   }
 
-  // Model vertices through the trace model's polygons, once per query
-  // (these culls do not depend on the polygon).
-  for (const std::int32_t edgeNum : edges) {
-    const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (s.testAndMark(s.edges[e])) continue;
-    const CmEdge& edge = m.edges[e];
-    if (edge.internal) continue;
-    for (int k = 0; k < 2; ++k) {
-      const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
-      if (s.testAndMark(s.vertices[vn])) continue;
-      const Vec3& p = m.vertices[vn];
-      if (!tw.bounds.containsPoint(p)) continue;
-      const Vec3 ro = rw.origin + rw.axis * rw.axis.dot(p - rw.origin);
-      if ((p - ro).lengthSquared() <= tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon) continue;
-      const Vec3 endp = rw.origin + (p - rw.origin) * rw.backMatrix;
-      for (int j = 0; j < tw.numPolys; ++j) {
-        const WorkPolygon& tp = tw.polys[std::size_t(j)];
-        if (!tp.used || !rw.polygons[std::size_t(j)].bounds.containsPoint(p)) continue;
-        if (backCull && tp.plane.distance(p) < 0) continue;
-        rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
-      }
+  // Model vertices through the trace model's polygons (these culls do not
+  // depend on the polygon).
+  forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
+    const Vec3 ro = rw.origin + rw.axis * rw.axis.dot(p - rw.origin);
+    if ((p - ro).lengthSquared() <= tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon) return;
+    const Vec3 endp = rw.origin + (p - rw.origin) * rw.backMatrix;
+    for (int j = 0; j < tw.numPolys; ++j) {
+      const WorkPolygon& tp = tw.polys[std::size_t(j)];
+      if (!tp.used || !rw.polygons[std::size_t(j)].bounds.containsPoint(p)) continue;
+      if (backCull && tp.plane.distance(p) < 0) continue;
+      rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
     }
-  }
+  });
   return finishPolygon(tw, rw);
 }
 

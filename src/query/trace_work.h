@@ -230,6 +230,33 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 /// the items met; used by rotations (the box of a part of the arc).
 void traceBoxThroughModel(TraceWork& tw, const Bounds& box);
 
+/// Calls f(vertex number, position) for the vertices of a polygon's edges
+/// that the query meets for the first time and that lie in the trace bounds:
+/// every model edge and vertex once per query (marked as met), internal
+/// edges skipped. The box test makes all six comparisons (which vertices lie
+/// in the bounds is unpredictable; a mispredicted branch costs more).
+template <class F>
+void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
+  const CollisionModel& m = tw.model;
+  QueryWork::Scratch& s = tw.scratch;
+  const Bounds& b = tw.bounds;
+  for (const std::int32_t edgeNum : edges) {
+    const std::size_t e = std::size_t(std::abs(edgeNum));
+    if (s.testAndMark(s.edges[e])) continue;
+    const CmEdge& edge = m.edges[e];
+    if (edge.internal) continue;
+    for (int k = 0; k < 2; ++k) {
+      const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
+      if (s.testAndMark(s.vertices[vn])) continue;
+      const Vec3& p = m.vertices[vn];
+      if ((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
+          (p.z > b.max.z))
+        continue;
+      f(vn, p);
+    }
+  }
+}
+
 /// Rotation tests of one polygon (rotate.cpp); true when it blocks completely.
 bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
 

@@ -295,17 +295,12 @@ inline bool pointMayTouch(const TraceWork& tw, const CmPolygon& poly) {
          !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
 }
 
-// The comparisons of Bounds::intersects and Bounds::containsPoint, all made
-// (| rather than ||): for a trace model's larger bounds which polygons and
-// vertices pass is unpredictable, and a mispredicted branch costs more than
-// the comparisons it would skip.
+// The comparisons of Bounds::intersects, all made (| rather than ||): for a
+// trace model's larger bounds which polygons pass is unpredictable, and a
+// mispredicted branch costs more than the comparisons it would skip.
 inline bool boxesTouch(const Bounds& a, const Bounds& b) {
   return !((b.max.x < a.min.x) | (b.max.y < a.min.y) | (b.max.z < a.min.z) | (b.min.x > a.max.x) |
            (b.min.y > a.max.y) | (b.min.z > a.max.z));
-}
-inline bool insideBox(const Bounds& b, const Vec3& p) {
-  return !((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
-           (p.z > b.max.z));
 }
 
 // The same culls for a trace model: after contents and bounds, the rest
@@ -364,24 +359,13 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   if (anyToTest)
     for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1)
       translateTrmEdgeThroughPolygon(tw, poly, std::countr_zero(moving));
-  // Model vertices through the trace model's front polygons; every edge and
-  // vertex once per query.
-  for (std::int32_t edgeNum : edges) {
-    const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (s.testAndMark(s.edges[e])) continue;
-    const CmEdge& edge = m.edges[e];
-    if (edge.internal) continue;
-    for (int k = 0; k < 2; ++k) {
-      const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
-      if (s.testAndMark(s.vertices[vn])) continue;
-      const Vec3& p = m.vertices[vn];
-      if (!insideBox(tw.bounds, p)) continue;
-      const Vec3 endp = p - tw.dir;
-      const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
-      for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
-        translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp, pl);
-    }
-  }
+  // Model vertices through the trace model's front polygons.
+  forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
+    const Vec3 endp = p - tw.dir;
+    const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
+    for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
+      translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp, pl);
+  });
 
   shrinkTraceBounds(tw);
   return tw.fraction == 0;
