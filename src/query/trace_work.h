@@ -230,16 +230,69 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 /// the items met; used by rotations (the box of a part of the arc).
 void traceBoxThroughModel(TraceWork& tw, const Bounds& box);
 
+/// Rotation tests of one polygon (rotate.cpp); true when it blocks completely.
+bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
+
+/// Position tests (contents.cpp); true when stuck.
+bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);
+bool testTrmInPolygon(TraceWork& tw, std::int32_t polygon);
+
+/// A box against a plane: the distance of its centre (`centre`) and the
+/// half extent of the box along the plane's normal (`extent`).
+struct BoxPlaneSpan {
+  Real centre, extent;
+};
+inline BoxPlaneSpan boxPlaneSpan(const Bounds& b, const Plane& plane) {
+  const Vec3 c = b.center();
+  return {plane.distance(c), std::fabs((b.max.x - c.x) * plane.normal.x) +
+                                 std::fabs((b.max.y - c.y) * plane.normal.y) +
+                                 std::fabs((b.max.z - c.z) * plane.normal.z)};
+}
+
+/// Distance of a box to a plane: 0 when it straddles the plane.
+inline Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
+  const auto [d1, d2] = boxPlaneSpan(b, plane);
+  if (d1 - d2 > 0) return d1 - d2;
+  if (d1 + d2 < 0) return d1 + d2;
+  return 0;
+}
+
+/// fabs(boundsPlaneDistance(b, plane)) > maxDist for maxDist >= 0, without
+/// branches: the whole box is farther than maxDist from the plane.
+inline bool boxBeyondPlane(const Bounds& b, const Plane& plane, Real maxDist) {
+  const auto [d1, d2] = boxPlaneSpan(b, plane);
+  return (d1 - d2 > maxDist) | (-(d1 + d2) > maxDist);
+}
+
+/// Bounds::intersects and Bounds::containsPoint with all six comparisons
+/// made (| rather than ||): for a trace model's bounds which polygons and
+/// vertices pass is unpredictable, and a mispredicted branch costs more than
+/// the comparisons it would skip. (Point traces keep the short-circuit forms:
+/// their thin bounds reject most items at the first comparison.)
+inline bool boxesTouch(const Bounds& a, const Bounds& b) {
+  return !((b.max.x < a.min.x) | (b.max.y < a.min.y) | (b.max.z < a.min.z) | (b.min.x > a.max.x) |
+           (b.min.y > a.max.y) | (b.min.z > a.max.z));
+}
+inline bool insideBox(const Bounds& b, const Vec3& p) {
+  return !((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
+           (p.z > b.max.z));
+}
+
+/// The line of model edge e (unsigned number) in its stored direction.
+inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) {
+  const CmEdge& edge = m.edges[e];
+  return Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
+}
+
 /// Calls f(vertex number, position) for the vertices of a polygon's edges
 /// that the query meets for the first time and that lie in the trace bounds:
 /// every model edge and vertex once per query (marked as met), internal
 /// edges skipped. The box test makes all six comparisons (which vertices lie
-/// in the bounds is unpredictable; a mispredicted branch costs more).
+/// in the bounds is unpredictable: insideBox).
 template <class F>
 void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
   const CollisionModel& m = tw.model;
   QueryWork::Scratch& s = tw.scratch;
-  const Bounds& b = tw.bounds;
   for (const std::int32_t edgeNum : edges) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edges[e])) continue;
@@ -249,40 +302,9 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
       if (s.testAndMark(s.vertices[vn])) continue;
       const Vec3& p = m.vertices[vn];
-      if ((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
-          (p.z > b.max.z))
-        continue;
-      f(vn, p);
+      if (insideBox(tw.bounds, p)) f(vn, p);
     }
   }
-}
-
-/// Rotation tests of one polygon (rotate.cpp); true when it blocks completely.
-bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
-
-/// Position tests (contents.cpp); true when stuck.
-bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);
-bool testTrmInPolygon(TraceWork& tw, std::int32_t polygon);
-
-/// Distance of a box to a plane: 0 when it straddles the plane.
-inline Real boundsPlaneDistance(const Bounds& b, const Plane& plane) {
-  const Vec3 c = b.center();
-  const Real d1 = plane.distance(c);
-  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
-                  std::fabs((b.max.z - c.z) * plane.normal.z);
-  if (d1 - d2 > 0) return d1 - d2;
-  if (d1 + d2 < 0) return d1 + d2;
-  return 0;
-}
-
-/// fabs(boundsPlaneDistance(b, plane)) > maxDist for maxDist >= 0, without
-/// branches: the whole box is farther than maxDist from the plane.
-inline bool boxBeyondPlane(const Bounds& b, const Plane& plane, Real maxDist) {
-  const Vec3 c = b.center();
-  const Real d1 = plane.distance(c);
-  const Real d2 = std::fabs((b.max.x - c.x) * plane.normal.x) + std::fabs((b.max.y - c.y) * plane.normal.y) +
-                  std::fabs((b.max.z - c.z) * plane.normal.z);
-  return (d1 - d2 > maxDist) | (-(d1 + d2) > maxDist);
 }
 
 /// What the plane test of a polygon against the trace bounds decides.

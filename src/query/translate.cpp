@@ -8,8 +8,9 @@
 
 #include "query/trace_work.h"
 
-// SSE2 on x86-64 (four trace-model vertices at a time); any other target, or
-// -DCMKIT_NO_SIMD, uses the portable loop, which does the same arithmetic.
+// SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time); any
+// other target, or -DCMKIT_NO_SIMD, uses the portable loop, which does the
+// same arithmetic.
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
 #include <emmintrin.h>
 #define CMKIT_SIDES_SSE2 1
@@ -67,10 +68,7 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
   const Real f = translationPlaneFraction(poly.plane, v.p, v.endp);
   if (!(f < tw.fraction)) return;
   for (std::int32_t edgeNum : m.edgesOf(poly)) {
-    const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
-    const Real product =
-        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])])
-            .permutedInnerProduct(v.pl);
+    const Real product = modelEdgeLine(m, std::size_t(std::abs(edgeNum))).permutedInnerProduct(v.pl);
     if (unsigned(edgeNum < 0) ^ unsigned(signBitSet(product))) return;  // passes the edge on the outside
   }
   tw.fraction = f < 0 ? Real(0) : f;
@@ -83,11 +81,11 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 
 // Which side of each edge line of the current polygon the path of every
 // moving trace-model vertex passes, and which edges are used backwards (see
-// the masks in QueryWork::Scratch). A side is the sign bit of
-// (edge i's line, stored direction) . (vertex v's line), the product the original caches
-// per model edge. It depends only on the edge and the vertex, so computing
-// all of a polygon's at once gives the same bits as the cache, without its
-// branches and scattered memory.
+// the masks in QueryWork::Scratch). A side is the sign bit of (edge i's line,
+// stored direction) . (vertex v's line), the product the original caches per
+// model edge. It depends only on the edge and the vertex, so computing all of
+// a polygon's at once gives the same bits as the cache, without its branches
+// and scattered memory.
 void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
   const CollisionModel& m = tw.model;
   QueryWork::Scratch& s = tw.scratch;
@@ -103,9 +101,7 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
     std::uint64_t reversed = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      const CmEdge& edge = m.edges[std::size_t(std::abs(edges[first + i]))];
-      const Pluecker l = Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])],
-                                            m.vertices[std::size_t(edge.vertex[1])]);
+      const Pluecker l = modelEdgeLine(m, std::size_t(std::abs(edges[first + i])));
       for (int k = 0; k < 6; ++k) c[std::size_t(k)][i] = l[k];
       reversed |= std::uint64_t(edges[first + i] < 0) << i;
     }
@@ -293,14 +289,6 @@ inline bool pointMayTouch(const TraceWork& tw, const CmPolygon& poly) {
          !(poly.plane.normal.dot(tw.dir) > 0) &&  // only front faces collide
          !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) &&
          !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
-}
-
-// The comparisons of Bounds::intersects, all made (| rather than ||): for a
-// trace model's larger bounds which polygons pass is unpredictable, and a
-// mispredicted branch costs more than the comparisons it would skip.
-inline bool boxesTouch(const Bounds& a, const Bounds& b) {
-  return !((b.max.x < a.min.x) | (b.max.y < a.min.y) | (b.max.z < a.min.z) | (b.min.x > a.max.x) |
-           (b.min.y > a.max.y) | (b.min.z > a.max.z));
 }
 
 // The same culls for a trace model: after contents and bounds, the rest

@@ -169,11 +169,8 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
                          QueryWork::Scratch& s) {
   if (s.polygonEdgeLines.size() < edges.size()) s.polygonEdgeLines.resize(edges.size());
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const CmEdge& edge = m.edges[std::size_t(std::abs(edges[i]))];
-    s.polygonEdgeLines[i] =
-        Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
-  }
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    s.polygonEdgeLines[i] = modelEdgeLine(m, std::size_t(std::abs(edges[i])));
 }
 
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
