@@ -344,3 +344,80 @@ TEST(PointContents, SeesBrushesAndHandlesRotation) {
   EXPECT_EQ(pointContents(m, {-5, 25, 5}, turned), contents::kWater);
   EXPECT_EQ(pointContents(m, {25, 5, 5}, turned), 0u);
 }
+
+namespace {
+
+// A floor that is one polygon with 100 edges: the square -256..256 in x and
+// y at z = 0, facing up, with 25 vertices on each side (counter-clockwise
+// seen from above: the bottom side first, the left side last, as edges 76 to
+// 100). More than 64 edges: the edge tests work on groups of 64.
+CollisionModel hundredEdgeFloor() {
+  CollisionModel m;
+  m.name = "hundred";
+  const Vec3 corners[4] = {{-256, -256, 0}, {256, -256, 0}, {256, 256, 0}, {-256, 256, 0}};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 25; ++k)
+      m.vertices.push_back(corners[side] + (corners[(side + 1) % 4] - corners[side]) * (Real(k) / 25));
+  m.edges.emplace_back();  // the dummy edge 0
+  CmPolygon floor;
+  floor.plane = Plane{{0, 0, 1}, 0};
+  floor.contents = contents::kSolid;
+  floor.bounds = {{-256, -256, 0}, {256, 256, 0}};
+  floor.numEdges = 100;
+  for (std::int32_t i = 0; i < 100; ++i) {
+    CmEdge e;
+    e.vertex[0] = i;
+    e.vertex[1] = (i + 1) % 100;
+    e.numUsers = 1;
+    m.edges.push_back(e);
+    m.polygonEdges.push_back(i + 1);
+  }
+  m.polygons.push_back(floor);
+  m.nodes.assign(1, CmNode{});
+  m.polygonRefs.push_back(0);
+  m.nodes[0].numPolygonRefs = 1;
+  m.bounds = floor.bounds;
+  m.contents = floor.contents;
+  computeEdgeNormals(m);
+  return m;
+}
+
+TraceResult dropBox(const CollisionModel& m, Real x) {
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {x, 0, 100};
+  q.end = {x, 0, -100};
+  return translate(m, q, work);
+}
+
+}  // namespace
+
+TEST(Translation, PolygonWithMoreThan64Edges) {
+  const CollisionModel m = hundredEdgeFloor();
+  ASSERT_GT(m.polygons[0].numEdges, 64u);
+  // Over the middle and half over the left side (edges 76..100): the
+  // vertices inside stop 0.25 above the floor.
+  for (const Real x : {Real(0), Real(-250)}) {
+    const TraceResult r = dropBox(m, x);
+    EXPECT_NEAR(r.fraction, 99.75f / 200, 1e-6f) << "x " << x;
+    EXPECT_EQ(r.contact.type, ContactType::TrmVertex) << "x " << x;
+    EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1)) << "x " << x;
+  }
+  // Wholly beyond the left side: every vertex is outside one of the last
+  // edges, so nothing is hit.
+  EXPECT_EQ(dropBox(m, -300).fraction, 1.0f);
+
+  // Sliding flat into the left rim: the box's front face (x = -384) meets the
+  // rim (x = -256) after 128 of 300 units, 0.25 short.
+  const TraceModel slab = *TraceModel::box({{-16, -16, -8}, {16, 16, 8}});
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &slab;
+  q.start = {-400, 0, 0};
+  q.end = {-100, 0, 0};
+  const TraceResult r = translate(m, q, work);
+  EXPECT_NEAR(r.fraction, 127.75f / 300, 1e-5f);
+  expectVecNear(r.contact.normal, {-1, 0, 0}, 1e-5f);
+}
