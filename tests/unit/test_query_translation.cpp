@@ -347,14 +347,14 @@ TEST(PointContents, SeesBrushesAndHandlesRotation) {
 
 namespace {
 
-// A floor that is one polygon with 100 edges: the square -256..256 in x and
-// y at z = 0, facing up, with 25 vertices on each side (counter-clockwise
-// seen from above: the bottom side first, the left side last, as edges 76 to
-// 100). More than 64 edges: the edge tests work on groups of 64.
+// A floor that is one polygon with 100 edges: the diamond |x| + |y| <= 256
+// at z = 0, facing up, with 25 vertices on each side, counter-clockwise seen
+// from above from (0, -256); the lower-left side x + y = -256 comes last, as
+// edges 76 to 100. More than 64 edges: the edge tests work on groups of 64.
 CollisionModel hundredEdgeFloor() {
   CollisionModel m;
   m.name = "hundred";
-  const Vec3 corners[4] = {{-256, -256, 0}, {256, -256, 0}, {256, 256, 0}, {-256, 256, 0}};
+  const Vec3 corners[4] = {{0, -256, 0}, {256, 0, 0}, {0, 256, 0}, {-256, 0, 0}};
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < 25; ++k)
       m.vertices.push_back(corners[side] + (corners[(side + 1) % 4] - corners[side]) * (Real(k) / 25));
@@ -382,13 +382,13 @@ CollisionModel hundredEdgeFloor() {
   return m;
 }
 
-TraceResult dropBox(const CollisionModel& m, Real x) {
+TraceResult dropBox(const CollisionModel& m, Real x, Real y) {
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
   QueryWork work;
   TranslationQuery q;
   q.trm = &box;
-  q.start = {x, 0, 100};
-  q.end = {x, 0, -100};
+  q.start = {x, y, 100};
+  q.end = {x, y, -100};
   return translate(m, q, work);
 }
 
@@ -397,20 +397,21 @@ TraceResult dropBox(const CollisionModel& m, Real x) {
 TEST(Translation, PolygonWithMoreThan64Edges) {
   const CollisionModel m = hundredEdgeFloor();
   ASSERT_GT(m.polygons[0].numEdges, 64u);
-  // Over the middle and half over the left side (edges 76..100): the
-  // vertices inside stop 0.25 above the floor.
-  for (const Real x : {Real(0), Real(-250)}) {
-    const TraceResult r = dropBox(m, x);
-    EXPECT_NEAR(r.fraction, 99.75f / 200, 1e-6f) << "x " << x;
-    EXPECT_EQ(r.contact.type, ContactType::TrmVertex) << "x " << x;
-    EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1)) << "x " << x;
+  // Over the middle and half over the lower-left side: the vertices inside
+  // stop 0.25 above the floor.
+  for (const Real c : {Real(0), Real(-128)}) {
+    const TraceResult r = dropBox(m, c, c);
+    EXPECT_NEAR(r.fraction, 99.75f / 200, 1e-6f) << "at " << c;
+    EXPECT_EQ(r.contact.type, ContactType::TrmVertex) << "at " << c;
+    EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1)) << "at " << c;
   }
-  // Wholly beyond the left side: every vertex is outside one of the last
-  // edges, so nothing is hit.
-  EXPECT_EQ(dropBox(m, -300).fraction, 1.0f);
+  // Inside the floor's bounds but beyond the lower-left side (the nearest
+  // vertex at x + y = -304): every vertex is outside one of the last edges
+  // only, so nothing is hit.
+  EXPECT_EQ(dropBox(m, -168, -168).fraction, 1.0f);
 
-  // Sliding flat into the left rim: the box's front face (x = -384) meets the
-  // rim (x = -256) after 128 of 300 units, 0.25 short.
+  // Sliding flat into the left corner (-256, 0): the box's front face
+  // (x = -384) meets it after 128 of 300 units, 0.25 short.
   const TraceModel slab = *TraceModel::box({{-16, -16, -8}, {16, 16, 8}});
   QueryWork work;
   TranslationQuery q;
