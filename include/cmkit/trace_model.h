@@ -63,8 +63,8 @@ struct TrmEdge {
 };
 
 /// A polygon of a trace model.
-/// (The fields a query reads, normal to the first edges, come first: they
-/// share one cache line.)
+/// (The fields a query reads, the normal to the edge list, come first and
+/// next to each other; the bounds, which queries do not read, last.)
 struct TrmPolygon {
   Vec3 normal;    ///< outward unit normal
   Real dist = 0;  ///< normal . p = dist on the polygon
