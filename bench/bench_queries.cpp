@@ -4,7 +4,8 @@
 // runs the point-translation lines as RayIndex casts. lt4/speedtest_* run the
 // speed test's 1000 point moves from lt4's centre (as cmkit_peers): as point
 // translations, as the same with each move repeated 100 times in a row (every
-// branch predicted, everything cached), and as ray casts.
+// branch predicted, everything cached), and as ray casts (with the node test
+// the processor gets by default, and with the baseline one: SSE2 on x86-64).
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -155,7 +156,7 @@ void runRayCasts(benchmark::State& state, Lt4Scene& scene) {
 }
 
 /// How lt4/speedtest_* run the speed test's point moves.
-enum class SpeedTestRays { Translate, TranslateRepeated, Cast };
+enum class SpeedTestRays { Translate, TranslateRepeated, Cast, CastBaseline };
 
 void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays how) {
   std::call_once(scene.once, [&scene] { scene.load(); });
@@ -173,12 +174,13 @@ void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays ho
   std::vector<cmkit::Vec3> ends(kMoves);
   for (cmkit::Vec3& e : ends)
     for (int k = 0; k < 3; ++k) e[k] = origin[k] + random.signedUniform() * kLength;
-  const cmkit::RayIndex index(world);
+  const cmkit::RayIndex index(world, how == SpeedTestRays::CastBaseline ? cmkit::RayIndex::NodeTest::kBaseline
+                                                                        : cmkit::RayIndex::NodeTest::kAuto);
   cmkit::QueryWork work;
   std::size_t i = 0;
   for (auto _ : state) {
     const cmkit::Vec3& end = ends[how == SpeedTestRays::TranslateRepeated ? i / kRepeats : i];
-    if (how == SpeedTestRays::Cast) {
+    if (how == SpeedTestRays::Cast || how == SpeedTestRays::CastBaseline) {
       benchmark::DoNotOptimize(index.cast(origin, end, kMask));
     } else {
       cmkit::TranslationQuery q;
@@ -209,7 +211,8 @@ bool registerLt4Benchmarks() {
   const std::pair<const char*, SpeedTestRays> rays[] = {
       {"lt4/speedtest_point", SpeedTestRays::Translate},
       {"lt4/speedtest_point_repeated", SpeedTestRays::TranslateRepeated},
-      {"lt4/speedtest_raycast", SpeedTestRays::Cast}};
+      {"lt4/speedtest_raycast", SpeedTestRays::Cast},
+      {"lt4/speedtest_raycast_baseline", SpeedTestRays::CastBaseline}};
   for (const auto& [name, how] : rays)
     benchmark::RegisterBenchmark(
         name, [scene, how = how](benchmark::State& s) { runSpeedTestRays(s, *scene, how); });

@@ -1,7 +1,7 @@
 // ray_index.h: fast ray casts against a collision model.
 //
 // CONTRACT
-// - RayIndex is built once from a model (a 4-wide bounding volume hierarchy
+// - RayIndex is built once from a model (an 8-wide bounding volume hierarchy
 //   over its polygons, with their planes and edge lines copied in; lt4's
 //   world: ~18 ms, ~3 MB) and is then immutable: cast() is a const function,
 //   safe to call from any number of threads at once, with no scratch memory.
@@ -27,6 +27,9 @@
 //   picking ray wants, at a fraction of the cost (docs/performance.md). Where
 //   cast() hits, translate() stops too, no later (tests check this on lt4).
 // - Non-finite input or start == end: no hit.
+// - The node test runs 8 children at a time with AVX2 where the processor has
+//   it (chosen when the index is built), else as two halves with SSE2 (or
+//   one child at a time off x86). Both give exactly the same answers.
 #pragma once
 
 #include <cstddef>
@@ -58,28 +61,37 @@ struct RayHit {
 /// A ray-cast acceleration structure of one model.
 class RayIndex {
  public:
+  /// Which node test cast() uses. kAuto: AVX2 if the processor (and the
+  /// build) has it, else the baseline. kBaseline: SSE2 on x86-64, plain C++
+  /// elsewhere; for tests and comparisons, the answers are the same.
+  enum class NodeTest { kAuto, kBaseline };
+
   /// Indexes every polygon of `model` with a finite plane and bounds.
-  explicit RayIndex(const CollisionModel& model);
+  explicit RayIndex(const CollisionModel& model, NodeTest nodeTest = NodeTest::kAuto);
 
   /// The first front face the segment start -> end crosses (model placed in
   /// the world by `placement`).
   RayHit cast(const Vec3& start, const Vec3& end, std::uint32_t contentMask = contents::kMaskSolid,
               const Placement& placement = {}) const;
 
-  /// Number of 4-wide nodes, and of polygons indexed.
+  /// Whether cast() tests nodes with AVX2.
+  bool usesAvx2() const { return avx2_; }
+  /// Number of 8-wide nodes, and of polygons indexed.
   std::size_t numNodes() const { return nodes_.size(); }
   std::size_t numPolygons() const { return polygons_.size(); }
   /// Heap memory held.
   std::size_t memoryBytes() const;
 
-  /// A node of the hierarchy: four children's boxes (structure of arrays, so
-  /// that one SIMD test checks all four), what they are and which contents
-  /// they hold.
+  /// Children per node.
+  static constexpr int kWidth = 8;
+  /// A node of the hierarchy: eight children's boxes (structure of arrays, so
+  /// that one SIMD test checks all eight), what they are and which contents
+  /// they hold (256 bytes).
   struct alignas(64) Node {
-    float min[3][4];
-    float max[3][4];
-    std::uint32_t child[4];     ///< node index, or kLeaf | leaf index
-    std::uint32_t contents[4];  ///< OR of the contents below each child (0: empty slot)
+    float min[3][kWidth];
+    float max[3][kWidth];
+    std::uint32_t child[kWidth];     ///< node index, or kLeaf | leaf index
+    std::uint32_t contents[kWidth];  ///< OR of the contents below each child (0: empty slot)
   };
   static constexpr std::uint32_t kLeaf = 0x80000000u;
 
@@ -110,19 +122,12 @@ class RayIndex {
   };
 
  private:
-  struct Best {
-    Real t = 1;
-    std::int32_t index = 0x7fffffff;  ///< ties go to the lower index
-    const Polygon* polygon = nullptr;
-  };
-  void testPolygon(const Polygon& p, const PolygonDetail& detail, const Vec3& start, const Vec3& end,
-                   const Vec3& dir, const Pluecker& ray, Best& found) const;
-
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;
   std::vector<Polygon> polygons_;
   std::vector<EdgeLine> edges_;
   std::vector<PolygonDetail> details_;  ///< parallel to polygons_
+  bool avx2_ = false;
 };
 
 }  // namespace cmkit

@@ -74,6 +74,7 @@ struct SpeedTestReport {
   struct RayIndexStats {
     std::size_t nodes = 0, polygons = 0, bytes = 0;
     double buildMs = 0;
+    bool avx2 = false;  ///< its node test is the AVX2 one (RayIndex::usesAvx2)
   } rayIndex;
   int threads = 1;
 };

@@ -183,7 +183,8 @@ SpeedTestReport runSpeedTest(const CollisionModel& model, const TraceModel& trm,
     const auto t0 = Clock::now();
     const RayIndex index(model);
     report.rayIndex = {index.numNodes(), index.numPolygons(), index.memoryBytes(),
-                       std::chrono::duration<double, std::milli>(Clock::now() - t0).count()};
+                       std::chrono::duration<double, std::milli>(Clock::now() - t0).count(),
+                       index.usesAvx2()};
     report.rays = runBatch("ray cast", n, options, [&](int i, const Pose& pose, QueryWork&) {
       const Vec3 end = pose.position + plan.moves[std::size_t(i)];
       const RayHit hit = index.cast(pose.position, end, options.contentMask, options.model);

@@ -1,14 +1,16 @@
-// RayIndex: a 4-wide bounding volume hierarchy over a model's polygons for
+// RayIndex: an 8-wide bounding volume hierarchy over a model's polygons for
 // closest-crossing ray casts (see cmkit/ray_index.h for the contract).
 //
 // Build: a binary hierarchy by binned surface-area heuristic, collapsed into
-// 4-wide nodes (each node's children are tested at once with SSE). Cast:
-// front-to-back, nearest child first, children farther than the best crossing
-// so far skipped. Every polygon test is exact in the sense that the index
+// 8-wide nodes (each node's children are tested at once: AVX2 in
+// ray_index_avx2.cpp, two halves with SSE2 here). Cast: the walk in
+// ray_index_kernel.h. Every polygon test is exact in the sense that the index
 // returns precisely what testing every polygon would return (tests compare it
 // with that brute force): node boxes are padded beyond the region in which a
 // polygon accepts a crossing.
 #include "cmkit/ray_index.h"
+
+#include "query/ray_index_kernel.h"
 
 // SSE2 on x86-64; any other target (or -DCMKIT_NO_SIMD, to test it) uses the
 // portable loop in enteredChildren, which does the same arithmetic.
@@ -18,7 +20,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -32,9 +33,10 @@ namespace {
 constexpr std::uint32_t kMaxLeafPolygons = 4;
 /// Below this depth splits follow the surface-area heuristic; deeper ones cut
 /// at the median, so that no input (at most 2^32 polygons) makes the
-/// hierarchy deeper than kMaxDepth, which sizes the traversal stack.
+/// hierarchy deeper than kSahDepthLimit + 32 = ray_kernel::kMaxDepth, which
+/// sizes the walk's stack.
 constexpr int kSahDepthLimit = 36;
-constexpr int kMaxDepth = kSahDepthLimit + 32;
+static_assert(kSahDepthLimit + 32 <= ray_kernel::kMaxDepth, "the walk's stack is sized by kMaxDepth");
 /// The surface-area heuristic's cost of visiting a node, in polygon tests.
 constexpr Real kNodeCost = 1;
 /// Bins of the surface-area heuristic per axis.
@@ -186,39 +188,35 @@ class BinaryBuilder {
 
 bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
 
-/// Per-ray constants of the slab tests (see RayIndex::cast).
-struct SlabRay {
-  float origin[3];
-  float inv[3];
-  std::size_t nearRow[3], farRow[3];
-  std::uint32_t mask;
-};
-
 /// Which children of a node the ray enters before `best` and that hold
 /// contents of the mask (bit k for child k), and where it enters each box
 /// (`entry`, clipped to [0, best]).
-int enteredChildren(const RayIndex::Node& n, const SlabRay& r, float best, float entry[4]) {
+int enteredChildren(const RayIndex::Node& n, const ray_kernel::Ray& r, float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
-  const auto row = [base](std::size_t offset) {
-    return _mm_load_ps(reinterpret_cast<const float*>(base + offset));
+  // Two halves of four children.
+  const auto half = [&](int h) {
+    const auto row = [base, h](std::size_t offset) {
+      return _mm_load_ps(reinterpret_cast<const float*>(base + offset) + 4 * h);
+    };
+    const auto along = [&](int axis, const std::size_t* rows) {
+      return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.origin[axis])), _mm_set1_ps(r.inv[axis]));
+    };
+    const __m128 tNear = _mm_max_ps(_mm_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
+                                    _mm_max_ps(along(2, r.nearRow), _mm_setzero_ps()));
+    const __m128 tFar = _mm_min_ps(_mm_min_ps(along(1, r.farRow), along(0, r.farRow)),
+                                   _mm_min_ps(along(2, r.farRow), _mm_set1_ps(best)));
+    const __m128i noContents =
+        _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents + 4 * h)),
+                                      _mm_set1_epi32(int(r.mask))),
+                        _mm_setzero_si128());
+    _mm_store_ps(entry + 4 * h, tNear);
+    return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
   };
-  const auto along = [&](int axis, const std::size_t* rows) {
-    return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.origin[axis])), _mm_set1_ps(r.inv[axis]));
-  };
-  const __m128 tNear = _mm_max_ps(_mm_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
-                                  _mm_max_ps(along(2, r.nearRow), _mm_setzero_ps()));
-  const __m128 tFar = _mm_min_ps(_mm_min_ps(along(1, r.farRow), along(0, r.farRow)),
-                                 _mm_min_ps(along(2, r.farRow), _mm_set1_ps(best)));
-  const __m128i noContents =
-      _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents)),
-                                    _mm_set1_epi32(int(r.mask))),
-                      _mm_setzero_si128());
-  _mm_store_ps(entry, tNear);
-  return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
+  return half(0) | half(1) << 4;
 #else  // the same arithmetic one child at a time
   int hits = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < RayIndex::kWidth; ++k) {
     float tNear = 0, tFar = best;
     for (int axis = 0; axis < 3; ++axis) {
       const auto* nearRow = reinterpret_cast<const float*>(base + r.nearRow[axis]);
@@ -232,9 +230,19 @@ int enteredChildren(const RayIndex::Node& n, const SlabRay& r, float best, float
   return hits;
 #endif
 }
+
+/// Whether this processor runs the AVX2 kernel (and this build has it).
+bool avx2Available() {
+#if defined(CMKIT_AVX2_KERNEL) && !defined(CMKIT_NO_SIMD)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
 }  // namespace
 
-RayIndex::RayIndex(const CollisionModel& model) {
+RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
+    : avx2_(nodeTest == NodeTest::kAuto && avx2Available()) {
   // The polygons that can be crossed: finite plane and bounds, an outline.
   std::vector<std::uint32_t> usable;
   std::vector<Bounds> boxes;
@@ -277,10 +285,10 @@ RayIndex::RayIndex(const CollisionModel& model) {
     details_.push_back({boxes[k], p.material});
   }
 
-  // Collapse: each 4-wide node takes the binary node's children, then opens
-  // the largest inner child until it has four.
+  // Collapse: each 8-wide node takes the binary node's children, then opens
+  // the largest inner child until it has eight.
   const auto collapse = [&](auto&& self, std::uint32_t b) -> std::uint32_t {
-    std::array<std::uint32_t, 4> kids{};
+    std::array<std::uint32_t, kWidth> kids{};
     std::size_t n = 0;
     if (bn[b].count) {
       kids[n++] = b;
@@ -288,7 +296,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
       kids[n++] = bn[b].left;
       kids[n++] = bn[b].right;
     }
-    while (n < 4) {
+    while (n < kWidth) {
       std::size_t open = n;
       for (std::size_t k = 0; k < n; ++k)
         if (!bn[kids[k]].count &&
@@ -301,7 +309,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
     }
     const auto me = std::uint32_t(nodes_.size());
     nodes_.emplace_back();
-    std::array<std::uint32_t, 4> refs{};
+    std::array<std::uint32_t, kWidth> refs{};
     for (std::size_t k = 0; k < n; ++k) {
       const BinaryNode& c = bn[kids[k]];
       if (c.count) {
@@ -312,7 +320,7 @@ RayIndex::RayIndex(const CollisionModel& model) {
       }
     }
     Node& node = nodes_[me];
-    for (std::size_t k = 0; k < 4; ++k) {
+    for (std::size_t k = 0; k < kWidth; ++k) {
       if (k >= n) {  // an empty slot: a box nothing enters, no contents
         for (int a = 0; a < 3; ++a) {
           node.min[a][k] = std::numeric_limits<float>::max();
@@ -341,27 +349,9 @@ std::size_t RayIndex::memoryBytes() const {
          details_.capacity() * sizeof(PolygonDetail);
 }
 
-inline void RayIndex::testPolygon(const Polygon& p, const PolygonDetail& detail, const Vec3& start,
-                                  const Vec3& end, const Vec3& dir, const Pluecker& ray, Best& found) const {
-  if (!(p.normal.dot(dir) < 0)) return;  // only front faces
-  const Real d1 = p.normal.dot(start) - p.dist;
-  if (d1 < 0) return;  // starts behind
-  const Real d2 = p.normal.dot(end) - p.dist;
-  if (d2 > 0) return;  // ends in front
-  const Real denom = d1 - d2;
-  if (!(denom > 0)) return;
-  const Real t = d1 / denom;
-  if (t > found.t || (t == found.t && p.index > found.index)) return;
-  const EdgeLine* lines = edges_.data() + p.firstEdge;
-  for (std::uint32_t j = 0; j < p.numEdges; ++j) {
-    const float* l = lines[j].p;
-    const Real product =
-        l[0] * ray[4] + l[1] * ray[5] + l[2] * ray[3] + l[4] * ray[0] + l[5] * ray[1] + l[3] * ray[2];
-    if (lines[j].reversed ^ std::uint32_t(signBitSet(product))) return;  // passes outside this edge
-  }
-  if (!detail.acceptBox.containsPoint(start + dir * t)) return;
-  found = {t, p.index, &p};
-}
+namespace ray_kernel {
+Crossing castBaseline(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildren); }
+}  // namespace ray_kernel
 
 RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t contentMask,
                       const Placement& placement) const {
@@ -376,100 +366,38 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
   }
   const Vec3 dir = end - start;
   if (!dir.isFinite()) return result;
-  const Pluecker ray = Pluecker::fromRay(start, dir);
 
-  // The best crossing so far; ties go to the lower polygon index.
-  Best found;
-  // Per-ray constants of the slab tests. The near face of each axis is the
-  // min or the max depending on the direction's sign: nearRow / farRow are
-  // the byte offsets of those rows in a Node. The reciprocals are finite, so
-  // no product is NaN.
-  SlabRay slab;
+  ray_kernel::Ray ray;
+  const Pluecker line = Pluecker::fromRay(start, dir);
+  for (int c = 0; c < 6; ++c) ray.line[c] = line[c];
   for (int k = 0; k < 3; ++k) {
-    slab.origin[k] = float(start[k]);
-    slab.inv[k] =
+    ray.start[k] = start[k];
+    ray.end[k] = end[k];
+    ray.dir[k] = dir[k];
+    ray.origin[k] = float(start[k]);
+    ray.inv[k] =
         std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
     const bool negative = dir[k] < 0;
-    slab.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
-                               : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
-    slab.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
-                              : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
+    ray.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
+                              : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
+    ray.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
+                             : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
   }
-  slab.mask = contentMask;
-
-  struct Pending {
-    std::uint32_t ref;
-    float t;  ///< where the ray enters the child's box
-  };
-  // At most three children wait per level.
-  std::array<Pending, 3 * kMaxDepth + 4> stack;
-  std::size_t sp = 0;
-  std::uint32_t ref = 0;
-  for (;;) {
-    if (ref & kLeaf) {
-      const Leaf& leaf = leaves_[ref & ~kLeaf];
-      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
-        if (polygons_[i].contents & contentMask)
-          testPolygon(polygons_[i], details_[i], start, end, dir, ray, found);
-    } else {
-      const Node& n = nodes_[ref];
-      alignas(16) float entry[4];
-      const int hits = enteredChildren(n, slab, float(found.t), entry);
-      if (hits) {
-        const int first = std::countr_zero(unsigned(hits));
-        const unsigned rest = unsigned(hits) & (unsigned(hits) - 1);
-        if (rest == 0) {  // one child: no ordering
-          ref = n.child[first];
-          continue;
-        }
-        if ((rest & (rest - 1)) == 0) {  // two: the farther one waits
-          const int second = std::countr_zero(rest);
-          const bool swap = entry[second] < entry[first];
-          const int near = swap ? second : first, far = swap ? first : second;
-          stack[sp++] = Pending{n.child[far], entry[far]};
-          ref = n.child[near];
-          continue;
-        }
-        // Three or four: sorted, farthest first; all but the nearest wait.
-        std::array<Pending, 4> order{};
-        std::size_t count = 0;
-        for (int k = 0; k < 4; ++k) {
-          if (!(hits >> k & 1)) continue;
-          const Pending p{n.child[k], entry[k]};
-          std::size_t j = count++;
-          for (; j > 0 && order[j - 1].t < p.t; --j) order[j] = order[j - 1];
-          order[j] = p;
-        }
-        // (three fixed copies, not a loop the compiler turns into memcpy)
-        stack[sp] = order[0];
-        stack[sp + 1] = order[1];
-        stack[sp + 2] = order[2];
-        sp += count - 1;
-        ref = order[count - 1].ref;
-        continue;
-      }
-    }
-    // Next waiting child that may still hold a nearer crossing.
-    for (;;) {
-      if (sp == 0) {
-        if (const Polygon* best = found.polygon) {
-          result.fraction = found.t;
-          result.polygon = best->index;
-          result.contents = best->contents;
-          result.material = details_[std::size_t(best - polygons_.data())].material;
-          result.point = worldStart + (worldEnd - worldStart) * found.t;
-          result.normal = rotated ? best->normal * placement.axis : best->normal;
-          result.dist = best->dist + placement.origin.dot(result.normal);
-        }
-        return result;
-      }
-      const Pending p = stack[--sp];
-      if (p.t <= found.t) {
-        ref = p.ref;
-        break;
-      }
-    }
-  }
+  ray.mask = contentMask;
+  const ray_kernel::Arrays arrays{nodes_.data(), leaves_.data(), polygons_.data(), edges_.data(),
+                                  details_.data()};
+  const ray_kernel::Crossing found =
+      avx2_ ? ray_kernel::castAvx2(arrays, ray) : ray_kernel::castBaseline(arrays, ray);
+  if (found.slot < 0) return result;
+  const Polygon& best = polygons_[std::size_t(found.slot)];
+  result.fraction = found.t;
+  result.polygon = best.index;
+  result.contents = best.contents;
+  result.material = details_[std::size_t(found.slot)].material;
+  result.point = worldStart + (worldEnd - worldStart) * found.t;
+  result.normal = rotated ? best.normal * placement.axis : best.normal;
+  result.dist = best.dist + placement.origin.dot(result.normal);
+  return result;
 }
 
 }  // namespace cmkit

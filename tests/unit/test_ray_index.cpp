@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -99,8 +100,9 @@ std::vector<std::pair<Vec3, Vec3>> randomSegments(const Bounds& bounds, unsigned
 }
 
 /// Returns the number of hits.
-int expectSameAsEveryPolygon(const CollisionModel& m, unsigned seed, int count, const std::string& what) {
-  const RayIndex index(m);
+int expectSameAsEveryPolygon(const CollisionModel& m, unsigned seed, int count, const std::string& what,
+                             RayIndex::NodeTest nodeTest) {
+  const RayIndex index(m, nodeTest);
   int hits = 0, i = 0;
   for (const auto& [s, e] : randomSegments(m.bounds, seed, count)) {
     const std::uint32_t masks[] = {kAll, contents::kMaskSolid, contents::kWater | contents::kPlayerClip};
@@ -283,9 +285,36 @@ TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
     if (m->polygons.empty()) continue;
     const int count = m->polygons.size() > 1000 ? 6000 : 600;
     rays += count;
-    hits += expectSameAsEveryPolygon(*m, seed++, count, m->name);
+    // Both node tests (the same one twice where the processor has no AVX2).
+    hits += expectSameAsEveryPolygon(*m, seed, count, m->name, RayIndex::NodeTest::kAuto);
+    expectSameAsEveryPolygon(*m, seed++, count, m->name + " (baseline node test)",
+                             RayIndex::NodeTest::kBaseline);
   }
   EXPECT_GT(hits, rays / 10) << "too few hits for the comparison to mean much";
+}
+
+TEST(RayIndex, BothNodeTestsGiveTheSameAnswers) {
+  // The AVX2 and the SSE2 (or portable) node tests walk the same hierarchy
+  // with the same arithmetic: every field of every answer is the same.
+  const auto models = test::buildMapModels(bundledLt4());
+  ASSERT_FALSE(models.empty());
+  const CollisionModel& world = *models.front();
+  const RayIndex best(world), baseline(world, RayIndex::NodeTest::kBaseline);
+  EXPECT_FALSE(baseline.usesAvx2());
+  if (!best.usesAvx2())
+    std::printf(
+        "[   NOTE   ] this processor (or build) has no AVX2: both indexes use the baseline node test\n");
+  int hits = 0;
+  for (const auto& [s, e] : randomSegments(world.bounds, 17, 20000)) {
+    const RayHit a = best.cast(s, e), b = baseline.cast(s, e);
+    ASSERT_EQ(a.polygon, b.polygon);
+    ASSERT_EQ(std::memcmp(&a.fraction, &b.fraction, sizeof(Real)), 0);
+    ASSERT_EQ(a.point, b.point);
+    ASSERT_EQ(a.normal, b.normal);
+    ASSERT_EQ(a.material, b.material);
+    hits += a.hit();
+  }
+  EXPECT_GT(hits, 2000);
 }
 
 TEST(RayIndex, PointTranslationStopsNoLater) {

@@ -70,8 +70,9 @@ bool runAndPrintSpeedTest(const CollisionModel& model, const TraceModel& trm, co
   single.threads = 1;
   const SpeedTestReport one = runSpeedTest(model, trm, single);
   if (options.rays)
-    fmt::print("  ray index: {} nodes, {} polygons, {:.1f} MB, built in {:.1f} ms\n", one.rayIndex.nodes,
-               one.rayIndex.polygons, double(one.rayIndex.bytes) / (1024.0 * 1024.0), one.rayIndex.buildMs);
+    fmt::print("  ray index: {} nodes, {} polygons, {:.1f} MB, built in {:.1f} ms, {} node test\n",
+               one.rayIndex.nodes, one.rayIndex.polygons, double(one.rayIndex.bytes) / (1024.0 * 1024.0),
+               one.rayIndex.buildMs, one.rayIndex.avx2 ? "AVX2" : "baseline");
   fmt::print("1 thread:\n");
   printSpeedTestBatch(one.translation);
   if (options.rotations) printSpeedTestBatch(one.rotation);
