@@ -200,7 +200,7 @@ int enteredChildren(const RayIndex::Node& n, const ray_kernel::Ray& r, float bes
       return _mm_load_ps(reinterpret_cast<const float*>(base + offset) + 4 * h);
     };
     const auto along = [&](int axis, const std::size_t* rows) {
-      return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.origin[axis])), _mm_set1_ps(r.inv[axis]));
+      return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.start[axis])), _mm_set1_ps(r.inv[axis]));
     };
     const __m128 tNear = _mm_max_ps(_mm_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
                                     _mm_max_ps(along(2, r.nearRow), _mm_setzero_ps()));
@@ -221,8 +221,8 @@ int enteredChildren(const RayIndex::Node& n, const ray_kernel::Ray& r, float bes
     for (int axis = 0; axis < 3; ++axis) {
       const auto* nearRow = reinterpret_cast<const float*>(base + r.nearRow[axis]);
       const auto* farRow = reinterpret_cast<const float*>(base + r.farRow[axis]);
-      tNear = std::max(tNear, (nearRow[k] - r.origin[axis]) * r.inv[axis]);
-      tFar = std::min(tFar, (farRow[k] - r.origin[axis]) * r.inv[axis]);
+      tNear = std::max(tNear, (nearRow[k] - r.start[axis]) * r.inv[axis]);
+      tFar = std::min(tFar, (farRow[k] - r.start[axis]) * r.inv[axis]);
     }
     entry[k] = tNear;
     if (tNear <= tFar && (n.contents[k] & r.mask)) hits |= 1 << k;
@@ -374,7 +374,6 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
     ray.start[k] = start[k];
     ray.end[k] = end[k];
     ray.dir[k] = dir[k];
-    ray.origin[k] = float(start[k]);
     ray.inv[k] =
         std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
     const bool negative = dir[k] < 0;

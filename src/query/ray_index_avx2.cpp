@@ -22,7 +22,7 @@ int enteredChildrenAvx2(const RayIndex::Node& n, const Ray& r, float best, float
     return _mm256_load_ps(reinterpret_cast<const float*>(base + offset));
   };
   const auto along = [&](int axis, const std::size_t* rows) {
-    return _mm256_mul_ps(_mm256_sub_ps(row(rows[axis]), _mm256_set1_ps(r.origin[axis])),
+    return _mm256_mul_ps(_mm256_sub_ps(row(rows[axis]), _mm256_set1_ps(r.start[axis])),
                          _mm256_set1_ps(r.inv[axis]));
   };
   const __m256 tNear = _mm256_max_ps(_mm256_max_ps(along(1, r.nearRow), along(0, r.nearRow)),

@@ -42,8 +42,7 @@ struct Ray {
   Real end[3];
   Real dir[3];   ///< end - start
   Real line[6];  ///< Pluecker coordinates of the ray (Pluecker::fromRay)
-  float origin[3];
-  float inv[3];
+  float inv[3];  ///< 1 / dir, finite
   std::size_t nearRow[3], farRow[3];
   std::uint32_t mask;
 };
@@ -58,7 +57,8 @@ struct Crossing {
 /// The walk with the node test of ray_index.cpp (SSE2 on x86-64).
 Crossing castBaseline(const Arrays& index, const Ray& ray);
 /// The walk with the AVX2 node test (ray_index_avx2.cpp); call it only when
-/// the processor has AVX2 and the build has the kernel (kHaveAvx2Kernel).
+/// the processor has AVX2 (RayIndex::usesAvx2()). A build without the
+/// kernel defines it as castBaseline.
 Crossing castAvx2(const Arrays& index, const Ray& ray);
 
 /// Binary-hierarchy depth the index's builder never exceeds (it sizes the
