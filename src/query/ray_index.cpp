@@ -186,6 +186,11 @@ class BinaryBuilder {
   std::vector<BinaryNode> nodes_;
 };
 
+// The node test loads each row of eight floats (and the contents) with one
+// aligned 32-byte load (AVX2) or two 16-byte ones (SSE2).
+static_assert(sizeof(RayIndex::Node) == 256 && alignof(RayIndex::Node) % 32 == 0);
+static_assert(offsetof(RayIndex::Node, max) % 32 == 0 && offsetof(RayIndex::Node, contents) % 32 == 0);
+
 bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
 
 /// Which children of a node the ray enters before `best` and that hold
