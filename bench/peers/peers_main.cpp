@@ -194,10 +194,12 @@ int main(int argc, char** argv) {
   }
   auto boxTrm = cmkit::TraceModel::parse("box:-16,-16,0,16,16,64");
   if (!boxTrm) return 2;
+  const cmkit::RayIndex rayIndex(world);  // for the ray casts
   std::printf(
       "%s: world model %zu polygons -> %d triangles; %d translations from (%g %g %g), mask "
-      "solid|playerclip\n",
-      mapPath.c_str(), world.polygons.size(), triangles, times, origin.x, origin.y, origin.z);
+      "solid|playerclip; ray casts with the %s node test\n",
+      mapPath.c_str(), world.polygons.size(), triangles, times, origin.x, origin.y, origin.z,
+      rayIndex.usesAvx2() ? "AVX2" : "baseline (SSE2)");
 
   cmkit::QueryWork work;
   const std::size_t n = ends.size();
@@ -238,8 +240,7 @@ int main(int argc, char** argv) {
   agreement(pointCmp, cmkitPoint, peerPoint);
   print(pointCmp, times);
 
-  // The same rays through a RayIndex of the world model.
-  const cmkit::RayIndex rayIndex(world);
+  // The same rays through the RayIndex of the world model.
   std::vector<char> cmkitRay(n);
   Comparison rayCmp{"ray cast (point)", "bullet"};
   rayCmp.cmkitNs = fastestPass(
