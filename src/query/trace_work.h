@@ -53,6 +53,10 @@ struct TrmFeatures {
 
 /// Polygon edges per bit mask in the translation's edge tests.
 inline constexpr std::size_t kEdgeGroup = 64;
+/// Number of kEdgeGroup-edge groups (bit masks) a polygon's edges take.
+inline constexpr std::size_t edgeGroups(std::size_t numEdges) {
+  return (numEdges + kEdgeGroup - 1) / kEdgeGroup;
+}
 
 /// Per-model-feature marks and caches, valid for one query. A mark or cache
 /// entry is valid when its generation equals the current one, so starting a

@@ -89,7 +89,7 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
   const CollisionModel& m = tw.model;
   QueryWork::Scratch& s = tw.scratch;
-  const std::size_t groups = (edges.size() + kEdgeGroup - 1) / kEdgeGroup;
+  const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
     s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
     s.edgesReversed.resize(groups);
@@ -167,7 +167,7 @@ void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, 
 // before the nearest hit so far.
 void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
   const QueryWork::Scratch& s = tw.scratch;
-  const std::size_t groups = (poly.numEdges + kEdgeGroup - 1) / kEdgeGroup;
+  const std::size_t groups = edgeGroups(poly.numEdges);
   std::uint32_t inside = 0;
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
     const int v = std::countr_zero(moving);
@@ -207,7 +207,8 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
   const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
   const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
   Real f1;
-  if (!translateEdgeThroughEdge(te.cross, te.pl, Pluecker::fromLine(start, end), f1)) return;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, modelEdgeLine(m, std::size_t(std::abs(edgeNum))), f1))
+    return;
   if (f1 < 0) return;  // moving away from the edge
   // The same against the edge moved out along its normal by the clip epsilon.
   const Pluecker epsPl =
@@ -245,7 +246,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
 void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
   const QueryWork::Scratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const std::size_t groups = (poly.numEdges + kEdgeGroup - 1) / kEdgeGroup;
+  const std::size_t groups = edgeGroups(poly.numEdges);
   for (std::size_t g = 0; g < groups; ++g) {
     const std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     std::uint64_t crossing =
