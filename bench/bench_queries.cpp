@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 #include "cmkit/ray_index.h"
-#include "cmkit/speed_test.h"
+#include "cmkit/tools/speed_test.h"
 
 namespace {
 

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Fuzz target: .map text -> parser -> map compiler -> models (validated) ->
 // queries.
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "fuzz_common.h"
 

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 #include "fuzz_common.h"
 
 namespace {

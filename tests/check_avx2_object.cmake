@@ -1,8 +1,8 @@
-# Checks that the object compiled with -mavx2 (src/query/ray_index_avx2.cpp)
+# Checks that the object compiled with -mavx2 (src/ray/ray_index_avx2.cpp)
 # defines no code the linker could share with the rest of the program: its
 # only global function is castAvx2, and it has no weak (inline, template or
 # vague-linkage) functions, which the linker could pick for code that runs on
-# processors without AVX2. See src/query/ray_index_kernel.h. Weak data
+# processors without AVX2. See src/ray/ray_index_kernel.h. Weak data
 # (V: e.g. DW.ref.__gxx_personality_v0 in sanitizer builds) holds no
 # instructions and is allowed.
 # Run by ctest: cmake -DNM=<nm> -DOBJECTS=<the library's objects> -P this file.

@@ -23,7 +23,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/contents.h"
 #include "cmkit/materials.h"
 #include "cmkit/model.h"

@@ -1,8 +1,8 @@
 // model.h: collision models, the static geometry that trace models collide
 // with (the original's cm_model_t).
 //
-// A collision model is built from a map entity (src/build) or read from a
-// .cm file (src/format) and is IMMUTABLE afterwards: it is handed out as
+// A collision model is built from a map entity (src/compile) or read from a
+// .cm file (src/io) and is IMMUTABLE afterwards: it is handed out as
 // std::shared_ptr<const CollisionModel>, and every query is a const function
 // of it, so any number of threads may query one model at once.
 //
@@ -89,7 +89,7 @@ struct ModelStats {
   int polygonsMerged = 0;
 };
 
-/// A collision model. Build it with src/build or read it with src/format;
+/// A collision model. Build it with src/compile or read it with src/io;
 /// treat it as immutable afterwards.
 struct CollisionModel {
   std::string name;

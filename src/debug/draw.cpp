@@ -3,7 +3,7 @@
 #include <array>
 #include <vector>
 
-#include "cmkit/debug_draw.h"
+#include "cmkit/tools/debug_draw.h"
 
 namespace cmkit {
 namespace {

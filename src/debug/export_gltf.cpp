@@ -11,8 +11,8 @@
 namespace cmkit {
 namespace {
 
-using debug::Group;
-using debug::GroupKind;
+using detail::Group;
+using detail::GroupKind;
 
 // glTF constants (glTF 2.0 specification, section 5).
 constexpr int kComponentFloat = 5126;
@@ -105,7 +105,7 @@ std::string base64(const std::vector<std::uint8_t>& data) {
 std::string groupName(const Group& g) {
   if (g.kind == GroupKind::Trace)
     return "trace " + std::to_string(g.trace) + " " + std::string(toString(g.drawKind));
-  std::string name = g.model + " " + debug::toString(g.kind);
+  std::string name = g.model + " " + detail::toString(g.kind);
   if (g.kind == GroupKind::Polygons) {
     const std::string c = contentsToStringExact(g.contents);
     name += " " + (c.empty() ? std::string("none") : c);
@@ -121,7 +121,7 @@ struct Document {
 
 Document buildDocument(std::span<const ModelPtr> models, std::span<const TraceRecord> traces,
                        const ExportOptions& options, bool embedBuffer) {
-  const std::vector<Group> groups = debug::collectScene(models, traces, options);
+  const std::vector<Group> groups = detail::collectScene(models, traces, options);
   Document doc;
   Json accessors, views, meshes, materials, nodes;
   int numAccessors = 0, numViews = 0, numMaterials = 0;
@@ -228,7 +228,7 @@ Document buildDocument(std::span<const ModelPtr> models, std::span<const TraceRe
     nodes.raw(",{\"name\":");
     nodes.str(groupName(g));
     nodes.raw(",\"mesh\":" + std::to_string(gi) + ",\"extras\":{\"kind\":");
-    nodes.str(debug::toString(g.kind));
+    nodes.str(detail::toString(g.kind));
     if (g.kind == GroupKind::Trace) {
       nodes.raw(",\"trace\":" + std::to_string(g.trace) + ",\"part\":");
       nodes.str(toString(g.drawKind));

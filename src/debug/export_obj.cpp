@@ -9,8 +9,8 @@
 namespace cmkit {
 namespace {
 
-using debug::Group;
-using debug::GroupKind;
+using detail::Group;
+using detail::GroupKind;
 
 std::string materialName(const Group& g) {
   if (g.kind == GroupKind::Polygons) {
@@ -27,7 +27,7 @@ std::string materialName(const Group& g) {
 std::string objectName(const Group& g) {
   std::string name = g.kind == GroupKind::Trace
                          ? "trace_" + std::to_string(g.trace) + "_" + std::string(toString(g.drawKind))
-                         : g.model + "_" + debug::toString(g.kind) + "_" + std::to_string(g.contents);
+                         : g.model + "_" + detail::toString(g.kind) + "_" + std::to_string(g.contents);
   for (char& c : name)
     if (c == ' ') c = '_';
   return name;
@@ -65,7 +65,7 @@ Status writeFile(const std::string& path, const void* data, std::size_t size) {
 
 std::string exportObj(std::span<const ModelPtr> models, std::span<const TraceRecord> traces,
                       const std::string& mtlFileName, const ExportOptions& options) {
-  const std::vector<Group> groups = debug::collectScene(models, traces, options);
+  const std::vector<Group> groups = detail::collectScene(models, traces, options);
   std::string out = "# cmkit collision models (map coordinates, z up)\nmtllib " + mtlFileName + "\n";
   std::size_t vertexBase = 1;  // OBJ indices start at 1
   std::size_t normalBase = 1;
@@ -95,7 +95,7 @@ std::string exportObj(std::span<const ModelPtr> models, std::span<const TraceRec
 
 std::string exportMtl(std::span<const ModelPtr> models, std::span<const TraceRecord> traces,
                       const ExportOptions& options) {
-  const std::vector<Group> groups = debug::collectScene(models, traces, options);
+  const std::vector<Group> groups = detail::collectScene(models, traces, options);
   std::string out = "# cmkit materials: one per contents value, one per line colour\n";
   std::vector<std::string> written;
   for (const Group& g : groups) {

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <numbers>
 
-#include "cmkit/debug_picture.h"
+#include "cmkit/tools/picture.h"
 
 namespace cmkit {
 namespace {

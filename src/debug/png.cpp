@@ -6,7 +6,7 @@
 
 #include <fstream>
 
-#include "cmkit/debug_picture.h"
+#include "cmkit/tools/picture.h"
 
 namespace cmkit {
 namespace {

@@ -1,7 +1,7 @@
 // Collecting drawn primitives into exporter groups.
 #include "debug/scene_collector.h"
 
-namespace cmkit::debug {
+namespace cmkit::detail {
 namespace {
 
 /// Colour of exported edges (dark, to show on the coloured polygons).
@@ -115,4 +115,4 @@ std::vector<Group> collectScene(std::span<const ModelPtr> models, std::span<cons
   return groups;
 }
 
-}  // namespace cmkit::debug
+}  // namespace cmkit::detail

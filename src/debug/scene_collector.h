@@ -7,10 +7,10 @@
 #include <tuple>
 #include <vector>
 
-#include "cmkit/debug_draw.h"
-#include "cmkit/debug_export.h"
+#include "cmkit/tools/debug_draw.h"
+#include "cmkit/tools/export.h"
 
-namespace cmkit::debug {
+namespace cmkit::detail {
 
 /// The coarse kind of a group, as the exporters name it.
 enum class GroupKind : std::uint8_t { Polygons, Edges, InternalEdges, Normals, Trace };
@@ -56,4 +56,4 @@ class SceneCollector final : public DebugDraw {
 std::vector<Group> collectScene(std::span<const ModelPtr> models, std::span<const TraceRecord> traces,
                                 const ExportOptions& options);
 
-}  // namespace cmkit::debug
+}  // namespace cmkit::detail

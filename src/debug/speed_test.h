@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "cmkit/speed_test.h"
+#include "cmkit/tools/speed_test.h"
 
 namespace cmkit::detail {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "build/edge_normals.h"
+#include "model/edge_normals.h"
 #include "cmkit/contents.h"
 #include "cmkit/model.h"
 #include "cmkit/trace_model.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 
 namespace {

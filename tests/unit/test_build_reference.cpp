@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/map.h"
 #include "test_support.h"

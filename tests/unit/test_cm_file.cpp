@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "build/edge_normals.h"
+#include "model/edge_normals.h"
 #include "cm_test_util.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "cm_test_util.h"
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/validate.h"
 #include "test_support.h"

@@ -4,7 +4,7 @@
 
 #include <map>
 
-#include "cmkit/debug_draw.h"
+#include "cmkit/tools/debug_draw.h"
 #include "model_fixtures.h"
 
 namespace cmkit {

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "cmkit/debug_export.h"
+#include "cmkit/tools/export.h"
 #include "model_fixtures.h"
 
 namespace cmkit {

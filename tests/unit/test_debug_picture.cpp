@@ -10,7 +10,7 @@
 #include <fstream>
 #include <set>
 
-#include "cmkit/debug_picture.h"
+#include "cmkit/tools/picture.h"
 #include "model_fixtures.h"
 #include "test_support.h"
 

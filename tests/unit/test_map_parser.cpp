@@ -3,8 +3,8 @@
 #include <string>
 
 #include "cmkit/map.h"
-#include "map/lexer.h"
-#include "map/map_crc.h"
+#include "text/lexer.h"
+#include "io/map_crc.h"
 #include "test_support.h"
 
 namespace {
@@ -96,7 +96,7 @@ TEST(MapParser, ParsesEveryPrimitiveOfTheFeaturesMap) {
   EXPECT_TRUE(p3.explicitSubdivisions);
   EXPECT_EQ(p3.horzSubdivisions, 4);
   EXPECT_EQ(p3.vertSubdivisions, 2);
-  EXPECT_EQ(map.geometryCrc, cmkit::mapcrc::geometryCrc(map));
+  EXPECT_EQ(map.geometryCrc, cmkit::detail::geometryCrc(map));
 }
 
 TEST(MapParser, GeometryCrcOfOneSideByHand) {
@@ -105,8 +105,8 @@ TEST(MapParser, GeometryCrcOfOneSideByHand) {
   // bits(0) ^ bits(0) ^ bits(1.0f) ^ bits(-64.0f) ^ ('a' << 0)
   EXPECT_EQ(r->geometryCrc, 0x3F800000u ^ 0xC2800000u ^ 0x61u);
   // Material hash: byte i shifted by (i & 3), signed chars.
-  EXPECT_EQ(cmkit::mapcrc::stringCrc("abcde"), 0x61u ^ (0x62u << 1) ^ (0x63u << 2) ^ (0x64u << 3) ^ 0x65u);
-  EXPECT_EQ(cmkit::mapcrc::stringCrc("\xff"), 0xFFFFFFFFu);
+  EXPECT_EQ(cmkit::detail::stringCrc("abcde"), 0x61u ^ (0x62u << 1) ^ (0x63u << 2) ^ (0x64u << 3) ^ 0x65u);
+  EXPECT_EQ(cmkit::detail::stringCrc("\xff"), 0xFFFFFFFFu);
 }
 
 TEST(MapParser, GeometryCrcOfPatchesIncludesSubdivisions) {
@@ -115,8 +115,8 @@ TEST(MapParser, GeometryCrcOfPatchesIncludesSubdivisions) {
   const auto& p3 = std::get<MapPatch>(r->entities[1].primitives[2]);
   std::uint32_t expected = 4u ^ 2u;
   for (const Vec3& p : p3.points) expected ^= bits(p.x) ^ bits(p.y) ^ bits(p.z);
-  expected ^= cmkit::mapcrc::stringCrc("textures/base_wall/curve");
-  EXPECT_EQ(cmkit::mapcrc::patchCrc(p3), expected);
+  expected ^= cmkit::detail::stringCrc("textures/base_wall/curve");
+  EXPECT_EQ(cmkit::detail::patchCrc(p3), expected);
 }
 
 TEST(MapParser, NumbersAreReadLikeTheOriginalLexer) {
@@ -333,7 +333,7 @@ TEST(MapParser, EveryPrefixOfAMapIsAnErrorOrAMap) {
     auto r = parseMapText(std::string_view(text).substr(0, n), "prefix.map");
     if (r.ok()) {
       ++ok;
-      EXPECT_EQ(r->geometryCrc, cmkit::mapcrc::geometryCrc(*r));
+      EXPECT_EQ(r->geometryCrc, cmkit::detail::geometryCrc(*r));
     } else {
       EXPECT_FALSE(r.error().message.empty());
       EXPECT_GT(r.error().line, 0);

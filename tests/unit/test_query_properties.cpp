@@ -7,10 +7,10 @@
 #include <random>
 #include <thread>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 #include "model_fixtures.h"
 #include "test_support.h"
 

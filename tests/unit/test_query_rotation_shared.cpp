@@ -10,11 +10,11 @@
 #include <random>
 #include <sstream>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 #include "test_support.h"
 
 using namespace cmkit;

@@ -11,7 +11,7 @@
 #include <random>
 #include <thread>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"

@@ -6,9 +6,9 @@
 #include <string>
 #include <utility>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
-#include "cmkit/speed_test.h"
+#include "cmkit/tools/speed_test.h"
 #include "test_support.h"
 
 namespace cmkit {

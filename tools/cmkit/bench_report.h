@@ -4,7 +4,7 @@
 #include <string>
 
 #include "cmkit/model.h"
-#include "cmkit/speed_test.h"
+#include "cmkit/tools/speed_test.h"
 
 namespace cmkit::cli {
 

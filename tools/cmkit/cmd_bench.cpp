@@ -11,7 +11,7 @@
 #include <map>
 
 #include "bench_report.h"
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 #include "commands.h"
 #include "model_loading.h"
 

@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "bench_report.h"
-#include "cmkit/build.h"
-#include "cmkit/debug_picture.h"
+#include "cmkit/compile.h"
+#include "cmkit/tools/picture.h"
 #include "cmkit/map.h"
 #include "commands.h"
 #include "progress_bar.h"

@@ -1,7 +1,7 @@
 // `cmkit export MODELS -o out.gltf|out.glb|out.obj [--queries Q --results R]`.
 #include <fmt/core.h>
 
-#include "cmkit/debug_export.h"
+#include "cmkit/tools/export.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "trace_loading.h"

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <thread>
 
-#include "cmkit/query_file.h"
+#include "cmkit/tools/query_format.h"
 #include "commands.h"
 #include "model_loading.h"
 

@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "cmkit/debug_picture.h"
+#include "cmkit/tools/picture.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "trace_loading.h"

@@ -20,7 +20,7 @@
 #include <sstream>
 #include <utility>
 
-#include "cmkit/debug_export.h"
+#include "cmkit/tools/export.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "trace_loading.h"

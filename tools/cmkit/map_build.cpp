@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"

@@ -1,6 +1,6 @@
 #include "model_loading.h"
 
-#include "cmkit/build.h"
+#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/map.h"
 

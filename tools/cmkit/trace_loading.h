@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/debug_draw.h"
+#include "cmkit/tools/debug_draw.h"
 #include "cmkit/query.h"
 #include "cmkit/result.h"
 

@@ -1,0 +1,227 @@
+// Map primitives -> brushes and polygons (the original's ConvertBrush,
+// ConvertBrushSides, ConvertPatch and CreatePatchPolygons), and the order of
+// the whole per-model pipeline.
+#include <cstdlib>
+
+#include "compile/builder.h"
+#include "cmkit/contents.h"
+#include "geometry/patch.h"
+
+namespace cmkit::detail {
+
+namespace {
+
+/// Content bits that make a material take part in collision (the original's
+/// CONTENTS_REMOVE_UTIL: everything but the compile-time flags).
+constexpr std::uint32_t kUsefulContents = ~(contents::kAreaPortal | contents::kNoCsg);
+
+/// The original's unguarded vector normalisation: only an exactly zero
+/// vector has length 0 (tiny vectors still get a direction).
+Real normalizeLikeOriginal(Vec3& v) {
+  const Real sq = v.lengthSquared();
+  if (!(sq > 0) || !std::isfinite(sq)) {
+    v = Vec3{};
+    return 0;
+  }
+  const Real inv = compatInvSqrt(sq);
+  v *= inv;
+  return inv * sq;
+}
+
+}  // namespace
+
+int MaterialCache::find(const std::string& rawName) {
+  const auto it = byRaw_.find(rawName);
+  if (it != byRaw_.end()) return it->second;
+  std::string canonical = MaterialTable::canonicalName(rawName);
+  int index;
+  const auto cit = byCanonical_.find(canonical);
+  if (cit != byCanonical_.end()) {
+    index = cit->second;
+  } else {
+    index = static_cast<int>(materials_.size());
+    materials_.push_back({canonical, table_.info(canonical)});
+    byCanonical_.emplace(std::move(canonical), index);
+  }
+  byRaw_.emplace(rawName, index);
+  return index;
+}
+
+ModelBuilder::ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
+                           std::vector<std::string>* warnings)
+    : entity_(entity), name_(std::move(name)), materials_(materials), warnings_(warnings) {}
+
+void ModelBuilder::warn(const std::string& message) {
+  if (!warnings_) return;
+  std::string line = "model \"" + name_ + "\": " + message;
+  // A message this model gave before (a degenerate patch can drop thousands
+  // of polygons) updates its first line with a count instead of repeating.
+  auto [it, first] = warningSlots_.try_emplace(message, WarningSlot{warnings_->size(), 0});
+  if (++it->second.count > 1) {
+    (*warnings_)[it->second.index] = line + " (" + std::to_string(it->second.count) + " times)";
+    return;
+  }
+  warnings_->push_back(std::move(line));
+}
+
+CollisionModel ModelBuilder::build() {
+  allocNode();  // the root
+  const auto& prims = entity_.primitives;
+  std::vector<BrushPrimitive> brushPrims(prims.size());
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    if (const auto* brush = std::get_if<MapBrush>(&prims[i])) {
+      convertBrush(*brush, static_cast<int>(i), brushPrims[i]);
+    }
+  }
+
+  // An axial BSP tree only for models with more than a few brushes.
+  int brushCount = 0;
+  Bounds rootBounds;
+  for (int r = nodes_[0].brushes; r >= 0; r = brushRefs_[static_cast<std::size_t>(r)].next) {
+    ++brushCount;
+    rootBounds = unionBounds(
+        rootBounds, brushes_[static_cast<std::size_t>(brushRefs_[static_cast<std::size_t>(r)].item)].bounds);
+  }
+  if (brushCount > 4) createAxialBSPTree(0, rootBounds);
+
+  // Vertex welding hash bounds.
+  if (brushCount > 0) {
+    clearHash(nodeBounds());
+  } else {
+    const Real b = tol::kDefaultHashBounds;
+    clearHash(Bounds{{-b, -b, -b}, {b, b, b}});
+  }
+
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    if (const auto* patch = std::get_if<MapPatch>(&prims[i])) {
+      convertPatch(*patch, static_cast<int>(i));
+    } else {
+      convertBrushSides(std::get<MapBrush>(prims[i]), brushPrims[i]);
+      brushPrims[i] = BrushPrimitive{};  // free the cached windings
+    }
+  }
+  return finish();
+}
+
+void ModelBuilder::convertBrush(const MapBrush& brush, int primitiveNum, BrushPrimitive& out) {
+  const int numSides = static_cast<int>(brush.sides.size());
+  out.primitiveNum = primitiveNum;
+  out.planes.resize(brush.sides.size());
+  for (int i = 0; i < numSides; ++i) {
+    out.planes[static_cast<std::size_t>(i)] = brush.sides[static_cast<std::size_t>(i)].plane;
+    out.planes[static_cast<std::size_t>(i)].fixDegeneracies(tol::kDegenerateDistEpsilon);
+  }
+  if (numSides < 4) {
+    warn("brush (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(brush.line) +
+         ") has " + std::to_string(numSides) + " sides: it does not enclose a volume");
+  }
+  // Bounds, contents and material come from sides 0..n-2 only (the
+  // original's loop stops one early as it only needs the bounds).
+  Bounds bounds;
+  std::uint32_t contents = 0;
+  int material = -1;
+  bool anyPoints = false;
+  if (numSides > 1) out.windings.resize(static_cast<std::size_t>(numSides - 1));
+  for (int i = 0; i < numSides - 1; ++i) {
+    Winding& w = out.windings[static_cast<std::size_t>(i)];
+    w = Winding::baseForPlane(out.planes[static_cast<std::size_t>(i)].flipped());
+    for (int j = 0; j < numSides && !w.empty(); ++j) {
+      if (i == j) continue;
+      w.clipInPlace(out.planes[static_cast<std::size_t>(j)].flipped(), 0);
+    }
+    for (const Vec3& p : w.points()) bounds.addPoint(p);
+    anyPoints = anyPoints || !w.empty();
+    material = materials_.find(brush.sides[static_cast<std::size_t>(i)].material);
+    contents |= materials_[material].info.contents & kUsefulContents;
+  }
+  if (contents == 0) return;
+  if (!anyPoints) {
+    warn("brush (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(brush.line) +
+         ") is empty: its planes enclose no volume (kept, as the original does, with cleared bounds)");
+  }
+  BBrush b;
+  b.bounds = bounds;
+  b.contents = contents;
+  b.material = material;
+  b.primitiveNum = primitiveNum;
+  b.planes = out.planes;
+  brushes_.push_back(std::move(b));
+  addBrushToNode(0, static_cast<int>(brushes_.size()) - 1);
+}
+
+void ModelBuilder::convertBrushSides(const MapBrush& brush, BrushPrimitive& prim) {
+  const int numSides = static_cast<int>(brush.sides.size());
+  for (int i = 0; i < numSides; ++i) {
+    const int material = materials_.find(brush.sides[static_cast<std::size_t>(i)].material);
+    if ((materials_[material].info.contents & kUsefulContents) == 0) continue;
+    Winding w;
+    if (i < numSides - 1) {
+      w = std::move(prim.windings[static_cast<std::size_t>(i)]);
+    } else {
+      w = Winding::baseForPlane(prim.planes[static_cast<std::size_t>(i)].flipped());
+      for (int j = 0; j < numSides && !w.empty(); ++j) {
+        if (i == j) continue;
+        w.clipInPlace(prim.planes[static_cast<std::size_t>(j)].flipped(), 0);
+      }
+    }
+    if (!w.empty())
+      polygonFromWinding(w, prim.planes[static_cast<std::size_t>(i)], material, prim.primitiveNum);
+  }
+}
+
+void ModelBuilder::convertPatch(const MapPatch& patch, int primitiveNum) {
+  const int material = materials_.find(patch.material);
+  if ((materials_[material].info.contents & kUsefulContents) == 0) return;
+  const PatchGrid mesh = subdividePatchForCollision(patch);
+  if (mesh.points.empty()) {
+    warn("patch (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(patch.line) +
+         ") could not be subdivided; skipped");
+    return;
+  }
+  // Patch polygons carry a negative primitive number.
+  const int polyPrimitive = -primitiveNum;
+  const int width = mesh.width;
+  auto at = [&](int k) -> const Vec3& { return mesh.points[static_cast<std::size_t>(k)]; };
+  for (int i = 0; i < mesh.width - 1; ++i) {
+    for (int j = 0; j < mesh.height - 1; ++j) {
+      const int v1 = j * width + i;
+      const int v2 = v1 + 1;
+      const int v3 = v1 + width + 1;
+      const int v4 = v1 + width;
+      Plane plane;
+      plane.normal = (at(v2) - at(v1)).cross(at(v3) - at(v1));
+      if (normalizeLikeOriginal(plane.normal) != 0) {
+        plane.fixDegeneracies(0);  // the original's Normalize fixes degenerate normals
+        plane.fitThroughPoint(at(v1));
+        const Real dot = plane.distance(at(v4));
+        Winding w;
+        if (std::fabs(dot) < tol::kPatchQuadPlanarEpsilon) {
+          w.add(at(v1));
+          w.add(at(v2));
+          w.add(at(v3));
+          w.add(at(v4));
+          polygonFromWinding(w, plane, material, polyPrimitive);
+          continue;
+        }
+        w.add(at(v1));
+        w.add(at(v2));
+        w.add(at(v3));
+        polygonFromWinding(w, plane, material, polyPrimitive);
+      }
+      // the other triangle
+      plane = Plane{};
+      plane.normal = (at(v3) - at(v1)).cross(at(v4) - at(v1));
+      if (normalizeLikeOriginal(plane.normal) != 0) {
+        plane.fixDegeneracies(0);
+        plane.fitThroughPoint(at(v1));
+        Winding w;
+        w.add(at(v1));
+        w.add(at(v3));
+        w.add(at(v4));
+        polygonFromWinding(w, plane, material, polyPrimitive);
+      }
+    }
+  }
+}
+
+}  // namespace cmkit::detail

@@ -1,0 +1,214 @@
+// Windings -> polygons: vertex welding, edge sharing (the original's
+// GetVertex, GetEdge, CreatePolygon and PolygonFromWinding).
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+
+#include "compile/builder.h"
+
+namespace cmkit::detail {
+
+namespace {
+
+/// (int)x as x86 converts it: out of range (or NaN) gives INT_MIN.
+int truncateToInt(double x) {
+  if (!(x > -2147483649.0 && x < 2147483648.0)) return INT_MIN;
+  return static_cast<int>(x);
+}
+
+/// The hash cell of one coordinate (4-unit cells from the hash minimum).
+int axisCell(Real c, Real mn, double offset) {
+  const long long i = truncateToInt(static_cast<double>(c - mn) + offset);
+  return static_cast<int>((i + 2) >> 2);
+}
+
+int combineCells(const int k[3], int hashSize) {
+  const std::uint32_t key = static_cast<std::uint32_t>(k[0]) + 64u * static_cast<std::uint32_t>(k[1]) +
+                            static_cast<std::uint32_t>(k[2]);
+  return static_cast<int>(key & static_cast<std::uint32_t>(hashSize - 1));
+}
+
+std::uint64_t edgeKey(int v0, int v1) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v0)) << 32) | static_cast<std::uint32_t>(v1);
+}
+
+}  // namespace
+
+void ModelBuilder::clearHash(const Bounds& bounds) {
+  hashMin_ = bounds.min;
+  vertexHashHead_.assign(kVertexHashSize, -1);
+  vertexHashNext_.clear();
+  edgeHashHead_.clear();
+  edgeHashNext_.clear();
+}
+
+bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
+  Vec3 vert;
+  for (int i = 0; i < 3; ++i) {
+    const Real r = std::floor(v[i] + Real(0.5));
+    vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
+  }
+  const double lo = tol::kVertexHashOffset - tol::kVertexHashSpread;
+  const double hi = tol::kVertexHashOffset + tol::kVertexHashSpread;
+  int kLo[3];
+  int kHi[3];
+  int kMid[3];
+  int differing = 0;
+  for (int a = 0; a < 3; ++a) {
+    kLo[a] = axisCell(vert[a], hashMin_[a], lo);
+    kHi[a] = axisCell(vert[a], hashMin_[a], hi);
+    kMid[a] = axisCell(vert[a], hashMin_[a], tol::kVertexHashOffset);
+    if (kLo[a] != kHi[a]) ++differing;
+  }
+  auto matches = [&](int vn) {
+    const Vec3& p = vertices_[static_cast<std::size_t>(vn)];
+    return std::fabs(vert[2] - p[2]) < tol::kVertexEpsilon &&
+           std::fabs(vert[0] - p[0]) < tol::kVertexEpsilon && std::fabs(vert[1] - p[1]) < tol::kVertexEpsilon;
+  };
+  // Newest first within a cell, as the original's hash chains.
+  auto searchCell = [&](int key) {
+    for (int vn = vertexHashHead_[static_cast<std::size_t>(key)]; vn >= 0;
+         vn = vertexHashNext_[static_cast<std::size_t>(vn)]) {
+      if (matches(vn)) return vn;
+    }
+    return -1;
+  };
+  const int midKey = combineCells(kMid, kVertexHashSize);
+  int found = searchCell(midKey);
+  if (found < 0 && differing == 1) {
+    int other[3];
+    for (int a = 0; a < 3; ++a) other[a] = kMid[a] == kLo[a] ? kHi[a] : kLo[a];
+    found = searchCell(combineCells(other, kVertexHashSize));
+  } else if (found < 0 && differing > 1) {
+    // The original searches all vertices in order here; any vertex within
+    // the weld distance lies in one of these cells, so the lowest-numbered
+    // match among them is the same vertex, found without a linear scan.
+    int keys[8];
+    int numKeys = 0;
+    for (int c = 0; c < 8; ++c) {
+      int k[3];
+      for (int a = 0; a < 3; ++a) k[a] = (c >> a) & 1 ? kHi[a] : kLo[a];
+      const int key = combineCells(k, kVertexHashSize);
+      bool seen = false;
+      for (int s = 0; s < numKeys; ++s) seen = seen || keys[s] == key;
+      if (!seen) keys[numKeys++] = key;
+    }
+    for (int s = 0; s < numKeys; ++s) {
+      for (int vn = vertexHashHead_[static_cast<std::size_t>(keys[s])]; vn >= 0;
+           vn = vertexHashNext_[static_cast<std::size_t>(vn)]) {
+        if ((found < 0 || vn < found) && matches(vn)) found = vn;
+      }
+    }
+  }
+  if (found >= 0) {
+    vertexNum = found;
+    return true;
+  }
+  vertexNum = static_cast<int>(vertices_.size());
+  vertices_.push_back(vert);
+  vertexHashNext_.push_back(vertexHashHead_[static_cast<std::size_t>(midKey)]);
+  vertexHashHead_[static_cast<std::size_t>(midKey)] = vertexNum;
+  return false;
+}
+
+bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1num) {
+  if (edges_.empty()) {
+    edges_.emplace_back();  // the dummy edge 0
+    edgeHashNext_.push_back(-1);
+  }
+  bool found = v1num != -1 ? true : getVertex(v1, v1num);
+  int v2num = -1;
+  found = getVertex(v2, v2num) && found;
+  if (v1num == v2num) {  // degenerate: both ends welded together
+    edgeNum = 0;
+    return true;
+  }
+  if (found) {
+    // Share an edge only with one polygon that uses it the other way.
+    const auto it = edgeHashHead_.find(edgeKey(v2num, v1num));
+    if (it != edgeHashHead_.end()) {
+      for (int e = it->second; e >= 0; e = edgeHashNext_[static_cast<std::size_t>(e)]) {
+        if (edges_[static_cast<std::size_t>(e)].numUsers != 1) continue;
+        edges_[static_cast<std::size_t>(e)].numUsers++;
+        edgeNum = -e;
+        return true;
+      }
+    }
+  }
+  BEdge edge;
+  edge.v[0] = v1num;
+  edge.v[1] = v2num;
+  edge.numUsers = 1;
+  const int e = static_cast<int>(edges_.size());
+  edges_.push_back(edge);
+  auto [it, inserted] = edgeHashHead_.try_emplace(edgeKey(v1num, v2num), e);
+  edgeHashNext_.push_back(inserted ? -1 : it->second);
+  it->second = e;
+  edgeNum = e;
+  return false;
+}
+
+void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum) {
+  std::vector<int> polyEdges;
+  polyEdges.reserve(static_cast<std::size_t>(w.size()));
+  int v1num = -1;
+  for (int i = 0, j = 1; i < w.size(); ++i, ++j) {
+    if (j >= w.size()) j = 0;
+    int e = 0;
+    getEdge(w[i], w[j], e, v1num);
+    if (e != 0) {
+      const BEdge& edge = edges_[static_cast<std::size_t>(std::abs(e))];
+      v1num = edge.v[e > 0 ? 1 : 0];  // the end of this edge starts the next
+      polyEdges.push_back(e);
+    }
+  }
+  if (polyEdges.size() < 3) return;
+  for (std::size_t i = 0; i < polyEdges.size(); ++i) {
+    for (std::size_t j = i + 1; j < polyEdges.size(); ++j) {
+      if (std::abs(polyEdges[i]) == std::abs(polyEdges[j])) return;  // an edge used twice
+    }
+  }
+  if (!edgesFormLoop(polyEdges)) {
+    // Welding met non-finite or enormous coordinates (found by fuzzing; real
+    // maps never get here): the original would keep an outline that is not
+    // closed, which no query can use correctly.
+    warn("primitive " + std::to_string(std::abs(primitiveNum)) +
+         " is degenerate: a polygon's welded edges do not form a loop; dropped");
+    return;
+  }
+  if (polyEdges.size() > static_cast<std::size_t>(tol::kMaxPolygonEdges)) {
+    warn("polygon has " + std::to_string(polyEdges.size()) + " edges; truncated to " +
+         std::to_string(tol::kMaxPolygonEdges));
+    polyEdges.resize(static_cast<std::size_t>(tol::kMaxPolygonEdges));
+  }
+  BPolygon p;
+  p.edges = std::move(polyEdges);
+  p.contents = materials_[material].info.contents;
+  p.material = material;
+  p.plane = plane;
+  p.bounds = w.bounds();
+  polygons_.push_back(std::move(p));
+  filterIntoTree(ItemKind::Polygon, 0, -1, static_cast<int>(polygons_.size()) - 1);
+}
+
+void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum) {
+  const MaterialInfo& info = materials_[material].info;
+  const Winding* out = windingOutsideBrushes(w, plane, info.contents, primitiveNum);
+  if (!out) {
+    counters_.numRemovedPolys++;  // fully inside brushes
+    return;
+  }
+  if (out->isHuge()) {
+    warn("primitive " + std::to_string(std::abs(primitiveNum)) +
+         " is degenerate: a polygon reaches the world limit; dropped");
+    return;
+  }
+  createPolygon(*out, plane, material, primitiveNum);
+  if (info.twoSided) {
+    Winding reversed = *out;
+    reversed.reverse();
+    createPolygon(reversed, plane.flipped(), material, primitiveNum);
+  }
+}
+
+}  // namespace cmkit::detail

@@ -1,0 +1,407 @@
+// RayIndex: an 8-wide bounding volume hierarchy over a model's polygons for
+// closest-crossing ray casts (see cmkit/ray_index.h for the contract).
+//
+// Build: a binary hierarchy by binned surface-area heuristic, collapsed into
+// 8-wide nodes (each node's children are tested at once: AVX2 in
+// ray_index_avx2.cpp, two halves with SSE2 here). Cast: the walk in
+// ray_index_kernel.h. Every polygon test is exact in the sense that the index
+// returns precisely what testing every polygon would return (tests compare it
+// with that brute force): node boxes are padded beyond the region in which a
+// polygon accepts a crossing.
+#include "cmkit/ray_index.h"
+
+#include "ray/ray_index_kernel.h"
+
+// SSE2 on x86-64; any other target (or -DCMKIT_NO_SIMD, to test it) uses the
+// portable loop in enteredChildren, which does the same arithmetic.
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+#include <emmintrin.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+
+namespace cmkit {
+namespace {
+
+/// Polygons per leaf the builder aims for (the surface-area heuristic may
+/// stop earlier); more than this and a node is always split.
+constexpr std::uint32_t kMaxLeafPolygons = 4;
+/// Below this depth splits follow the surface-area heuristic; deeper ones cut
+/// at the median, so that no input (at most 2^32 polygons) makes the
+/// hierarchy deeper than kSahDepthLimit + 32 = detail::kMaxDepth, which
+/// sizes the walk's stack.
+constexpr int kSahDepthLimit = 36;
+static_assert(kSahDepthLimit + 32 <= detail::kMaxDepth, "the walk's stack is sized by kMaxDepth");
+/// The surface-area heuristic's cost of visiting a node, in polygon tests.
+constexpr Real kNodeCost = 1;
+/// Bins of the surface-area heuristic per axis.
+constexpr int kBins = 16;
+/// Reciprocal of a zero (or denormal) direction component: large but finite,
+/// so that the slab test never computes 0 * infinity.
+constexpr float kHugeInverse = 1e30f;
+
+Real maxAbs(const Bounds& b) {
+  Real m = 0;
+  for (int k = 0; k < 3; ++k) m = std::max({m, std::fabs(b.min[k]), std::fabs(b.max[k])});
+  return m;
+}
+
+/// The box padded by `relative` times its largest coordinate magnitude plus one.
+Bounds padded(const Bounds& b, Real relative) { return b.expanded(relative * (maxAbs(b) + 1)); }
+
+Real halfArea(const Bounds& b) {
+  const Vec3 d = b.max - b.min;
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+/// The temporary binary hierarchy.
+struct BinaryNode {
+  Bounds bounds;
+  std::uint32_t first = 0, count = 0;  ///< polygons (leaves)
+  std::uint32_t left = 0, right = 0;   ///< children (inner nodes: count == 0)
+  std::uint32_t contents = 0;
+};
+
+class BinaryBuilder {
+ public:
+  BinaryBuilder(std::vector<Bounds> boxes, std::vector<std::uint32_t> contents)
+      : boxes_(std::move(boxes)), contents_(std::move(contents)) {
+    order_.resize(boxes_.size());
+    centres_.resize(boxes_.size());
+    for (std::uint32_t i = 0; i < order_.size(); ++i) {
+      order_[i] = i;
+      centres_[i] = boxes_[i].center();
+    }
+    nodes_.reserve(2 * boxes_.size() + 1);
+    nodes_.emplace_back();
+    build(0, 0, std::uint32_t(order_.size()), 0);
+  }
+  const std::vector<BinaryNode>& nodes() const { return nodes_; }
+  const std::vector<std::uint32_t>& order() const { return order_; }
+
+ private:
+  void build(std::uint32_t nodeIndex, std::uint32_t first, std::uint32_t count, int depth) {
+    Bounds box, centres;
+    std::uint32_t contents = 0;
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      box.addBounds(boxes_[order_[i]]);
+      centres.addPoint(centres_[order_[i]]);
+      contents |= contents_[order_[i]];
+    }
+    nodes_[nodeIndex].bounds = box;
+    nodes_[nodeIndex].contents = contents;
+    const auto leaf = [&] {
+      nodes_[nodeIndex].first = first;
+      nodes_[nodeIndex].count = count;
+    };
+    if (count <= 1) return leaf();
+
+    std::uint32_t leftCount = 0;
+    if (depth < kSahDepthLimit) {
+      const Split split = bestSplit(first, count, centres);
+      if (count <= kMaxLeafPolygons &&
+          (split.axis < 0 || split.cost + kNodeCost * halfArea(box) >= halfArea(box) * Real(count)))
+        return leaf();
+      if (split.axis >= 0) {
+        const auto mid = std::partition(
+            order_.begin() + first, order_.begin() + first + count,
+            [&](std::uint32_t p) { return binOf(centres_[p], centres, split.axis) < split.bin; });
+        leftCount = std::uint32_t(mid - (order_.begin() + first));
+      }
+    } else if (count <= kMaxLeafPolygons) {
+      return leaf();
+    }
+    if (leftCount == 0 || leftCount == count) {  // no useful split: halves along the widest axis
+      const Vec3 extent = centres.max - centres.min;
+      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+      leftCount = count / 2;
+      std::nth_element(
+          order_.begin() + first, order_.begin() + first + leftCount, order_.begin() + first + count,
+          [&](std::uint32_t a, std::uint32_t b) { return centres_[a][axis] < centres_[b][axis]; });
+    }
+    const auto left = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    build(left, first, leftCount, depth + 1);
+    const auto right = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    build(right, first + leftCount, count - leftCount, depth + 1);
+    nodes_[nodeIndex].left = left;
+    nodes_[nodeIndex].right = right;
+  }
+
+  struct Split {
+    int axis = -1;
+    int bin = 0;
+    Real cost = std::numeric_limits<Real>::max();
+  };
+  static int binOf(const Vec3& c, const Bounds& centres, int axis) {
+    const Real lo = centres.min[axis], hi = centres.max[axis];
+    return std::clamp(int((c[axis] - lo) / (hi - lo) * kBins), 0, kBins - 1);
+  }
+  Split bestSplit(std::uint32_t first, std::uint32_t count, const Bounds& centres) const {
+    Split best;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(centres.max[axis] > centres.min[axis])) continue;
+      std::array<Bounds, kBins> bins;
+      std::array<std::uint32_t, kBins> binCount{};
+      for (std::uint32_t i = first; i < first + count; ++i) {
+        const int b = binOf(centres_[order_[i]], centres, axis);
+        bins[std::size_t(b)].addBounds(boxes_[order_[i]]);
+        ++binCount[std::size_t(b)];
+      }
+      // Areas and counts left of each cut, then sweep from the right.
+      std::array<Real, kBins> leftArea{};
+      std::array<std::uint32_t, kBins> leftCount{};
+      Bounds acc;
+      std::uint32_t n = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        if (binCount[std::size_t(b)]) acc.addBounds(bins[std::size_t(b)]);
+        n += binCount[std::size_t(b)];
+        leftArea[std::size_t(b)] = n ? halfArea(acc) : 0;
+        leftCount[std::size_t(b)] = n;
+      }
+      acc.clear();
+      n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        if (binCount[std::size_t(b)]) acc.addBounds(bins[std::size_t(b)]);
+        n += binCount[std::size_t(b)];
+        const std::uint32_t nl = leftCount[std::size_t(b - 1)];
+        if (nl == 0 || n == 0) continue;
+        const Real cost = leftArea[std::size_t(b - 1)] * Real(nl) + halfArea(acc) * Real(n);
+        if (cost < best.cost) best = {axis, b, cost};
+      }
+    }
+    return best;
+  }
+
+  std::vector<Bounds> boxes_;
+  std::vector<std::uint32_t> contents_;
+  std::vector<Vec3> centres_;
+  std::vector<std::uint32_t> order_;
+  std::vector<BinaryNode> nodes_;
+};
+
+// The node test loads each row of eight floats (and the contents) with one
+// aligned 32-byte load (AVX2) or two 16-byte ones (SSE2).
+static_assert(sizeof(RayIndex::Node) == 256 && alignof(RayIndex::Node) % 32 == 0);
+static_assert(offsetof(RayIndex::Node, max) % 32 == 0 && offsetof(RayIndex::Node, contents) % 32 == 0);
+
+bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
+
+/// Which children of a node the ray enters before `best` and that hold
+/// contents of the mask (bit k for child k), and where it enters each box
+/// (`entry`, clipped to [0, best]).
+int enteredChildren(const RayIndex::Node& n, const detail::Ray& r, float best, float* entry) {
+  const auto* base = reinterpret_cast<const char*>(&n);
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+  // Two halves of four children.
+  const auto half = [&](int h) {
+    const auto row = [base, h](std::size_t offset) {
+      return _mm_load_ps(reinterpret_cast<const float*>(base + offset) + 4 * h);
+    };
+    const auto along = [&](int axis, const std::size_t* rows) {
+      return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.start[axis])), _mm_set1_ps(r.inv[axis]));
+    };
+    const __m128 tNear = _mm_max_ps(_mm_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
+                                    _mm_max_ps(along(2, r.nearRow), _mm_setzero_ps()));
+    const __m128 tFar = _mm_min_ps(_mm_min_ps(along(1, r.farRow), along(0, r.farRow)),
+                                   _mm_min_ps(along(2, r.farRow), _mm_set1_ps(best)));
+    const __m128i noContents =
+        _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents + 4 * h)),
+                                      _mm_set1_epi32(int(r.mask))),
+                        _mm_setzero_si128());
+    _mm_store_ps(entry + 4 * h, tNear);
+    return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
+  };
+  return half(0) | half(1) << 4;
+#else  // the same arithmetic one child at a time
+  int hits = 0;
+  for (int k = 0; k < RayIndex::kWidth; ++k) {
+    float tNear = 0, tFar = best;
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto* nearRow = reinterpret_cast<const float*>(base + r.nearRow[axis]);
+      const auto* farRow = reinterpret_cast<const float*>(base + r.farRow[axis]);
+      tNear = std::max(tNear, (nearRow[k] - r.start[axis]) * r.inv[axis]);
+      tFar = std::min(tFar, (farRow[k] - r.start[axis]) * r.inv[axis]);
+    }
+    entry[k] = tNear;
+    if (tNear <= tFar && (n.contents[k] & r.mask)) hits |= 1 << k;
+  }
+  return hits;
+#endif
+}
+
+/// Whether this processor runs the AVX2 kernel (and this build has it).
+bool avx2Available() {
+#if defined(CMKIT_AVX2_KERNEL) && !defined(CMKIT_NO_SIMD)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+}  // namespace
+
+RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
+    : avx2_(nodeTest == NodeTest::kAuto && avx2Available()) {
+  // The polygons that can be crossed: finite plane and bounds, an outline.
+  std::vector<std::uint32_t> usable;
+  std::vector<Bounds> boxes;
+  std::vector<std::uint32_t> contents;
+  for (std::size_t i = 0; i < model.polygons.size(); ++i) {
+    const CmPolygon& p = model.polygons[i];
+    if (p.numEdges < 3 || !isFinite(p.bounds) || !p.plane.normal.isFinite() || !std::isfinite(p.plane.dist))
+      continue;
+    usable.push_back(std::uint32_t(i));
+    boxes.push_back(padded(p.bounds, tol::kRayAcceptPadding));
+    contents.push_back(p.contents);
+  }
+  if (usable.empty()) return;
+
+  const BinaryBuilder binary(boxes, std::move(contents));
+  const std::vector<BinaryNode>& bn = binary.nodes();
+
+  // Polygons and their edge lines in leaf order.
+  polygons_.reserve(usable.size());
+  details_.reserve(usable.size());
+  for (const std::uint32_t k : binary.order()) {
+    const CmPolygon& p = model.polygons[usable[k]];
+    Polygon r;
+    r.normal = p.plane.normal;
+    r.dist = p.plane.dist;
+    r.contents = p.contents;
+    r.index = std::int32_t(usable[k]);
+    r.firstEdge = std::uint32_t(edges_.size());
+    r.numEdges = p.numEdges;
+    for (const std::int32_t e : model.edgesOf(p)) {
+      const CmEdge& edge = model.edges[std::size_t(std::abs(e))];
+      const Pluecker line = Pluecker::fromLine(model.vertices[std::size_t(edge.vertex[0])],
+                                               model.vertices[std::size_t(edge.vertex[1])]);
+      EdgeLine l{};
+      for (int c = 0; c < 6; ++c) l.p[c] = line[c];
+      l.reversed = e < 0;
+      edges_.push_back(l);
+    }
+    polygons_.push_back(r);
+    details_.push_back({boxes[k], p.material});
+  }
+
+  // Collapse: each 8-wide node takes the binary node's children, then opens
+  // the largest inner child until it has eight.
+  const auto collapse = [&](auto&& self, std::uint32_t b) -> std::uint32_t {
+    std::array<std::uint32_t, kWidth> kids{};
+    std::size_t n = 0;
+    if (bn[b].count) {
+      kids[n++] = b;
+    } else {
+      kids[n++] = bn[b].left;
+      kids[n++] = bn[b].right;
+    }
+    while (n < kWidth) {
+      std::size_t open = n;
+      for (std::size_t k = 0; k < n; ++k)
+        if (!bn[kids[k]].count &&
+            (open == n || halfArea(bn[kids[k]].bounds) > halfArea(bn[kids[open]].bounds)))
+          open = k;
+      if (open == n) break;
+      const std::uint32_t inner = kids[open];
+      kids[open] = bn[inner].left;
+      kids[n++] = bn[inner].right;
+    }
+    const auto me = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    std::array<std::uint32_t, kWidth> refs{};
+    for (std::size_t k = 0; k < n; ++k) {
+      const BinaryNode& c = bn[kids[k]];
+      if (c.count) {
+        refs[k] = kLeaf | std::uint32_t(leaves_.size());
+        leaves_.push_back({c.first, c.count});
+      } else {
+        refs[k] = self(self, kids[k]);
+      }
+    }
+    Node& node = nodes_[me];
+    for (std::size_t k = 0; k < kWidth; ++k) {
+      if (k >= n) {  // an empty slot: a box nothing enters, no contents
+        for (int a = 0; a < 3; ++a) {
+          node.min[a][k] = std::numeric_limits<float>::max();
+          node.max[a][k] = -std::numeric_limits<float>::max();
+        }
+        node.child[k] = kLeaf;
+        node.contents[k] = 0;
+        continue;
+      }
+      const Bounds box = padded(bn[kids[k]].bounds, tol::kRayNodePadding);
+      for (int a = 0; a < 3; ++a) {
+        node.min[a][k] = float(box.min[a]);
+        node.max[a][k] = float(box.max[a]);
+      }
+      node.child[k] = refs[k];
+      node.contents[k] = bn[kids[k]].contents;
+    }
+    return me;
+  };
+  collapse(collapse, 0);
+}
+
+std::size_t RayIndex::memoryBytes() const {
+  return nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
+         polygons_.capacity() * sizeof(Polygon) + edges_.capacity() * sizeof(EdgeLine) +
+         details_.capacity() * sizeof(PolygonDetail);
+}
+
+namespace detail {
+Crossing castBaseline(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildren); }
+}  // namespace detail
+
+RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t contentMask,
+                      const Placement& placement) const {
+  RayHit result;
+  if (nodes_.empty() || !worldStart.isFinite() || !worldEnd.isFinite() || worldStart == worldEnd)
+    return result;
+  const bool rotated = !placement.axis.isIdentity();
+  Vec3 start = worldStart - placement.origin, end = worldEnd - placement.origin;
+  if (rotated) {
+    start = placement.axis * start;
+    end = placement.axis * end;
+  }
+  const Vec3 dir = end - start;
+  if (!dir.isFinite()) return result;
+
+  detail::Ray ray;
+  const Pluecker line = Pluecker::fromRay(start, dir);
+  for (int c = 0; c < 6; ++c) ray.line[c] = line[c];
+  for (int k = 0; k < 3; ++k) {
+    ray.start[k] = start[k];
+    ray.end[k] = end[k];
+    ray.dir[k] = dir[k];
+    ray.inv[k] =
+        std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
+    const bool negative = dir[k] < 0;
+    ray.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
+                              : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
+    ray.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
+                             : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
+  }
+  ray.mask = contentMask;
+  const detail::Arrays arrays{nodes_.data(), leaves_.data(), polygons_.data(), edges_.data(),
+                                  details_.data()};
+  const detail::Crossing found =
+      avx2_ ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
+  if (found.slot < 0) return result;
+  const Polygon& best = polygons_[std::size_t(found.slot)];
+  result.fraction = found.t;
+  result.polygon = best.index;
+  result.contents = best.contents;
+  result.material = details_[std::size_t(found.slot)].material;
+  result.point = worldStart + (worldEnd - worldStart) * found.t;
+  result.normal = rotated ? best.normal * placement.axis : best.normal;
+  result.dist = best.dist + placement.origin.dot(result.normal);
+  return result;
+}
+
+}  // namespace cmkit
