@@ -141,28 +141,4 @@ class ModelManager {
   mutable std::unordered_map<std::int32_t, std::shared_ptr<const RayIndex>> rayIndexes_;  // by handle
 };
 
-/// The collision model of a trace model (the original's SetupTrmModel): its
-/// vertices, edges (with the trace model's edge normals and numbering) and
-/// polygons, every polygon with `contents` and `material`, one leaf holding
-/// all polygons in order, no brushes, isConvex = true, named "trace model".
-ModelPtr collisionModelFromTraceModel(const TraceModel& trm, std::uint32_t contents = contents::kSolid,
-                                      std::string material = {});
-
-/// A convex collision model as a trace model (the original's TrmFromModel):
-/// the convex hull of its polygons' vertices. Errors: the model has no
-/// polygons, is not closed (an edge not used by exactly two polygons), is
-/// concave (a vertex more than tol::kTrmFromModelConvexEpsilon in front of a
-/// polygon), or exceeds the trace model limits (vertices, edges, polygons,
-/// edges per polygon).
-Result<TraceModel> traceModelFromCollisionModel(const CollisionModel& model);
-
-/// A polygon's vertex loop, in edge order.
-std::vector<Vec3> polygonWinding(const CollisionModel& model, std::size_t polygon);
-
-/// The original's PrintModel lines for one model: its name, then vertices,
-/// edges, polygons, brushes, nodes, polygon refs, brush refs (each with the
-/// memory the original's 64-bit structures take, in KB), internal and sharp
-/// edges, contained polygons removed, polygons merged, total memory in KB.
-std::string modelStatistics(const CollisionModel& model);
-
 }  // namespace cmkit

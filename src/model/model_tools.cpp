@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "cmkit/manager.h"
+#include "cmkit/model.h"
 
 namespace cmkit {
 
