@@ -1,8 +1,8 @@
 // model.h: collision models, the static geometry that trace models collide
 // with (the original's cm_model_t).
 //
-// A collision model is built from a map entity (src/compile) or read from a
-// .cm file (src/io) and is IMMUTABLE afterwards: it is handed out as
+// A collision model is built from a map entity (compile.h) or read from a
+// .cm file (cm_file.h) and is IMMUTABLE afterwards: it is handed out as
 // std::shared_ptr<const CollisionModel>, and every query is a const function
 // of it, so any number of threads may query one model at once.
 //
@@ -92,7 +92,7 @@ struct ModelStats {
   int polygonsMerged = 0;
 };
 
-/// A collision model. Build it with src/compile or read it with src/io;
+/// A collision model. Build it with buildCollisionModels (compile.h) or read it with loadCmFile (cm_file.h);
 /// treat it as immutable afterwards.
 struct CollisionModel {
   std::string name;
