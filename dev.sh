@@ -51,11 +51,9 @@ viewer_deps() {
       echo "== could not install ${missing[*]}: the viewer test will skip"
   fi
   if command -v npm >/dev/null 2>&1; then
-    # npm ci first; some npm 11 registries leave other platforms' optional
-    # rollup packages out of the lock, which npm ci refuses: then install from
-    # the same lock without changing it.
-    { { npm ci --prefix viewer --no-audit --no-fund ||
-        npm install --prefix viewer --no-save --no-audit --no-fund; } &&
+    # The lock lists every platform's optional rollup package, so npm ci
+    # installs exactly what it pins.
+    { npm ci --prefix viewer --no-audit --no-fund &&
       npm run build --prefix viewer; } ||
       echo "== npm install / vite build failed: the viewer test will skip"
   fi
