@@ -111,7 +111,7 @@ case "${1:-}" in
       -max_total_time="$seconds" -artifact_prefix="build/fuzz/work/$target-" -print_final_stats=1
     ;;
   *)
-    sed -n '2,14p' "$0"
+    sed -n '2,/^[^#]/p' "$0" | grep '^#' | cut -c3-
     exit 2
     ;;
 esac
