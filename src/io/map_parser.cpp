@@ -1,9 +1,9 @@
 // The .map parser (the original's idMapFile, rewritten from the format
 // description in shared/spec/map-format.md and cm-algorithms.md section 2).
 //
-// Internally the recursive-descent functions throw a private Failure that
-// parseMapText catches and turns into an Error: nothing escapes the public
-// API, and a failing parse never returns a partial map.
+// Internally the lexer and the recursive-descent functions throw a
+// SyntaxError that parseMapText catches and turns into an Error: nothing
+// escapes the public API, and a failing parse never returns a partial map.
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -13,21 +13,16 @@
 
 #include "cmkit/map.h"
 #include "cmkit/tolerances.h"
-#include "text/lexer.h"
 #include "io/map_crc.h"
+#include "text/lexer.h"
 
 namespace cmkit {
 
 namespace {
 
-using text::Lexer;
-using text::Token;
-using text::TokenKind;
-
-/// Thrown inside the parser only; caught by parseMapText.
-struct Failure {
-  Error error;
-};
+using detail::Lexer;
+using detail::Token;
+using detail::TokenKind;
 
 bool equalsIgnoreCase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -63,11 +58,11 @@ constexpr float kMaxMapVersion = 1000000;
 /// The parser state for one file.
 class Parser {
  public:
-  Parser(std::string_view text, std::string fileName) : lex_(text, std::move(fileName)) {}
+  explicit Parser(std::string_view text) : lex_(text) {}
 
-  MapFile parseFile() {
+  MapFile parseFile(std::string fileName) {
     MapFile map;
-    map.fileName = lex_.fileName();
+    map.fileName = std::move(fileName);
     Token t = peek();
     if (t.is(TokenKind::Name, "Version")) {
       next();
@@ -89,19 +84,9 @@ class Parser {
   }
 
  private:
-  [[noreturn]] void fail(const Token& t, std::string message) const {
-    throw Failure{lex_.errorAt(t, std::move(message))};
-  }
-  Token next() {
-    auto r = lex_.next();
-    if (!r) throw Failure{r.error()};
-    return *r;
-  }
-  Token peek() {
-    auto r = lex_.peek();
-    if (!r) throw Failure{r.error()};
-    return *r;
-  }
+  [[noreturn]] static void fail(const Token& t, std::string message) { Lexer::fail(t, std::move(message)); }
+  Token next() { return lex_.next(); }
+  Token peek() { return lex_.peek(); }
   Token expectPunct(char c, std::string_view where) {
     Token t = next();
     if (!t.isPunct(c)) {
@@ -118,7 +103,7 @@ class Parser {
       t = next();
     }
     if (t.kind != TokenKind::Number) fail(t, "expected " + std::string(what) + ", found " + describe(t));
-    const float v = *text::originalNumberValue(t.text);  // validated by the lexer
+    const float v = *detail::originalNumberValue(t.text);  // validated by the lexer
     return negate ? -v : v;
   }
   void vector(float* out, int n, std::string_view what) {
@@ -386,10 +371,10 @@ Mat3 MapEntity::axis() const {
 
 Result<MapFile> parseMapText(std::string_view text, std::string fileName) {
   try {
-    Parser parser(text, std::move(fileName));
-    return parser.parseFile();
-  } catch (const Failure& f) {
-    return f.error;
+    Parser parser(text);
+    return parser.parseFile(fileName);
+  } catch (const detail::SyntaxError& e) {
+    return detail::toError(e, std::move(fileName));
   }
 }
 
