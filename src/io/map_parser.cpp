@@ -4,15 +4,14 @@
 // Internally the lexer and the recursive-descent functions throw a
 // SyntaxError that parseMapText catches and turns into an Error: nothing
 // escapes the public API, and a failing parse never returns a partial map.
-#include <charconv>
 #include <cmath>
 #include <fstream>
-#include <span>
 #include <sstream>
 #include <utility>
 
 #include "cmkit/map.h"
 #include "cmkit/tolerances.h"
+#include "io/fields.h"
 #include "io/map_crc.h"
 #include "text/lexer.h"
 
@@ -331,41 +330,20 @@ std::optional<std::string_view> MapEntity::value(std::string_view key) const {
   return std::nullopt;
 }
 
-namespace {
-
-// Like sscanf("%f %f ..."): whitespace-separated numbers, correctly rounded,
-// stopping at the first thing that is not a number; the values read replace
-// the first entries of `out`, the rest keep theirs.
-void scanFloats(std::string_view text, std::span<float> out) {
-  const char* p = text.data();
-  const char* end = p + text.size();
-  for (float& slot : out) {
-    while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) ++p;
-    if (p < end && *p == '+') ++p;
-    float v = 0;
-    const auto r = std::from_chars(p, end, v);
-    if (r.ec != std::errc()) break;
-    slot = v;
-    p = r.ptr;
-  }
-}
-
-}  // namespace
-
 Vec3 MapEntity::origin() const {
   float v[3] = {0, 0, 0};  // missing components stay 0
-  if (const auto text = value("origin")) scanFloats(*text, v);
+  if (const auto text = value("origin")) detail::scanReals(*text, v);
   return {v[0], v[1], v[2]};
 }
 
 Mat3 MapEntity::axis() const {
   if (const auto text = value("rotation")) {
     float m[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // missing entries stay the identity's
-    scanFloats(*text, m);
+    detail::scanReals(*text, m);
     return {{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}};
   }
   float yaw = 0;
-  if (const auto text = value("angle")) scanFloats(*text, {&yaw, 1});
+  if (const auto text = value("angle")) detail::scanReals(*text, {&yaw, 1});
   return yaw == 0 ? Mat3::identity() : Mat3::fromAngles(0, yaw, 0);
 }
 
