@@ -7,9 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,7 +21,6 @@ namespace {
 const std::filesystem::path kShared = std::filesystem::path(CMKIT_SOURCE_DIR) / ".." / "shared";
 
 struct ParsedRotation {
-  std::unique_ptr<cmkit::TraceModel> trm;  // null: a point
   cmkit::RotationQuery query;
   const cmkit::CollisionModel* model = nullptr;
 };
@@ -31,48 +28,10 @@ struct ParsedRotation {
 struct Lt4Rotations {
   std::vector<cmkit::ModelPtr> models;
   std::vector<std::string> lines;
-  std::vector<ParsedRotation> parsed;
-  std::string why;  // non-empty: not available
+  std::vector<cmkit::ParsedQuery> queries;  // the lines parsed (they own the trace models)
+  std::vector<ParsedRotation> parsed;       // the rotations of `queries`
+  std::string why;                          // non-empty: not available
 };
-
-std::vector<float> numbers(const std::string& s) {
-  std::vector<float> v;
-  std::stringstream in(s);
-  for (std::string t; std::getline(in, t, ',');) v.push_back(std::strtof(t.c_str(), nullptr));
-  return v;
-}
-cmkit::Vec3 vec(const std::string& s) {
-  const auto v = numbers(s);
-  return {v[0], v[1], v[2]};
-}
-cmkit::Mat3 mat(const std::string& s) {
-  const auto v = numbers(s);
-  return {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}};
-}
-
-// The query of a rotation line (the lines of lt4 are all well-formed).
-ParsedRotation parse(const std::string& line, const std::vector<cmkit::ModelPtr>& models) {
-  std::map<std::string, std::string> f;
-  std::istringstream in(line);
-  for (std::string tok; in >> tok;)
-    if (const auto eq = tok.find('='); eq != std::string::npos) f[tok.substr(0, eq)] = tok.substr(eq + 1);
-  ParsedRotation p;
-  auto trm = cmkit::TraceModel::parse(f["trm"]);
-  if (trm && !trm->isPoint()) p.trm = std::make_unique<cmkit::TraceModel>(*trm);
-  p.query.trm = p.trm.get();
-  p.query.start = vec(f["start"]);
-  p.query.rotation =
-      cmkit::Rotation(vec(f["rotorigin"]), vec(f["rotaxis"]), std::strtof(f["angle"].c_str(), nullptr));
-  if (f.count("trmaxis")) p.query.trmAxis = mat(f["trmaxis"]);
-  if (f.count("mask"))
-    if (auto mask = cmkit::parseContentsMask(f["mask"])) p.query.contentMask = *mask;
-  if (f.count("origin")) p.query.model.origin = vec(f["origin"]);
-  if (f.count("modelaxis")) p.query.model.axis = mat(f["modelaxis"]);
-  p.model = models[0].get();
-  for (const auto& m : models)
-    if (f.count("model") && m->name == f["model"]) p.model = m.get();
-  return p;
-}
 
 const Lt4Rotations& lt4() {
   static const Lt4Rotations data = [] {
@@ -92,7 +51,14 @@ const Lt4Rotations& lt4() {
     for (std::string line; std::getline(in, line);)
       if (line.rfind("rotation ", 0) == 0) d.lines.push_back(line);
     if (d.lines.empty()) d.why = "needs ../shared/reference/lt4.queries.txt";
-    for (const std::string& line : d.lines) d.parsed.push_back(parse(line, d.models));
+    for (const std::string& line : d.lines)
+      if (auto q = cmkit::parseQueryLine(d.models, line)) d.queries.push_back(std::move(*q));
+    for (const cmkit::ParsedQuery& q : d.queries) {
+      ParsedRotation& p = d.parsed.emplace_back();
+      p.query = {
+          q.trm ? &*q.trm : nullptr, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false};
+      p.model = d.models[q.model].get();
+    }
     return d;
   }();
   return data;

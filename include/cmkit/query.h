@@ -58,9 +58,6 @@ enum class ContactType : std::uint8_t {
   TrmVertex,    ///< a trace-model vertex hit a model polygon
 };
 
-/// Name used in results: "none", "edge", "modelvertex", "trmvertex".
-const char* toString(ContactType type);
-
 /// The contact of a trace. Every field is defined on every path; on a miss
 /// everything is zero, material -1.
 struct ContactInfo {

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "cmkit/contents.h"
+#include "cmkit/tools/query_format.h"
 #include "debug/scene_collector.h"
 
 namespace cmkit {

@@ -6,17 +6,17 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "model/edge_normals.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
-#include "text/cm_cursor.h"
+#include "model/edge_normals.h"
 #include "model/tree_filter.h"
+#include "text/cm_cursor.h"
 
 namespace cmkit {
 
 namespace {
 
-using cmtext::CmCursor;
+using detail::CmCursor;
 
 constexpr std::int64_t kMaxInt = std::numeric_limits<std::int32_t>::max();
 // Counts read from the file are trusted for reserving only up to this; the
@@ -187,7 +187,7 @@ struct ModelReader {
         const std::string_view names =
             in.expectString("the brush contents (a quoted list of names or an integer)");
         Result<std::uint32_t> flags = contentsFromString(names);
-        if (!flags) CmCursor::failAt(at, flags.error().message);
+        if (!flags) in.failAt(at, flags.error().message);
         b.contents = *flags;
       }
       b.material = -1;  // the original's loader gives brushes no material
@@ -202,9 +202,8 @@ struct ModelReader {
     for (std::size_t i = 1; i < model.edges.size(); ++i) {  // edge 0 is the dummy
       for (const std::int32_t v : model.edges[i].vertex) {
         if (v >= numVertices) {
-          CmCursor::failAt(edgeOffsets[i], "edge " + std::to_string(i) + " references vertex " +
-                                               std::to_string(v) + " but the model has " +
-                                               std::to_string(numVertices) + " vertices");
+          in.failAt(edgeOffsets[i], "edge " + std::to_string(i) + " references vertex " + std::to_string(v) +
+                                        " but the model has " + std::to_string(numVertices) + " vertices");
         }
       }
     }
@@ -212,9 +211,8 @@ struct ModelReader {
     for (std::size_t i = 0; i < model.polygons.size(); ++i) {
       for (const std::int32_t e : model.edgesOf(model.polygons[i])) {
         if (e == 0 || std::int64_t(e < 0 ? -std::int64_t(e) : e) >= numEdges) {
-          CmCursor::failAt(polygonOffsets[i], "polygon " + std::to_string(i) + " uses edge " +
-                                                  std::to_string(e) + " but the model has edges 1.." +
-                                                  std::to_string(numEdges - 1));
+          in.failAt(polygonOffsets[i], "polygon " + std::to_string(i) + " uses edge " + std::to_string(e) +
+                                           " but the model has edges 1.." + std::to_string(numEdges - 1));
         }
       }
       // Each edge must start where the previous one ends (the point and edge
@@ -224,11 +222,10 @@ struct ModelReader {
         const auto edges = model.edgesOf(p);
         const std::int32_t e = edges[std::size_t(k)];
         const std::int32_t prev = edges[k == 0 ? edges.size() - 1 : std::size_t(k) - 1];
-        CmCursor::failAt(polygonOffsets[i], "polygon " + std::to_string(i) +
-                                                ": its edges do not form a loop (edge " + std::to_string(e) +
-                                                " starts at vertex " + std::to_string(model.edgeStart(e)) +
-                                                ", the edge before it ends at vertex " +
-                                                std::to_string(model.edgeStart(-prev)) + ")");
+        in.failAt(polygonOffsets[i],
+                  "polygon " + std::to_string(i) + ": its edges do not form a loop (edge " +
+                      std::to_string(e) + " starts at vertex " + std::to_string(model.edgeStart(e)) +
+                      ", the edge before it ends at vertex " + std::to_string(model.edgeStart(-prev)) + ")");
       }
     }
   }
@@ -245,11 +242,10 @@ struct ModelReader {
       for (int k = 0; k < 5; ++k)
         if (word == kSections[k]) section = k;
       if (section < 0) {
-        CmCursor::failAt(at,
-                         "expected a section (vertices, edges, nodes, polygons, brushes) or '}', found '" +
-                             std::string(word.empty() ? std::string_view("?") : word) + "'");
+        in.failAt(at, "expected a section (vertices, edges, nodes, polygons, brushes) or '}', found '" +
+                          std::string(word.empty() ? std::string_view("?") : word) + "'");
       }
-      if (seen[section]) CmCursor::failAt(at, "repeated '" + std::string(word) + "' section");
+      if (seen[section]) in.failAt(at, "repeated '" + std::string(word) + "' section");
       seen[section] = true;
       switch (section) {
         case 0:
@@ -278,21 +274,26 @@ struct ModelReader {
   }
 };
 
-CmFile parseFile(CmCursor& in, const MaterialTable& materials) {
-  CmFile file;
+// The header: "CM", the version "1.00" and the map CRC (returned).
+std::uint32_t parseHeader(CmCursor& in) {
   const std::size_t at = in.tokenOffset();
-  if (in.readName() != "CM") CmCursor::failAt(at, "not a .cm file: expected 'CM' at the start");
+  if (in.readName() != "CM") in.failAt(at, "not a .cm file: expected 'CM' at the start");
   const std::size_t versionAt = in.tokenOffset();
   if (in.expectWord("the version \"1.00\"") != "1.00")
-    CmCursor::failAt(versionAt, "unsupported .cm version (only \"1.00\" is known)");
-  file.crc = std::uint32_t(in.expectInt("the map CRC", 0, std::numeric_limits<std::uint32_t>::max()));
+    in.failAt(versionAt, "unsupported .cm version (only \"1.00\" is known)");
+  return std::uint32_t(in.expectInt("the map CRC", 0, std::numeric_limits<std::uint32_t>::max()));
+}
+
+CmFile parseFile(CmCursor& in, const MaterialTable& materials) {
+  CmFile file;
+  file.crc = parseHeader(in);
   MaterialCache cache(materials);
   while (in.more()) {
     const std::size_t modelAt = in.tokenOffset();
     const std::string_view word = in.readName();
     if (word != "collisionModel") {
-      CmCursor::failAt(modelAt, "expected 'collisionModel' or the end of the file, found '" +
-                                    std::string(word.empty() ? std::string_view("?") : word) + "'");
+      in.failAt(modelAt, "expected 'collisionModel' or the end of the file, found '" +
+                             std::string(word.empty() ? std::string_view("?") : word) + "'");
     }
     ModelReader reader{in, cache, {}, {}, {}, {}};
     reader.parse();
@@ -319,10 +320,8 @@ Result<CmFile> parseCmText(std::string_view text, std::string fileName, const Ma
   CmCursor in(text);
   try {
     return parseFile(in, materials);
-  } catch (const cmtext::CmSyntaxError& e) {
-    int line = 0, column = 0;
-    cmtext::lineColumn(text, e.offset, line, column);
-    return Error(e.message, std::move(fileName), line, column);
+  } catch (const detail::SyntaxError& e) {
+    return detail::toError(e, std::move(fileName));
   }
 }
 
@@ -340,16 +339,9 @@ Result<std::uint32_t> readCmFileCrc(const std::string& path) {
   head.resize(std::size_t(f.gcount()));
   CmCursor in(head);
   try {
-    const std::size_t at = in.tokenOffset();
-    if (in.readName() != "CM") CmCursor::failAt(at, "not a .cm file: expected 'CM' at the start");
-    const std::size_t versionAt = in.tokenOffset();
-    if (in.expectWord("the version \"1.00\"") != "1.00")
-      CmCursor::failAt(versionAt, "unsupported .cm version (only \"1.00\" is known)");
-    return std::uint32_t(in.expectInt("the map CRC", 0, std::numeric_limits<std::uint32_t>::max()));
-  } catch (const cmtext::CmSyntaxError& e) {
-    int line = 0, column = 0;
-    cmtext::lineColumn(head, e.offset, line, column);
-    return Error(e.message, path, line, column);
+    return parseHeader(in);
+  } catch (const detail::SyntaxError& e) {
+    return detail::toError(e, path);
   }
 }
 

@@ -1,33 +1,27 @@
 // The .map parser (the original's idMapFile, rewritten from the format
 // description in shared/spec/map-format.md and cm-algorithms.md section 2).
 //
-// Internally the recursive-descent functions throw a private Failure that
-// parseMapText catches and turns into an Error: nothing escapes the public
-// API, and a failing parse never returns a partial map.
-#include <charconv>
+// Internally the lexer and the recursive-descent functions throw a
+// SyntaxError that parseMapText catches and turns into an Error: nothing
+// escapes the public API, and a failing parse never returns a partial map.
 #include <cmath>
 #include <fstream>
-#include <span>
 #include <sstream>
 #include <utility>
 
 #include "cmkit/map.h"
 #include "cmkit/tolerances.h"
-#include "text/lexer.h"
+#include "io/fields.h"
 #include "io/map_crc.h"
+#include "text/lexer.h"
 
 namespace cmkit {
 
 namespace {
 
-using text::Lexer;
-using text::Token;
-using text::TokenKind;
-
-/// Thrown inside the parser only; caught by parseMapText.
-struct Failure {
-  Error error;
-};
+using detail::Lexer;
+using detail::Token;
+using detail::TokenKind;
 
 bool equalsIgnoreCase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -63,11 +57,11 @@ constexpr float kMaxMapVersion = 1000000;
 /// The parser state for one file.
 class Parser {
  public:
-  Parser(std::string_view text, std::string fileName) : lex_(text, std::move(fileName)) {}
+  explicit Parser(std::string_view text) : lex_(text) {}
 
-  MapFile parseFile() {
+  MapFile parseFile(std::string fileName) {
     MapFile map;
-    map.fileName = lex_.fileName();
+    map.fileName = std::move(fileName);
     Token t = peek();
     if (t.is(TokenKind::Name, "Version")) {
       next();
@@ -89,19 +83,9 @@ class Parser {
   }
 
  private:
-  [[noreturn]] void fail(const Token& t, std::string message) const {
-    throw Failure{lex_.errorAt(t, std::move(message))};
-  }
-  Token next() {
-    auto r = lex_.next();
-    if (!r) throw Failure{r.error()};
-    return *r;
-  }
-  Token peek() {
-    auto r = lex_.peek();
-    if (!r) throw Failure{r.error()};
-    return *r;
-  }
+  [[noreturn]] static void fail(const Token& t, std::string message) { Lexer::fail(t, std::move(message)); }
+  Token next() { return lex_.next(); }
+  Token peek() { return lex_.peek(); }
   Token expectPunct(char c, std::string_view where) {
     Token t = next();
     if (!t.isPunct(c)) {
@@ -118,7 +102,7 @@ class Parser {
       t = next();
     }
     if (t.kind != TokenKind::Number) fail(t, "expected " + std::string(what) + ", found " + describe(t));
-    const float v = *text::originalNumberValue(t.text);  // validated by the lexer
+    const float v = *detail::originalNumberValue(t.text);  // validated by the lexer
     return negate ? -v : v;
   }
   void vector(float* out, int n, std::string_view what) {
@@ -346,50 +330,29 @@ std::optional<std::string_view> MapEntity::value(std::string_view key) const {
   return std::nullopt;
 }
 
-namespace {
-
-// Like sscanf("%f %f ..."): whitespace-separated numbers, correctly rounded,
-// stopping at the first thing that is not a number; the values read replace
-// the first entries of `out`, the rest keep theirs.
-void scanFloats(std::string_view text, std::span<float> out) {
-  const char* p = text.data();
-  const char* end = p + text.size();
-  for (float& slot : out) {
-    while (p < end && (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')) ++p;
-    if (p < end && *p == '+') ++p;
-    float v = 0;
-    const auto r = std::from_chars(p, end, v);
-    if (r.ec != std::errc()) break;
-    slot = v;
-    p = r.ptr;
-  }
-}
-
-}  // namespace
-
 Vec3 MapEntity::origin() const {
   float v[3] = {0, 0, 0};  // missing components stay 0
-  if (const auto text = value("origin")) scanFloats(*text, v);
+  if (const auto text = value("origin")) detail::scanReals(*text, v);
   return {v[0], v[1], v[2]};
 }
 
 Mat3 MapEntity::axis() const {
   if (const auto text = value("rotation")) {
     float m[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // missing entries stay the identity's
-    scanFloats(*text, m);
+    detail::scanReals(*text, m);
     return {{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}};
   }
   float yaw = 0;
-  if (const auto text = value("angle")) scanFloats(*text, {&yaw, 1});
+  if (const auto text = value("angle")) detail::scanReals(*text, {&yaw, 1});
   return yaw == 0 ? Mat3::identity() : Mat3::fromAngles(0, yaw, 0);
 }
 
 Result<MapFile> parseMapText(std::string_view text, std::string fileName) {
   try {
-    Parser parser(text, std::move(fileName));
-    return parser.parseFile();
-  } catch (const Failure& f) {
-    return f.error;
+    Parser parser(text);
+    return parser.parseFile(fileName);
+  } catch (const detail::SyntaxError& e) {
+    return detail::toError(e, std::move(fileName));
   }
 }
 

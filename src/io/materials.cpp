@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -28,8 +29,10 @@ namespace cmkit {
 
 namespace {
 
-using text::Token;
-using text::TokenKind;
+using detail::Lexer;
+using detail::SyntaxError;
+using detail::Token;
+using detail::TokenKind;
 
 std::string lowerCase(std::string_view s) {
   std::string out(s);
@@ -130,16 +133,31 @@ MaterialInfo MaterialTable::defaultInfo(std::string_view c) {
 }
 
 void MaterialTable::addMtrText(std::string_view text, const std::string& fileName) {
-  text::Lexer lex(text, fileName);
-  auto warn = [&](const Error& e) { warnings_.push_back(e.toString()); };
-  auto warnAt = [&](const Token& t, const std::string& msg) { warn(lex.errorAt(t, msg)); };
+  Lexer lex(text);
+  auto warn = [&](const SyntaxError& e) { warnings_.push_back(detail::toError(e, fileName).toString()); };
+  auto warnAt = [&](const Token& t, const std::string& msg) { warn(Lexer::errorAt(t, msg)); };
+  // The next token, or nullopt after warning about a malformed one (the
+  // lexer has consumed it, so reading on makes progress).
+  auto next = [&]() -> std::optional<Token> {
+    try {
+      return lex.next();
+    } catch (const SyntaxError& e) {
+      warn(e);
+      return std::nullopt;
+    }
+  };
+  // The next token without consuming it; nullopt (no warning) for a malformed one.
+  auto peek = [&]() -> std::optional<Token> {
+    try {
+      return lex.peek();
+    } catch (const SyntaxError&) {
+      return std::nullopt;
+    }
+  };
 
   for (;;) {
-    auto first = lex.next();
-    if (!first) {
-      warn(first.error());
-      continue;
-    }
+    const std::optional<Token> first = next();
+    if (!first) continue;
     const Token t = *first;
     if (t.kind == TokenKind::End) break;
     if (t.kind != TokenKind::Name && t.kind != TokenKind::String) {
@@ -152,15 +170,15 @@ void MaterialTable::addMtrText(std::string_view text, const std::string& fileNam
       const std::string lowered = lowerCase(t.text);
       if (lowered == "material" || isOtherDeclType(lowered)) {
         isMaterial = lowered == "material";
-        auto name = lex.peek();
+        const auto name = peek();
         if (!name || (name->kind != TokenKind::Name && name->kind != TokenKind::String)) {
           warnAt(t, "expected a name after '" + std::string(t.text) + "' (declaration skipped)");
           continue;
         }
-        nameToken = *lex.next();
+        nameToken = lex.next();
       }
     }
-    auto open = lex.peek();
+    const auto open = peek();
     if (!open || !open->isPunct('{')) {
       warnAt(nameToken,
              "expected '{' after the declaration name " + describe(nameToken) + " (declaration skipped)");
@@ -174,9 +192,8 @@ void MaterialTable::addMtrText(std::string_view text, const std::string& fileNam
     bool ok = true;
     int depth = 1;
     while (depth > 0) {
-      auto r = lex.next();
+      const std::optional<Token> r = next();
       if (!r) {
-        warn(r.error());
         ok = false;
         continue;
       }

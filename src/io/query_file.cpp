@@ -1,52 +1,35 @@
 // The query format: parsing query lines, running them, formatting results.
 #include "cmkit/tools/query_format.h"
 
-#include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
-#include <unordered_map>
+#include <utility>
 #include <vector>
+
+#include "io/fields.h"
+#include "io/result_fields.h"
 
 namespace cmkit {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r' || s.back() == '\n'))
-    s.remove_suffix(1);
-  return s;
-}
+using detail::Fields;
 
 // Thrown inside this file only, turned into an "error=" line.
 struct LineError {
   std::string reason;
 };
 
-bool parseFloat(std::string_view text, Real& out) {
-  const std::string s(text);
-  if (s.empty()) return false;
-  char* end = nullptr;
-  const float v = std::strtof(s.c_str(), &end);
-  if (end != s.c_str() + s.size() || !std::isfinite(v)) return false;
-  out = v;
-  return true;
+Real parseFloat(std::string_view text, const char* key) {
+  const auto v = detail::parseReal(text);
+  if (!v) throw LineError{std::string("bad number in ") + key};
+  return *v;
 }
 
 std::vector<Real> parseFloats(std::string_view text, std::size_t count, const char* key) {
   std::vector<Real> values;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', pos);
-    Real v;
-    if (!parseFloat(text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos),
-                    v))
-      throw LineError{std::string("bad number in ") + key};
-    values.push_back(v);
-    if (comma == std::string_view::npos) break;
-    pos = comma + 1;
-  }
+  if (!detail::parseRealList(text, values)) throw LineError{std::string("bad number in ") + key};
   if (values.size() != count)
     throw LineError{std::string(key) + " needs " + std::to_string(count) + " numbers"};
   return values;
@@ -65,113 +48,126 @@ Mat3 parseAxis(std::string_view text, const char* key) {
   return *checked;
 }
 
-// %.9g, which prints -0 as "-0" as the reference files do.
-void appendReal(std::string& out, Real v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", double(v));
-  out += buf;
-}
-void appendVec(std::string& out, const Vec3& v) {
-  appendReal(out, v.x);
-  out += ',';
-  appendReal(out, v.y);
-  out += ',';
-  appendReal(out, v.z);
-}
-
-void appendContact(std::string& out, const CollisionModel& model, const ContactInfo& c,
-                   const std::string& suffix) {
-  out += "type" + suffix + "=";
-  out += toString(c.type);
-  out += " point" + suffix + "=";
-  appendVec(out, c.point);
-  out += " normal" + suffix + "=";
-  appendVec(out, c.normal);
-  out += " dist" + suffix + "=";
-  appendReal(out, c.dist);
-  out += " contents" + suffix + "=" + std::to_string(c.contents);
-  out += " material" + suffix + "=";
-  const std::string_view mat = model.materialName(c.material);
-  out += mat.empty() ? std::string_view("-") : mat;
-  out += " modelfeature" + suffix + "=" + std::to_string(c.modelFeature);
-  out += " trmfeature" + suffix + "=" + std::to_string(c.trmFeature);
-}
-
-void appendTrace(std::string& out, const CollisionModel& model, const TraceResult& r) {
-  out += "fraction=";
-  appendReal(out, r.fraction);
-  out += " endpos=";
-  appendVec(out, r.endPos);
-  out += " endaxis=";
-  for (int i = 0; i < 3; ++i) {
-    if (i) out += ',';
-    appendVec(out, r.endAxis[i]);
-  }
-  out += ' ';
-  appendContact(out, model, r.contact, "");
-}
-
-// The key=value pairs of a line.
-class Fields {
+// Writes the fields of a result line (result_fields.h), each "key=value"
+// after a space but the first.
+class ResultWriter {
  public:
-  explicit Fields(std::string_view rest) {
-    std::size_t pos = 0;
-    while (pos < rest.size()) {
-      while (pos < rest.size() && (rest[pos] == ' ' || rest[pos] == '\t')) ++pos;
-      if (pos >= rest.size()) break;
-      std::size_t end = pos;
-      while (end < rest.size() && rest[end] != ' ' && rest[end] != '\t') ++end;
-      const std::string_view tok = rest.substr(pos, end - pos);
-      const std::size_t eq = tok.find('=');
-      if (eq == std::string_view::npos || eq == 0)
-        throw LineError{"expected key=value, got '" + std::string(tok) + "'"};
-      map_[std::string(tok.substr(0, eq))] = tok.substr(eq + 1);
-      pos = end;
+  ResultWriter(std::string& out, const CollisionModel& model, std::string suffix = {})
+      : out_(out), model_(model), suffix_(std::move(suffix)) {}
+
+  void operator()(const char* key, Real v) {
+    start(key);
+    appendReal(v);
+  }
+  void operator()(const char* key, const Vec3& v) {
+    start(key);
+    appendVec(v);
+  }
+  void operator()(const char* key, const Mat3& m) {
+    start(key);
+    for (int i = 0; i < 3; ++i) {
+      if (i) out_ += ',';
+      appendVec(m[i]);
     }
   }
-  std::optional<std::string_view> get(const std::string& key) {
-    auto it = map_.find(key);
-    if (it == map_.end()) return std::nullopt;
-    used_.push_back(key);
-    return it->second;
+  void operator()(const char* key, ContactType type) {
+    start(key);
+    out_ += toString(type);
   }
-  std::string_view require(const std::string& key) {
+  void operator()(const char* key, std::uint32_t v) {
+    start(key);
+    out_ += std::to_string(v);
+  }
+  void operator()(const char* key, std::int32_t v) {
+    start(key);
+    out_ += std::to_string(v);
+  }
+  void material(const char* key, std::int32_t index) {
+    start(key);
+    const std::string_view name = model_.materialName(index);
+    out_ += name.empty() ? std::string_view("-") : name;
+  }
+
+ private:
+  void start(const char* key) {
+    if (!first_) out_ += ' ';
+    first_ = false;
+    out_ += key;
+    out_ += suffix_;
+    out_ += '=';
+  }
+  // %.9g, which prints -0 as "-0" as the reference files do.
+  void appendReal(Real v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", double(v));
+    out_ += buf;
+  }
+  void appendVec(const Vec3& v) {
+    appendReal(v.x);
+    out_ += ',';
+    appendReal(v.y);
+    out_ += ',';
+    appendReal(v.z);
+  }
+
+  std::string& out_;
+  const CollisionModel& model_;
+  std::string suffix_;
+  bool first_ = true;
+};
+
+void appendTrace(std::string& out, const CollisionModel& model, const TraceResult& r) {
+  ResultWriter w(out, model);
+  detail::visitTraceFields(w, r);
+  detail::visitContactFields(w, r.contact);
+}
+
+// The key=value fields of a query line, each to be used by the operation.
+class QueryFields {
+ public:
+  explicit QueryFields(std::string_view rest) : fields_(rest) {
+    if (!fields_.stray().empty())
+      throw LineError{"expected key=value, got '" + std::string(fields_.stray()) + "'"};
+  }
+  std::optional<std::string_view> get(std::string_view key) {
+    const auto v = fields_.get(key);
+    if (v) used_.push_back(key);
+    return v;
+  }
+  std::string_view require(std::string_view key) {
     auto v = get(key);
-    if (!v) throw LineError{"missing " + key};
+    if (!v) throw LineError{"missing " + std::string(key)};
     return *v;
   }
   /// Errors on keys the operation does not take.
   void checkAllUsed() const {
-    for (const auto& [k, v] : map_) {
-      bool used = false;
-      for (const auto& u : used_) used |= u == k;
-      if (!used) throw LineError{"unknown key " + k};
+    for (const auto& [k, v] : fields_.all()) {
+      if (std::find(used_.begin(), used_.end(), k) == used_.end())
+        throw LineError{"unknown key " + std::string(k)};
     }
   }
 
  private:
-  std::unordered_map<std::string, std::string_view> map_;
-  std::vector<std::string> used_;
+  Fields fields_;
+  std::vector<std::string_view> used_;
 };
 
-const CollisionModel& selectModel(std::span<const ModelPtr> models, Fields& f) {
+const CollisionModel& selectModel(std::span<const ModelPtr> models, QueryFields& f) {
   if (models.empty()) throw LineError{"no models loaded"};
   const auto name = f.get("model");
   if (!name) return *models[0];
   if (!name->empty() && name->front() == '#') {
-    const std::string digits(name->substr(1));
-    char* end = nullptr;
-    const long n = std::strtol(digits.c_str(), &end, 10);
-    if (digits.empty() || *end || n < 0 || std::size_t(n) >= models.size())
+    const std::optional<long long> n = detail::parseInt(name->substr(1));
+    if (!n || *n < 0 || std::size_t(*n) >= models.size())
       throw LineError{"unknown model " + std::string(*name)};
-    return *models[std::size_t(n)];
+    return *models[std::size_t(*n)];
   }
   for (const ModelPtr& m : models)
     if (m->name == *name) return *m;
   throw LineError{"unknown model " + std::string(*name)};
 }
 
-std::uint32_t parseMask(Fields& f) {
+std::uint32_t parseMask(QueryFields& f) {
   const auto text = f.get("mask");
   if (!text) return contents::kMaskSolid;
   auto mask = parseContentsMask(*text);
@@ -179,7 +175,7 @@ std::uint32_t parseMask(Fields& f) {
   return *mask;
 }
 
-std::optional<TraceModel> parseTrm(Fields& f) {
+std::optional<TraceModel> parseTrm(QueryFields& f) {
   auto trm = TraceModel::parse(f.require("trm"));
   if (!trm) {
     std::string why = trm.error().message;
@@ -190,7 +186,7 @@ std::optional<TraceModel> parseTrm(Fields& f) {
   return std::move(trm).value();
 }
 
-Placement parsePlacement(Fields& f) {
+Placement parsePlacement(QueryFields& f) {
   Placement p;
   if (auto o = f.get("origin")) p.origin = parseVec(*o, "origin");
   if (auto a = f.get("modelaxis")) p.axis = parseAxis(*a, "modelaxis");
@@ -199,9 +195,8 @@ Placement parsePlacement(Fields& f) {
 
 // Parses a line into a ParsedQuery (throws LineError).
 ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
-  const std::size_t sp = line.find_first_of(" \t");
-  const std::string_view op = line.substr(0, sp);
-  Fields f(sp == std::string_view::npos ? std::string_view() : line.substr(sp));
+  const auto [op, rest] = detail::splitWord(line);
+  QueryFields f(rest);
   ParsedQuery q;
   auto modelIndex = [&](const CollisionModel& m) {
     for (std::size_t i = 0; i < models.size(); ++i)
@@ -238,18 +233,17 @@ ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
       break;
     case QueryOp::Contacts:
       q.dir = parseVec(f.require("dir"), "dir");
-      if (!parseFloat(f.require("depth"), q.depth)) throw LineError{"bad number in depth"};
+      q.depth = parseFloat(f.require("depth"), "depth");
       if (auto mx = f.get("max")) {
-        Real v;
-        if (!parseFloat(*mx, v) || v < 0 || v != std::floor(v) || v > 1e6f) throw LineError{"bad max"};
-        q.maxContacts = int(v);
+        const std::optional<Real> v = detail::parseReal(*mx);
+        if (!v || *v < 0 || *v != std::floor(*v) || *v > 1e6f) throw LineError{"bad max"};
+        q.maxContacts = int(*v);
       }
       break;
     case QueryOp::Rotation: {
       const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
       const Vec3 rotOrigin = parseVec(f.require("rotorigin"), "rotorigin");
-      Real angle;
-      if (!parseFloat(f.require("angle"), angle)) throw LineError{"bad number in angle"};
+      const Real angle = parseFloat(f.require("angle"), "angle");
       if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
       q.rotation = Rotation(rotOrigin, axis, angle);
       break;
@@ -265,7 +259,7 @@ ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
 
 Result<ParsedQuery> parseQueryLine(std::span<const ModelPtr> models, std::string_view line) {
   try {
-    return parseLine(models, trim(line));
+    return parseLine(models, detail::trimLine(line));
   } catch (const LineError& e) {
     return Error{e.reason};
   }
@@ -333,7 +327,8 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
       out = "count=" + std::to_string(n);
       for (int i = 0; i < n; ++i) {
         out += ' ';
-        appendContact(out, m, found[std::size_t(i)], "." + std::to_string(i));
+        ResultWriter w(out, m, "." + std::to_string(i));
+        detail::visitContactFields(w, found[std::size_t(i)]);
       }
       return out;
     }
@@ -344,6 +339,30 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
       return out;
   }
   return "error=unknown operation";
+}
+
+namespace {
+
+// The names of the contact types in result lines.
+constexpr std::pair<ContactType, const char*> kContactTypeNames[] = {
+    {ContactType::None, "none"},
+    {ContactType::Edge, "edge"},
+    {ContactType::ModelVertex, "modelvertex"},
+    {ContactType::TrmVertex, "trmvertex"},
+};
+
+}  // namespace
+
+const char* toString(ContactType type) {
+  for (const auto& [t, name] : kContactTypeNames)
+    if (t == type) return name;
+  return "?";
+}
+
+std::optional<ContactType> parseContactType(std::string_view name) {
+  for (const auto& [t, n] : kContactTypeNames)
+    if (name == n) return t;
+  return std::nullopt;
 }
 
 const char* toString(QueryOp op) {
@@ -362,10 +381,8 @@ const char* toString(QueryOp op) {
   return "?";
 }
 
-namespace {}  // namespace
-
 bool isQueryLine(std::string_view line) {
-  const std::string_view t = trim(line);
+  const std::string_view t = detail::trimLine(line);
   return !t.empty() && t.front() != '#';
 }
 

@@ -1,26 +1,13 @@
 // Parsing the query format's trace model syntax ("box:-16,-16,0,16,16,72").
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cmkit/trace_model.h"
+#include "io/fields.h"
 
 namespace cmkit {
 namespace {
-
-// Parses one float with correct rounding (strtof); the whole text must be used.
-bool parseReal(std::string_view text, Real& out) {
-  const std::string s(text);
-  if (s.empty()) return false;
-  char* end = nullptr;
-  errno = 0;
-  const float v = std::strtof(s.c_str(), &end);
-  if (end != s.c_str() + s.size() || !std::isfinite(v)) return false;
-  out = v;
-  return true;
-}
 
 // Splits on a separator (empty fields kept).
 std::vector<std::string_view> split(std::string_view s, char sep) {
@@ -37,13 +24,10 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
 
 Result<std::vector<Real>> parseNumbers(std::string_view text, size_t count, std::string_view what) {
   std::vector<Real> values;
-  for (std::string_view part : split(text, ',')) {
-    Real v;
-    if (!parseReal(part, v)) {
-      return Error{"bad number '" + std::string(part) + "' in " + std::string(what) +
-                   " (numbers must be finite decimals)"};
-    }
-    values.push_back(v);
+  std::string_view bad;
+  if (!detail::parseRealList(text, values, &bad)) {
+    return Error{"bad number '" + std::string(bad) + "' in " + std::string(what) +
+                 " (numbers must be finite decimals)"};
   }
   if (count && values.size() != count) {
     return Error{std::string(what) + " needs " + std::to_string(count) + " numbers, got " +
@@ -125,11 +109,11 @@ Result<TraceModel> TraceModel::parse(std::string_view spec) {
   if (kind == "polygonvolume") {
     const size_t c2 = rest.find(':');
     if (c2 == std::string_view::npos) return Error{"polygonvolume needs T:x,y,z;x,y,z;..."};
-    Real thickness;
-    if (!parseReal(rest.substr(0, c2), thickness)) return Error{"bad thickness in polygonvolume"};
+    const std::optional<Real> thickness = detail::parseReal(rest.substr(0, c2));
+    if (!thickness) return Error{"bad thickness in polygonvolume"};
     auto pts = parsePoints(rest.substr(c2 + 1), kind);
     if (!pts) return pts.error();
-    return polygonVolume(*pts, thickness);
+    return polygonVolume(*pts, *thickness);
   }
   if (kind == "hull") {
     auto pts = parsePoints(rest, kind);

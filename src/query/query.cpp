@@ -7,20 +7,6 @@
 
 namespace cmkit {
 
-const char* toString(ContactType type) {
-  switch (type) {
-    case ContactType::None:
-      return "none";
-    case ContactType::Edge:
-      return "edge";
-    case ContactType::ModelVertex:
-      return "modelvertex";
-    case ContactType::TrmVertex:
-      return "trmvertex";
-  }
-  return "?";
-}
-
 namespace {
 
 // Heart planes: two planes containing the movement, for culling polygons far

@@ -1,66 +1,27 @@
-// The .cm cursor: see cm_lexer.h.
+// The .cm cursor: see cm_cursor.h.
 #include "text/cm_cursor.h"
 
 #include <cmath>
+#include <utility>
 
-#include "text/lexer.h"
-
-namespace cmkit::cmtext {
+namespace cmkit::detail {
 
 namespace {
 
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
-bool isNameChar(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || isDigit(c) || c == '_'; }
+bool isNameChar(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || TextCursor::isDigit(c) || c == '_';
+}
 bool isBlank(char c) { return c == ' ' || c == '\t'; }
 
 }  // namespace
 
-void lineColumn(std::string_view text, std::size_t offset, int& line, int& column) {
-  line = 1;
-  column = 1;
-  if (offset > text.size()) offset = text.size();
-  for (std::size_t i = 0; i < offset; ++i) {
-    const char c = text[i];
-    if (c == '\n' || (c == '\r' && (i + 1 >= text.size() || text[i + 1] != '\n'))) {
-      ++line;
-      column = 1;
-    } else if (c != '\r') {
-      ++column;
-    }
-  }
-}
-
-void CmCursor::failAt(std::size_t offset, std::string message) {
-  throw CmSyntaxError{offset, std::move(message)};
-}
-
 void CmCursor::fail(std::string message) {
-  skip();
+  skipSpace();
   failAt(pos_, std::move(message));
 }
 
-void CmCursor::skip() {
-  const std::size_t n = text_.size();
-  while (pos_ < n) {
-    const char c = text_[pos_];
-    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v') {
-      ++pos_;
-    } else if (c == '/' && pos_ + 1 < n && text_[pos_ + 1] == '/') {
-      pos_ += 2;
-      while (pos_ < n && text_[pos_] != '\n' && text_[pos_] != '\r') ++pos_;
-    } else if (c == '/' && pos_ + 1 < n && text_[pos_ + 1] == '*') {
-      const std::size_t start = pos_;
-      const std::size_t end = text_.find("*/", pos_ + 2);
-      if (end == std::string_view::npos) failAt(start, "unterminated /* comment");
-      pos_ = end + 2;
-    } else {
-      return;
-    }
-  }
-}
-
 std::string CmCursor::describeNext() {
-  skip();
+  skipSpace();
   if (pos_ >= text_.size()) return "the end of the file";
   const char c = text_[pos_];
   const auto uc = static_cast<unsigned char>(c);
@@ -76,17 +37,17 @@ std::string CmCursor::describeNext() {
 }
 
 bool CmCursor::more() {
-  skip();
+  skipSpace();
   return pos_ < text_.size();
 }
 
 std::size_t CmCursor::tokenOffset() {
-  skip();
+  skipSpace();
   return pos_;
 }
 
 bool CmCursor::acceptPunct(char c) {
-  skip();
+  skipSpace();
   if (pos_ < text_.size() && text_[pos_] == c) {
     ++pos_;
     return true;
@@ -100,24 +61,23 @@ void CmCursor::expectPunct(char c, std::string_view context) {
 }
 
 bool CmCursor::atUnsignedNumber() {
-  skip();
+  skipSpace();
   return pos_ < text_.size() && isDigit(text_[pos_]);
 }
 
 std::string_view CmCursor::readName() {
-  skip();
+  skipSpace();
   const std::size_t start = pos_;
   while (pos_ < text_.size() && isNameChar(text_[pos_])) ++pos_;
   return text_.substr(start, pos_ - start);
 }
 
 std::string_view CmCursor::expectString(std::string_view what) {
-  skip();
+  skipSpace();
   if (pos_ >= text_.size() || text_[pos_] != '"')
     fail("expected " + std::string(what) + ", found " + describeNext());
   const std::size_t start = pos_ + 1;
-  std::size_t end = start;
-  while (end < text_.size() && text_[end] != '"' && text_[end] != '\n' && text_[end] != '\r') ++end;
+  const std::size_t end = quotedEnd(start);
   if (end >= text_.size() || text_[end] != '"')
     failAt(pos_, "unterminated string (" + std::string(what) + ")");
   pos_ = end + 1;
@@ -125,7 +85,7 @@ std::string_view CmCursor::expectString(std::string_view what) {
 }
 
 std::string_view CmCursor::expectWord(std::string_view what) {
-  skip();
+  skipSpace();
   if (pos_ < text_.size() && text_[pos_] == '"') return expectString(what);
   const std::size_t start = pos_;
   while (pos_ < text_.size() && (isNameChar(text_[pos_]) || text_[pos_] == '.')) ++pos_;
@@ -134,7 +94,7 @@ std::string_view CmCursor::expectWord(std::string_view what) {
 }
 
 std::int64_t CmCursor::expectInt(std::string_view what, std::int64_t lo, std::int64_t hi) {
-  skip();
+  skipSpace();
   const std::size_t start = pos_;
   bool negative = false;
   if (pos_ < text_.size() && text_[pos_] == '-') {
@@ -166,7 +126,7 @@ std::int64_t CmCursor::expectInt(std::string_view what, std::int64_t lo, std::in
 }
 
 float CmCursor::expectFloat(std::string_view what) {
-  skip();
+  skipSpace();
   const std::size_t start = pos_;
   bool negative = false;
   if (pos_ < text_.size() && text_[pos_] == '-') {
@@ -186,7 +146,7 @@ float CmCursor::expectFloat(std::string_view what) {
     if (pos_ < n && (text_[pos_] == '+' || text_[pos_] == '-')) ++pos_;
     while (pos_ < n && isDigit(text_[pos_])) ++pos_;
   }
-  const std::optional<float> v = text::originalNumberValue(text_.substr(numStart, pos_ - numStart));
+  const std::optional<float> v = originalNumberValue(text_.substr(numStart, pos_ - numStart));
   if (!v) {
     pos_ = start;
     fail("expected " + std::string(what) + " (a number), found " + describeNext());
@@ -198,4 +158,4 @@ float CmCursor::expectFloat(std::string_view what) {
   return negative ? -*v : *v;
 }
 
-}  // namespace cmkit::cmtext
+}  // namespace cmkit::detail

@@ -1,14 +1,13 @@
-// Internal: a fast cursor over .cm text (the original reads it with idLexer).
+// Internal: the fast path of the text core (text_cursor.h) for .cm text
+// (the original reads it with idLexer).
 //
 // It reads the few token kinds the grammar needs directly from the buffer,
 // without building token objects: punctuation, names, quoted strings,
 // integers and floats (a leading '-' on the same line, as the original's
-// ParseInt/ParseFloat accept). Whitespace and C/C++ comments are skipped.
-// Line and column are not tracked while reading; an error records the byte
-// offset and lineColumn() computes them only when a message is made.
-//
-// Errors are thrown as CmSyntaxError and caught by the reader at its top
-// level (never across the public API).
+// ParseInt/ParseFloat accept). Whitespace and comments are skipped by the
+// core. Line and column are not tracked while reading: they are counted
+// from the byte offset only when an error is thrown (a SyntaxError, caught by
+// the reader at its top level, never across the public API).
 #pragma once
 
 #include <cstddef>
@@ -16,22 +15,14 @@
 #include <string>
 #include <string_view>
 
-namespace cmkit::cmtext {
+#include "text/text_cursor.h"
 
-/// A syntax error at a byte offset of the text.
-struct CmSyntaxError {
-  std::size_t offset = 0;
-  std::string message;
-};
-
-/// 1-based line and column of a byte offset (LF, CRLF and bare CR each end
-/// one line).
-void lineColumn(std::string_view text, std::size_t offset, int& line, int& column);
+namespace cmkit::detail {
 
 /// Reads .cm tokens from a text that outlives it.
-class CmCursor {
+class CmCursor : public TextCursor {
  public:
-  explicit CmCursor(std::string_view text) : text_(text) {}
+  explicit CmCursor(std::string_view text) : TextCursor(text) {}
 
   /// Skips whitespace and comments; true if anything but the end follows.
   bool more();
@@ -54,17 +45,11 @@ class CmCursor {
   /// A finite float converted exactly as the original lexer converts it,
   /// optionally with a leading '-' (giving -0 for "-0").
   float expectFloat(std::string_view what);
-  /// Throws a CmSyntaxError at the next token.
+  /// Throws a SyntaxError at the next token (failAt: at a byte offset).
   [[noreturn]] void fail(std::string message);
-  /// Throws a CmSyntaxError at a given offset.
-  [[noreturn]] static void failAt(std::size_t offset, std::string message);
 
  private:
-  void skip();
   std::string describeNext();
-
-  std::string_view text_;
-  std::size_t pos_ = 0;
 };
 
-}  // namespace cmkit::cmtext
+}  // namespace cmkit::detail

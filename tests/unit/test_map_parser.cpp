@@ -3,9 +3,9 @@
 #include <string>
 
 #include "cmkit/map.h"
-#include "text/lexer.h"
 #include "io/map_crc.h"
 #include "test_support.h"
+#include "text/text_cursor.h"
 
 namespace {
 
@@ -120,7 +120,7 @@ TEST(MapParser, GeometryCrcOfPatchesIncludesSubdivisions) {
 }
 
 TEST(MapParser, NumbersAreReadLikeTheOriginalLexer) {
-  using cmkit::text::originalNumberValue;
+  using cmkit::detail::originalNumberValue;
   EXPECT_EQ(bits(*originalNumberValue("0.1")), 0x3DCCCCCDu);
   EXPECT_EQ(bits(*originalNumberValue("1.2e-05")), 0x3749539Cu);
   EXPECT_EQ(*originalNumberValue("1e+05"), 100000.0f);

@@ -10,8 +10,8 @@
 #include <map>
 #include <sstream>
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/tools/query_format.h"
 #include "test_support.h"
@@ -21,49 +21,33 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Fields = std::map<std::string, std::string>;
+using detail::Fields;
+using test::numbers;
 
-Fields fieldsOf(const std::string& line) {
-  Fields f;
-  std::istringstream in(line);
-  for (std::string tok; in >> tok;) {
-    const auto eq = tok.find('=');
-    if (eq != std::string::npos) f[tok.substr(0, eq)] = tok.substr(eq + 1);
-  }
-  return f;
-}
-
-std::vector<double> numbers(const std::string& s) {
-  std::vector<double> v;
-  std::istringstream in(s);
-  for (std::string tok; std::getline(in, tok, ',');) v.push_back(std::strtod(tok.c_str(), nullptr));
-  return v;
-}
-
-bool close(const std::string& a, const std::string& b, double eps) {
+bool close(std::string_view a, std::string_view b, double eps) {
   const auto x = numbers(a), y = numbers(b);
   if (x.size() != y.size() || x.empty()) return false;
   for (std::size_t i = 0; i < x.size(); ++i)
-    if (!(std::fabs(x[i] - y[i]) <= eps)) return false;
+    if (!(std::fabs(double(x[i]) - double(y[i])) <= eps)) return false;
   return true;
 }
 
 // agree.py's verdict: "agree", "tie?" or a reason.
 std::string judge(const std::string& op, const Fields& ref, const Fields& got) {
-  if (ref.count("error") || got.count("error"))
-    return ref.count("error") && got.count("error") ? "agree" : "error";
-  if (op == "pointcontents") return ref.at("contents") == got.at("contents") ? "agree" : "contents";
-  if (op == "contacts") return ref.at("count") == got.at("count") ? "agree" : "count";
-  if (!close(ref.at("fraction"), got.at("fraction"), 1e-4)) return "fraction";
-  if (!close(ref.at("endpos"), got.at("endpos"), 1e-2)) return "endpos";
-  if (op == "contents" && ref.at("result") != got.at("result")) return "result";
-  if (numbers(ref.at("fraction"))[0] < 1 && !close(ref.at("normal"), got.at("normal"), 1e-3)) return "tie?";
+  if (ref.has("error") || got.has("error")) return ref.has("error") && got.has("error") ? "agree" : "error";
+  if (op == "pointcontents") return ref.value("contents") == got.value("contents") ? "agree" : "contents";
+  if (op == "contacts") return ref.value("count") == got.value("count") ? "agree" : "count";
+  if (!close(ref.value("fraction"), got.value("fraction"), 1e-4)) return "fraction";
+  if (!close(ref.value("endpos"), got.value("endpos"), 1e-2)) return "endpos";
+  if (op == "contents" && ref.value("result") != got.value("result")) return "result";
+  if (numbers(ref.value("fraction"))[0] < 1 && !close(ref.value("normal"), got.value("normal"), 1e-3))
+    return "tie?";
   return "agree";
 }
 
 bool refusedByOriginal(const std::string& op, const Fields& q) {
-  if (op != "translation" || q.at("trm") == "point") return false;
-  const auto s = numbers(q.at("start")), e = numbers(q.at("end"));
+  if (op != "translation" || q.value("trm") == "point") return false;
+  const auto s = numbers(q.value("start")), e = numbers(q.value("end"));
   return std::hypot(s[0] - e[0], s[1] - e[1], s[2] - e[2]) > 4096.0;
 }
 
@@ -71,15 +55,15 @@ bool refusedByOriginal(const std::string& op, const Fields& q) {
 // mistakes: only the leaf's brushes are looked at, and the model axis is
 // applied the wrong way round (row vector times axis, not axis times vector).
 std::uint32_t originalPointContents(const CollisionModel& m, const Fields& q, const std::string& posKey) {
-  const auto pos = numbers(q.at(posKey));
+  const auto pos = numbers(q.value(posKey));
   double p[3] = {pos[0], pos[1], pos[2]};
-  if (q.count("origin")) {
-    const auto o = numbers(q.at("origin"));
+  if (q.has("origin")) {
+    const auto o = numbers(q.value("origin"));
     for (int i = 0; i < 3; ++i) p[i] -= o[i];
   }
   float fp[3] = {float(p[0]), float(p[1]), float(p[2])};
-  if (q.count("modelaxis")) {
-    const auto a = numbers(q.at("modelaxis"));
+  if (q.has("modelaxis")) {
+    const auto a = numbers(q.value("modelaxis"));
     float r[3];
     for (int j = 0; j < 3; ++j)
       r[j] = fp[0] * float(a[0 + j]) + fp[1] * float(a[3 + j]) + fp[2] * float(a[6 + j]);
@@ -101,9 +85,9 @@ std::uint32_t originalPointContents(const CollisionModel& m, const Fields& q, co
 }
 
 const CollisionModel& modelFor(const std::vector<ModelPtr>& models, const Fields& q) {
-  if (!q.count("model")) return *models[0];
-  const std::string& name = q.at("model");
-  if (name[0] == '#') return *models[std::size_t(std::stoi(name.substr(1)))];
+  if (!q.has("model")) return *models[0];
+  const std::string_view name = q.value("model");
+  if (name[0] == '#') return *models[std::size_t(detail::parseInt(name.substr(1)).value_or(0))];
   for (const auto& m : models)
     if (m->name == name) return *m;
   return *models[0];
@@ -154,10 +138,10 @@ TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
       std::getline(results, refLine);
       const std::string op = q.substr(0, q.find(' '));
       if (op == "rotation") continue;  // judged by the rotation tests
-      const Fields qf = fieldsOf(q);
+      const Fields qf(q);
       if (refusedByOriginal(op, qf)) continue;
       const std::string got = answerQueryLine(models, q, work);
-      const Fields ref = fieldsOf(refLine), ours = fieldsOf(got);
+      const Fields ref(refLine), ours(got);
       Tally& t = tally[op];
       ++t.lines;
       const std::string verdict = judge(op, ref, ours);
@@ -172,12 +156,12 @@ TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
       // Point contents (pointcontents lines, and contents with a point) go
       // through the original's PointContents: a difference is explained when
       // the original's algorithm, mistakes included, gives the reference.
-      const bool pointQuery = op == "pointcontents" || (op == "contents" && qf.at("trm") == "point");
-      if (pointQuery && !ref.count("error")) {
+      const bool pointQuery = op == "pointcontents" || (op == "contents" && qf.value("trm") == "point");
+      if (pointQuery && !ref.has("error")) {
         const std::uint32_t original =
             originalPointContents(modelFor(models, qf), qf, op == "pointcontents" ? "pos" : "start");
         const std::string key = op == "pointcontents" ? "contents" : "result";
-        if (std::to_string(original) == ref.at(key)) {
+        if (std::to_string(original) == ref.value(key)) {
           ++t.explained;
           continue;
         }

@@ -10,8 +10,8 @@
 #include <random>
 #include <sstream>
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
@@ -28,22 +28,8 @@ std::vector<ModelPtr> buildMap(const std::filesystem::path& path) {
   return models ? *models : std::vector<ModelPtr>{};
 }
 
-std::map<std::string, std::string> fieldsOf(const std::string& line) {
-  std::map<std::string, std::string> f;
-  std::istringstream in(line);
-  for (std::string tok; in >> tok;) {
-    const auto eq = tok.find('=');
-    if (eq != std::string::npos) f[tok.substr(0, eq)] = tok.substr(eq + 1);
-  }
-  return f;
-}
-
-std::vector<float> numbers(const std::string& s) {
-  std::vector<float> v;
-  std::stringstream in(s);
-  for (std::string t; std::getline(in, t, ',');) v.push_back(std::strtof(t.c_str(), nullptr));
-  return v;
-}
+using detail::Fields;
+using test::numbers;
 
 std::string vecText(const Vec3& v) {
   char buf[96];
@@ -55,25 +41,27 @@ std::string vecText(const Vec3& v) {
 // model of a rotation line overlaps something; -1 if none.
 float firstOverlap(std::span<const ModelPtr> models, const std::string& query, float upTo, int n,
                    QueryWork& work) {
-  auto f = fieldsOf(query);
-  const auto o = numbers(f["rotorigin"]), a = numbers(f["rotaxis"]), s = numbers(f["start"]);
-  const float angle = std::strtof(f["angle"].c_str(), nullptr);
+  const Fields f(query);
+  const auto o = numbers(f.value("rotorigin")), a = numbers(f.value("rotaxis")),
+             s = numbers(f.value("start"));
+  const float angle = numbers(f.value("angle")).at(0);
   Mat3 trmAxis;
-  if (f.count("trmaxis")) {
-    const auto m = numbers(f["trmaxis"]);
+  if (f.has("trmaxis")) {
+    const auto m = numbers(f.value("trmaxis"));
     trmAxis = Mat3{{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}};
   }
   std::string keep;
   for (const char* k : {"trm", "mask", "model", "origin", "modelaxis"})
-    if (f.count(k)) keep += std::string(" ") + k + "=" + f[k];
+    if (f.has(k)) keep += std::string(" ") + k + "=" + std::string(f.value(k));
   for (int k = 0; k <= n; ++k) {
     const float frac = upTo * float(k) / float(n);
     const Rotation r({o[0], o[1], o[2]}, {a[0], a[1], a[2]}, angle * frac);
     const Mat3 axis = r.rotateAxis(trmAxis);
     std::string line = "contents" + keep + " start=" + vecText(r.rotatePoint({s[0], s[1], s[2]})) +
                        " trmaxis=" + vecText(axis[0]) + "," + vecText(axis[1]) + "," + vecText(axis[2]);
-    const auto res = fieldsOf(answerQueryLine(models, line, work));
-    if (res.count("result") && res.at("result") != "0") return frac;
+    const std::string result = answerQueryLine(models, line, work);
+    const Fields res(result);
+    if (res.has("result") && res.value("result") != "0") return frac;
   }
   return -1;
 }
@@ -167,15 +155,15 @@ TEST(RotationShared, AgreesWithTheOriginalAndItsMissesAreConfirmed) {
       std::getline(results, refLine);
       if (q.rfind("rotation ", 0) != 0) continue;
       const std::string got = answerQueryLine(models, q, work);
-      auto ref = fieldsOf(refLine), mine = fieldsOf(got);
+      const Fields ref(refLine), mine(got);
       ++lines;
-      if (ref.count("error") || mine.count("error")) {
-        ok += ref.count("error") && mine.count("error");
+      if (ref.has("error") || mine.has("error")) {
+        ok += ref.has("error") && mine.has("error");
         continue;
       }
-      const float fr = std::strtof(ref["fraction"].c_str(), nullptr);
-      const float fg = std::strtof(mine["fraction"].c_str(), nullptr);
-      const auto pr = numbers(ref["endpos"]), pg = numbers(mine["endpos"]);
+      const float fr = numbers(ref.value("fraction")).at(0);
+      const float fg = numbers(mine.value("fraction")).at(0);
+      const auto pr = numbers(ref.value("endpos")), pg = numbers(mine.value("endpos"));
       bool same = std::fabs(fr - fg) <= 1e-4f;
       for (int i = 0; i < 3 && same; ++i) same = std::fabs(pr[size_t(i)] - pg[size_t(i)]) <= 1e-2f;
       if (same) {

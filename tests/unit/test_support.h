@@ -14,6 +14,7 @@
 
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
+#include "io/fields.h"
 
 namespace cmkit::test {
 
@@ -24,6 +25,14 @@ inline bool haveShared() { return std::filesystem::exists(sharedDir() / "referen
 
 /// The project's own test data (tests/data), always present.
 inline std::filesystem::path testDataDir() { return CMKIT_TEST_DATA_DIR; }
+
+/// The numbers of a query- or result-line value ("1,2,3"), read as cmkit
+/// reads them (src/io/fields.h); the ones before a malformed number.
+inline std::vector<float> numbers(std::string_view text) {
+  std::vector<float> v;
+  detail::parseRealList(text, v, nullptr, detail::Finite::NotRequired);
+  return v;
+}
 
 inline std::string readFile(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);

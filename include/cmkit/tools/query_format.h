@@ -1,4 +1,4 @@
-// query_file.h: the line-oriented query format (docs/query-format.md, the
+// query_format.h: the line-oriented query format (docs/query-format.md, the
 // same as shared/spec/query-format.md v1): one query per line, one result
 // line per query, so that two implementations can be compared line by line.
 #pragma once
@@ -13,6 +13,12 @@
 #include "cmkit/query.h"
 
 namespace cmkit {
+
+/// The name of a contact type in result lines: "none", "edge", "modelvertex",
+/// "trmvertex".
+const char* toString(ContactType type);
+/// The contact type of a name written by toString; nullopt for another text.
+std::optional<ContactType> parseContactType(std::string_view name);
 
 /// The operation of a query line.
 enum class QueryOp { Translation, Rotation, Contents, PointContents, Contacts };

@@ -1,0 +1,33 @@
+// Internal: the fields of a result line (docs/query-format.md), in the order
+// they are written, for the writer (query_file.cpp) and the reader
+// (trace_records.cpp) alike. A new result field is added here (and, for a new
+// kind of value, an overload in both visitors).
+//
+// A visitor is called as v(key, field) for each field, and v.material(key,
+// index) for the material (written as its name; not read back).
+#pragma once
+
+namespace cmkit::detail {
+
+/// fraction, endpos, endaxis: the fields of a trace before its contact.
+template <typename Visitor, typename Trace>
+void visitTraceFields(Visitor& v, Trace& t) {
+  v("fraction", t.fraction);
+  v("endpos", t.endPos);
+  v("endaxis", t.endAxis);
+}
+
+/// The fields of a contact (after a trace's, or numbered in a contacts result).
+template <typename Visitor, typename Contact>
+void visitContactFields(Visitor& v, Contact& c) {
+  v("type", c.type);
+  v("point", c.point);
+  v("normal", c.normal);
+  v("dist", c.dist);
+  v("contents", c.contents);
+  v.material("material", c.material);
+  v("modelfeature", c.modelFeature);
+  v("trmfeature", c.trmFeature);
+}
+
+}  // namespace cmkit::detail
