@@ -76,19 +76,16 @@ bool ModelBuilder::chopWindingListWithBrush(const BBrush& b) {
   if (tmpList_.empty()) tmpList_.resize(static_cast<std::size_t>(kMax));
 
   // The side of the whole list of each inward brush plane.
-  WindingSide sidedness[64];
+  Side sidedness[64];
   for (int i = 0; i < numPlanes; ++i) {
     const Plane plane = b.planes[static_cast<std::size_t>(i)].flipped();
     const Real dist = plane.distance(list.origin);
     if (dist > list.radius) {
-      sidedness[i] = WindingSide::Front;
+      sidedness[i] = Side::Front;
     } else if (dist < -list.radius) {
-      sidedness[i] = WindingSide::Back;
+      sidedness[i] = Side::Back;
     } else {
-      const Side s = list.bounds.planeSide(plane, tol::kOnEpsilon);
-      sidedness[i] = s == Side::Front  ? WindingSide::Front
-                     : s == Side::Back ? WindingSide::Back
-                                       : WindingSide::Cross;
+      sidedness[i] = list.bounds.planeSide(plane, tol::kOnEpsilon);  // Front, Back or Cross
     }
   }
 
@@ -104,17 +101,17 @@ bool ModelBuilder::chopWindingListWithBrush(const BBrush& b) {
       int numTmp = 0;
       for (int planeNum = startPlane, i = 0; i < numPlanes; ++i, ++planeNum) {
         if (planeNum >= numPlanes) planeNum = 0;
-        WindingSide res = sidedness[planeNum];
-        if (res == WindingSide::Cross) {
+        Side res = sidedness[planeNum];
+        if (res == Side::Cross) {
           res = front.split(back, b.planes[static_cast<std::size_t>(planeNum)].flipped(), tol::kChopEpsilon);
         }
         // A winding on a brush side facing the same way stays (coplanar
         // touching faces); all windings of the list are on that plane.
-        if (res == WindingSide::On && list.primitiveNum >= 0 &&
+        if (res == Side::On && list.primitiveNum >= 0 &&
             list.normal.dot(b.planes[static_cast<std::size_t>(planeNum)].normal) > 0) {
           return false;
         }
-        if (res == WindingSide::Back) {
+        if (res == Side::Back) {
           if (numOut >= kMax) {
             warn("primitive " + std::to_string(list.primitiveNum) + " is chopped into more than " +
                  std::to_string(kMax) + " windings");
@@ -126,7 +123,7 @@ bool ModelBuilder::chopWindingListWithBrush(const BBrush& b) {
           chopped = false;
           break;
         }
-        if (res == WindingSide::Cross) {
+        if (res == Side::Cross) {
           if (numTmp >= kMax) {
             warn("primitive " + std::to_string(list.primitiveNum) + " is chopped into more than " +
                  std::to_string(kMax) + " windings");
