@@ -3,8 +3,8 @@
 // the whole per-model pipeline.
 #include <cstdlib>
 
-#include "compile/builder.h"
 #include "cmkit/contents.h"
+#include "compile/builder.h"
 #include "geometry/patch.h"
 
 namespace cmkit::detail {
@@ -29,23 +29,6 @@ Real normalizeLikeOriginal(Vec3& v) {
 }
 
 }  // namespace
-
-int MaterialCache::find(const std::string& rawName) {
-  const auto it = byRaw_.find(rawName);
-  if (it != byRaw_.end()) return it->second;
-  std::string canonical = MaterialTable::canonicalName(rawName);
-  int index;
-  const auto cit = byCanonical_.find(canonical);
-  if (cit != byCanonical_.end()) {
-    index = cit->second;
-  } else {
-    index = static_cast<int>(materials_.size());
-    materials_.push_back({canonical, table_.info(canonical)});
-    byCanonical_.emplace(std::move(canonical), index);
-  }
-  byRaw_.emplace(rawName, index);
-  return index;
-}
 
 ModelBuilder::ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
                            std::vector<std::string>* warnings)

@@ -13,11 +13,12 @@
 #include <unordered_map>
 #include <vector>
 
-#include "geometry/winding.h"
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "cmkit/model.h"
+#include "geometry/winding.h"
+#include "model/material_cache.h"
 
 namespace cmkit::detail {
 
@@ -31,27 +32,6 @@ inline Bounds unionBounds(const Bounds& a, const Bounds& b) {
   }
   return r;
 }
-
-/// A material as the builder sees it: canonical name and collision info.
-struct BuildMaterial {
-  std::string name;  ///< canonical
-  MaterialInfo info;
-};
-
-/// Materials of one build (all models of a map): raw name -> material index.
-class MaterialCache {
- public:
-  explicit MaterialCache(const MaterialTable& table) : table_(table) {}
-  /// Index of the material (same canonical name -> same index).
-  int find(const std::string& rawName);
-  const BuildMaterial& operator[](int i) const { return materials_[static_cast<std::size_t>(i)]; }
-
- private:
-  const MaterialTable& table_;
-  std::unordered_map<std::string, int> byRaw_;
-  std::unordered_map<std::string, int> byCanonical_;
-  std::vector<BuildMaterial> materials_;
-};
 
 struct BEdge {
   std::int32_t v[2] = {0, 0};
