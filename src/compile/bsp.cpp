@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "compile/builder.h"
+#include "model/tree_filter.h"
 
 namespace cmkit::detail {
 
@@ -36,44 +37,26 @@ void ModelBuilder::addBrushToNode(int node, int brush) {
 }
 
 bool ModelBuilder::insideAllChildren(int nodeNum, const Bounds& bounds) const {
-  const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-  if (node.planeType != -1) {
-    if (bounds.min[node.planeType] >= node.planeDist) return false;
-    if (bounds.max[node.planeType] <= node.planeDist) return false;
-    if (!insideAllChildren(node.children[0], bounds)) return false;
-    if (!insideAllChildren(node.children[1], bounds)) return false;
-  }
-  return true;
+  return detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, bounds);
 }
 
 void ModelBuilder::filterIntoTree(ItemKind kind, int nodeNum, int ref, int item) {
   const bool polygon = kind == ItemKind::Polygon;
   const auto index = static_cast<std::size_t>(item);
   const Bounds bounds = polygon ? polygons_[index].bounds : brushes_[index].bounds;
-  for (;;) {
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    if (insideAllChildren(nodeNum, bounds)) break;
-    if (bounds.min[node.planeType] >= node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (bounds.max[node.planeType] <= node.planeDist) {
-      nodeNum = node.children[1];
+  detail::filterIntoTree(GrowingTree{nodes_}, nodeNum, bounds, filterStack_, [&](int reached) {
+    BNode& node = nodes_[static_cast<std::size_t>(reached)];
+    if (ref >= 0) {  // move the existing reference: prepend it to the node's list
+      int& head = polygon ? node.polygons : node.brushes;
+      (polygon ? polygonRefs_ : brushRefs_)[static_cast<std::size_t>(ref)].next = head;
+      head = ref;
+      ref = -1;  // new references for the other nodes
+    } else if (polygon) {
+      addPolygonToNode(reached, item);
     } else {
-      const int front = node.children[0];
-      filterIntoTree(kind, node.children[1], -1, item);
-      nodeNum = front;
+      addBrushToNode(reached, item);
     }
-  }
-  BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-  if (ref >= 0) {  // move an existing reference: prepend it to the node's list
-    int& head = polygon ? node.polygons : node.brushes;
-    (polygon ? polygonRefs_ : brushRefs_)[static_cast<std::size_t>(ref)].next = head;
-    head = ref;
-  } else if (polygon) {
-    addPolygonToNode(nodeNum, item);
-  } else {
-    addBrushToNode(nodeNum, item);
-  }
+  });
 }
 
 bool ModelBuilder::findSplitter(int nodeNum, const Bounds& bounds, int& planeType, Real& planeDist) const {

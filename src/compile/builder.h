@@ -19,6 +19,7 @@
 #include "cmkit/model.h"
 #include "geometry/winding.h"
 #include "model/material_cache.h"
+#include "model/tree_filter.h"
 
 namespace cmkit::detail {
 
@@ -119,15 +120,27 @@ class ModelBuilder {
 
   // ---- bsp.cpp
   int allocNode();
-  int allocRef(int item);
   void addPolygonToNode(int node, int polygon);
   void addBrushToNode(int node, int brush);
+  /// The tree as model/tree_filter.h walks it, while it grows.
+  struct GrowingTree {
+    const std::vector<BNode>& nodes;
+    const BNode& at(std::int32_t n) const { return nodes[static_cast<std::size_t>(n)]; }
+    bool isLeaf(std::int32_t n) const { return at(n).planeType == -1; }
+    int axis(std::int32_t n) const { return at(n).planeType; }
+    Real dist(std::int32_t n) const { return at(n).planeDist; }
+    std::int32_t child(std::int32_t n, int side) const { return at(n).children[side]; }
+    bool insideAllChildren(std::int32_t n, const Bounds& b) const {
+      return detail::insideAllChildren(*this, n, b);
+    }
+  };
   bool insideAllChildren(int node, const Bounds& bounds) const;
   enum class ItemKind { Polygon, Brush };
   /// Links a polygon or brush into every node below `node` its bounds reach
-  /// (stopping where it is inside all children); `ref` >= 0 moves that
-  /// existing reference instead of making new ones.
+  /// by the tree-filter rule (model/tree_filter.h); `ref` >= 0 moves that
+  /// existing reference (to one of the nodes) instead of making a new one.
   void filterIntoTree(ItemKind kind, int node, int ref, int item);
+  std::vector<std::int32_t> filterStack_;  ///< scratch of filterIntoTree
   bool findSplitter(int node, const Bounds& bounds, int& planeType, Real& planeDist) const;
   void createAxialBSPTree(int node, const Bounds& bounds);
   Bounds nodeBounds() const;
