@@ -24,9 +24,6 @@ struct Plane {
   /// normalised (so p1, p2, p3 run clockwise seen from the front, as in the
   /// original's map brushes). nullopt when the points are collinear.
   static std::optional<Plane> fromPoints(const Vec3& p1, const Vec3& p2, const Vec3& p3);
-  /// The plane with the given (not necessarily unit) normal through point.
-  /// nullopt when the normal has no direction.
-  static std::optional<Plane> fromNormalAndPoint(const Vec3& n, const Vec3& point);
 
   /// Signed distance of p (n.p - dist), evaluated as the original does.
   constexpr Real distance(const Vec3& p) const { return normal.dot(p) - dist; }

@@ -17,9 +17,6 @@ inline constexpr Real kClipEpsilon = 0.25f;
 /// original: trace bounds, BSP walk extents and heart-plane distances are
 /// padded by this much, so that float round-off never culls a real contact.
 inline constexpr Real kBoxEpsilon = 1.0f;
-/// original: the longest translation of a trace model the original accepts
-/// (cmkit accepts any length; kept for comparisons and documentation).
-inline constexpr Real kOriginalMaxTraceDist = 4096.0f;
 /// original: rotations treat a feature as already inside the epsilon zone
 /// when it is this close to it.
 inline constexpr Real kPluckerRangeEpsilon = 1e-4f;

@@ -1,10 +1,9 @@
 // Map primitives -> brushes and polygons (the original's ConvertBrush,
-// ConvertBrushSides, ConvertPatch and CreatePatchPolygons), and the order of
-// the whole per-model pipeline.
+// ConvertBrushSides, ConvertPatch and CreatePatchPolygons).
 #include <cstdlib>
 
-#include "compile/builder.h"
 #include "cmkit/contents.h"
+#include "compile/builder.h"
 #include "geometry/patch.h"
 
 namespace cmkit::detail {
@@ -28,24 +27,17 @@ Real normalizeLikeOriginal(Vec3& v) {
   return inv * sq;
 }
 
-}  // namespace
-
-int MaterialCache::find(const std::string& rawName) {
-  const auto it = byRaw_.find(rawName);
-  if (it != byRaw_.end()) return it->second;
-  std::string canonical = MaterialTable::canonicalName(rawName);
-  int index;
-  const auto cit = byCanonical_.find(canonical);
-  if (cit != byCanonical_.end()) {
-    index = cit->second;
-  } else {
-    index = static_cast<int>(materials_.size());
-    materials_.push_back({canonical, table_.info(canonical)});
-    byCanonical_.emplace(std::move(canonical), index);
+/// The face of brush side `side`: the side's plane clipped by every other
+/// plane (inward-facing windings of the outward brush planes).
+Winding sideWinding(const std::vector<Plane>& planes, std::size_t side) {
+  Winding w = Winding::baseForPlane(planes[side].flipped());
+  for (std::size_t j = 0; j < planes.size() && !w.empty(); ++j) {
+    if (j != side) w.clipInPlace(planes[j].flipped(), 0);
   }
-  byRaw_.emplace(rawName, index);
-  return index;
+  return w;
 }
+
+}  // namespace
 
 ModelBuilder::ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
                            std::vector<std::string>* warnings)
@@ -64,34 +56,19 @@ void ModelBuilder::warn(const std::string& message) {
   warnings_->push_back(std::move(line));
 }
 
-CollisionModel ModelBuilder::build() {
-  allocNode();  // the root
+std::vector<ModelBuilder::BrushPrimitive> ModelBuilder::convertBrushes() {
   const auto& prims = entity_.primitives;
   std::vector<BrushPrimitive> brushPrims(prims.size());
   for (std::size_t i = 0; i < prims.size(); ++i) {
-    if (const auto* brush = std::get_if<MapBrush>(&prims[i])) {
-      convertBrush(*brush, static_cast<int>(i), brushPrims[i]);
+    if (const auto* mapBrush = std::get_if<MapBrush>(&prims[i])) {
+      convertBrush(*mapBrush, static_cast<int>(i), brushPrims[i]);
     }
   }
+  return brushPrims;
+}
 
-  // An axial BSP tree only for models with more than a few brushes.
-  int brushCount = 0;
-  Bounds rootBounds;
-  for (int r = nodes_[0].brushes; r >= 0; r = brushRefs_[static_cast<std::size_t>(r)].next) {
-    ++brushCount;
-    rootBounds = unionBounds(
-        rootBounds, brushes_[static_cast<std::size_t>(brushRefs_[static_cast<std::size_t>(r)].item)].bounds);
-  }
-  if (brushCount > 4) createAxialBSPTree(0, rootBounds);
-
-  // Vertex welding hash bounds.
-  if (brushCount > 0) {
-    clearHash(nodeBounds());
-  } else {
-    const Real b = tol::kDefaultHashBounds;
-    clearHash(Bounds{{-b, -b, -b}, {b, b, b}});
-  }
-
+void ModelBuilder::convertPrimitivesToPolygons(std::vector<BrushPrimitive>& brushPrims) {
+  const auto& prims = entity_.primitives;
   for (std::size_t i = 0; i < prims.size(); ++i) {
     if (const auto* patch = std::get_if<MapPatch>(&prims[i])) {
       convertPatch(*patch, static_cast<int>(i));
@@ -100,43 +77,38 @@ CollisionModel ModelBuilder::build() {
       brushPrims[i] = BrushPrimitive{};  // free the cached windings
     }
   }
-  return finish();
 }
 
-void ModelBuilder::convertBrush(const MapBrush& brush, int primitiveNum, BrushPrimitive& out) {
-  const int numSides = static_cast<int>(brush.sides.size());
+void ModelBuilder::convertBrush(const MapBrush& mapBrush, int primitiveNum, BrushPrimitive& out) {
+  const std::size_t numSides = mapBrush.sides.size();
   out.primitiveNum = primitiveNum;
-  out.planes.resize(brush.sides.size());
-  for (int i = 0; i < numSides; ++i) {
-    out.planes[static_cast<std::size_t>(i)] = brush.sides[static_cast<std::size_t>(i)].plane;
-    out.planes[static_cast<std::size_t>(i)].fixDegeneracies(tol::kDegenerateDistEpsilon);
+  out.planes.resize(numSides);
+  for (std::size_t i = 0; i < numSides; ++i) {
+    out.planes[i] = mapBrush.sides[i].plane;
+    out.planes[i].fixDegeneracies(tol::kDegenerateDistEpsilon);
   }
   if (numSides < 4) {
-    warn("brush (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(brush.line) +
+    warn("brush (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(mapBrush.line) +
          ") has " + std::to_string(numSides) + " sides: it does not enclose a volume");
   }
   // Bounds, contents and material come from sides 0..n-2 only (the
   // original's loop stops one early as it only needs the bounds).
   Bounds bounds;
   std::uint32_t contents = 0;
-  int material = -1;
+  int material = kNone;
   bool anyPoints = false;
-  if (numSides > 1) out.windings.resize(static_cast<std::size_t>(numSides - 1));
-  for (int i = 0; i < numSides - 1; ++i) {
-    Winding& w = out.windings[static_cast<std::size_t>(i)];
-    w = Winding::baseForPlane(out.planes[static_cast<std::size_t>(i)].flipped());
-    for (int j = 0; j < numSides && !w.empty(); ++j) {
-      if (i == j) continue;
-      w.clipInPlace(out.planes[static_cast<std::size_t>(j)].flipped(), 0);
-    }
+  if (numSides > 1) out.windings.resize(numSides - 1);
+  for (std::size_t i = 0; i + 1 < numSides; ++i) {
+    Winding& w = out.windings[i];
+    w = sideWinding(out.planes, i);
     for (const Vec3& p : w.points()) bounds.addPoint(p);
     anyPoints = anyPoints || !w.empty();
-    material = materials_.find(brush.sides[static_cast<std::size_t>(i)].material);
+    material = materials_.find(mapBrush.sides[i].material);
     contents |= materials_[material].info.contents & kUsefulContents;
   }
   if (contents == 0) return;
   if (!anyPoints) {
-    warn("brush (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(brush.line) +
+    warn("brush (primitive " + std::to_string(primitiveNum) + ", line " + std::to_string(mapBrush.line) +
          ") is empty: its planes enclose no volume (kept, as the original does, with cleared bounds)");
   }
   BBrush b;
@@ -149,23 +121,14 @@ void ModelBuilder::convertBrush(const MapBrush& brush, int primitiveNum, BrushPr
   addBrushToNode(0, static_cast<int>(brushes_.size()) - 1);
 }
 
-void ModelBuilder::convertBrushSides(const MapBrush& brush, BrushPrimitive& prim) {
-  const int numSides = static_cast<int>(brush.sides.size());
-  for (int i = 0; i < numSides; ++i) {
-    const int material = materials_.find(brush.sides[static_cast<std::size_t>(i)].material);
+void ModelBuilder::convertBrushSides(const MapBrush& mapBrush, BrushPrimitive& prim) {
+  const std::size_t numSides = mapBrush.sides.size();
+  for (std::size_t i = 0; i < numSides; ++i) {
+    const int material = materials_.find(mapBrush.sides[i].material);
     if ((materials_[material].info.contents & kUsefulContents) == 0) continue;
-    Winding w;
-    if (i < numSides - 1) {
-      w = std::move(prim.windings[static_cast<std::size_t>(i)]);
-    } else {
-      w = Winding::baseForPlane(prim.planes[static_cast<std::size_t>(i)].flipped());
-      for (int j = 0; j < numSides && !w.empty(); ++j) {
-        if (i == j) continue;
-        w.clipInPlace(prim.planes[static_cast<std::size_t>(j)].flipped(), 0);
-      }
-    }
-    if (!w.empty())
-      polygonFromWinding(w, prim.planes[static_cast<std::size_t>(i)], material, prim.primitiveNum);
+    // the windings of all sides but the last were made by convertBrush
+    Winding w = i + 1 < numSides ? std::move(prim.windings[i]) : sideWinding(prim.planes, i);
+    if (!w.empty()) polygonFromWinding(w, prim.planes[i], material, prim.primitiveNum);
   }
 }
 
@@ -181,7 +144,7 @@ void ModelBuilder::convertPatch(const MapPatch& patch, int primitiveNum) {
   // Patch polygons carry a negative primitive number.
   const int polyPrimitive = -primitiveNum;
   const int width = mesh.width;
-  auto at = [&](int k) -> const Vec3& { return mesh.points[static_cast<std::size_t>(k)]; };
+  auto at = [&](int k) -> const Vec3& { return mesh.points[static_cast<std::size_t>(k)]; };  // row-major grid
   for (int i = 0; i < mesh.width - 1; ++i) {
     for (int j = 0; j < mesh.height - 1; ++j) {
       const int v1 = j * width + i;

@@ -4,76 +4,67 @@
 #include <cmath>
 
 #include "compile/builder.h"
+#include "model/tree_filter.h"
 
 namespace cmkit::detail {
+
+void ModelBuilder::createBSPTreeForBrushes() {
+  int brushCount = 0;
+  Bounds rootBounds;
+  for (const int b : brushesAt(0)) {
+    ++brushCount;
+    rootBounds = unionBounds(rootBounds, brush(b).bounds);
+  }
+  if (brushCount > 4) createAxialBSPTree(0, rootBounds);
+}
 
 int ModelBuilder::allocNode() {
   nodes_.emplace_back();
   return static_cast<int>(nodes_.size()) - 1;
 }
 
-void ModelBuilder::addPolygonToNode(int node, int polygon) {
+void ModelBuilder::addPolygonToNode(int nodeNum, int polygonNum) {
   int r;
-  if (freePolygonRef_ >= 0) {
+  if (freePolygonRef_ != kNone) {
     r = freePolygonRef_;
-    freePolygonRef_ = polygonRefs_[static_cast<std::size_t>(r)].next;
+    freePolygonRef_ = polygonRef(r).next;
   } else {
     r = static_cast<int>(polygonRefs_.size());
     polygonRefs_.emplace_back();
   }
-  BRef& ref = polygonRefs_[static_cast<std::size_t>(r)];
-  ref.item = polygon;
-  ref.next = nodes_[static_cast<std::size_t>(node)].polygons;
-  nodes_[static_cast<std::size_t>(node)].polygons = r;
+  BRef& ref = polygonRef(r);
+  ref.item = polygonNum;
+  ref.next = node(nodeNum).polygons;
+  node(nodeNum).polygons = r;
   counters_.numPolygonRefs++;
 }
 
-void ModelBuilder::addBrushToNode(int node, int brush) {
+void ModelBuilder::addBrushToNode(int nodeNum, int brushNum) {
   const int r = static_cast<int>(brushRefs_.size());
-  brushRefs_.push_back({brush, nodes_[static_cast<std::size_t>(node)].brushes});
-  nodes_[static_cast<std::size_t>(node)].brushes = r;
+  brushRefs_.push_back({brushNum, node(nodeNum).brushes});
+  node(nodeNum).brushes = r;
   counters_.numBrushRefs++;
 }
 
 bool ModelBuilder::insideAllChildren(int nodeNum, const Bounds& bounds) const {
-  const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-  if (node.planeType != -1) {
-    if (bounds.min[node.planeType] >= node.planeDist) return false;
-    if (bounds.max[node.planeType] <= node.planeDist) return false;
-    if (!insideAllChildren(node.children[0], bounds)) return false;
-    if (!insideAllChildren(node.children[1], bounds)) return false;
-  }
-  return true;
+  return detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, bounds);
 }
 
 void ModelBuilder::filterIntoTree(ItemKind kind, int nodeNum, int ref, int item) {
-  const bool polygon = kind == ItemKind::Polygon;
-  const auto index = static_cast<std::size_t>(item);
-  const Bounds bounds = polygon ? polygons_[index].bounds : brushes_[index].bounds;
-  for (;;) {
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    if (insideAllChildren(nodeNum, bounds)) break;
-    if (bounds.min[node.planeType] >= node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (bounds.max[node.planeType] <= node.planeDist) {
-      nodeNum = node.children[1];
+  const bool isPolygon = kind == ItemKind::Polygon;
+  const Bounds bounds = isPolygon ? polygon(item).bounds : brush(item).bounds;
+  detail::filterIntoTree(GrowingTree{nodes_}, nodeNum, bounds, filterStack_, [&](int reached) {
+    if (ref != kNone) {  // move the existing reference: prepend it to the node's list
+      int& head = isPolygon ? node(reached).polygons : node(reached).brushes;
+      (isPolygon ? polygonRef(ref) : brushRef(ref)).next = head;
+      head = ref;
+      ref = kNone;  // new references for the other nodes
+    } else if (isPolygon) {
+      addPolygonToNode(reached, item);
     } else {
-      const int front = node.children[0];
-      filterIntoTree(kind, node.children[1], -1, item);
-      nodeNum = front;
+      addBrushToNode(reached, item);
     }
-  }
-  BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-  if (ref >= 0) {  // move an existing reference: prepend it to the node's list
-    int& head = polygon ? node.polygons : node.brushes;
-    (polygon ? polygonRefs_ : brushRefs_)[static_cast<std::size_t>(ref)].next = head;
-    head = ref;
-  } else if (polygon) {
-    addPolygonToNode(nodeNum, item);
-  } else {
-    addBrushToNode(nodeNum, item);
-  }
+  });
 }
 
 bool ModelBuilder::findSplitter(int nodeNum, const Bounds& bounds, int& planeType, Real& planeDist) const {
@@ -94,10 +85,7 @@ bool ModelBuilder::findSplitter(int nodeNum, const Bounds& bounds, int& planeTyp
   bool forceSplit = false;
   if (size[0] < tol::kMinNodeSize) {
     int polyCount = 0;
-    for (int r = nodes_[static_cast<std::size_t>(nodeNum)].polygons; r >= 0;
-         r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-      ++polyCount;
-    }
+    for ([[maybe_unused]] const int p : polygonsAt(nodeNum)) ++polyCount;
     if (polyCount > tol::kMaxNodePolygons) forceSplit = true;
   }
   for (int i = 0; i < 3; ++i) {
@@ -118,17 +106,11 @@ bool ModelBuilder::findSplitter(int nodeNum, const Bounds& bounds, int& planeTyp
       }
     };
     // candidates from the brushes and polygons of this node and its ancestors
-    for (int n = nodeNum; n >= 0; n = nodes_[static_cast<std::size_t>(n)].parent) {
-      for (int r = nodes_[static_cast<std::size_t>(n)].brushes; r >= 0;
-           r = brushRefs_[static_cast<std::size_t>(r)].next) {
-        consider(brushes_[static_cast<std::size_t>(brushRefs_[static_cast<std::size_t>(r)].item)].bounds);
-      }
+    for (int n = nodeNum; n != kNone; n = node(n).parent) {
+      for (const int b : brushesAt(n)) consider(brush(b).bounds);
     }
-    for (int n = nodeNum; n >= 0; n = nodes_[static_cast<std::size_t>(n)].parent) {
-      for (int r = nodes_[static_cast<std::size_t>(n)].polygons; r >= 0;
-           r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-        consider(polygons_[static_cast<std::size_t>(polygonRefs_[static_cast<std::size_t>(r)].item)].bounds);
-      }
+    for (int n = nodeNum; n != kNone; n = node(n).parent) {
+      for (const int p : polygonsAt(n)) consider(polygon(p).bounds);
     }
     if (bestt < size[i]) {
       if (forceSplit) return true;
@@ -143,80 +125,64 @@ bool ModelBuilder::findSplitter(int nodeNum, const Bounds& bounds, int& planeTyp
 }
 
 void ModelBuilder::createAxialBSPTree(int nodeNum, const Bounds& bounds) {
-  int planeType = -1;
+  int planeType = kNone;
   Real planeDist = 0;
   if (!findSplitter(nodeNum, bounds, planeType, planeDist)) {
-    nodes_[static_cast<std::size_t>(nodeNum)].planeType = -1;
+    node(nodeNum).planeType = kNone;
     return;
   }
   const int frontNode = allocNode();
-  nodes_[static_cast<std::size_t>(frontNode)].parent = nodeNum;
+  node(frontNode).parent = nodeNum;
   const int backNode = allocNode();
-  nodes_[static_cast<std::size_t>(backNode)].parent = nodeNum;
+  node(backNode).parent = nodeNum;
   counters_.numNodes += 2;
   Bounds frontBounds = bounds;
   frontBounds.min[planeType] = planeDist;
   Bounds backBounds = bounds;
   backBounds.max[planeType] = planeDist;
-  {
-    BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    node.planeType = planeType;
-    node.planeDist = planeDist;
-    node.children[0] = frontNode;
-    node.children[1] = backNode;
-  }
-  // Move references that are no longer inside all children down the tree,
-  // for this node and every ancestor.
-  for (int n = nodeNum; n >= 0; n = nodes_[static_cast<std::size_t>(n)].parent) {
-    int prev = -1;
-    for (int r = nodes_[static_cast<std::size_t>(n)].polygons, next; r >= 0; r = next) {
-      next = polygonRefs_[static_cast<std::size_t>(r)].next;
-      const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
-      if (!insideAllChildren(n, polygons_[static_cast<std::size_t>(p)].bounds)) {
-        filterIntoTree(ItemKind::Polygon, n, r, p);
-        if (prev >= 0) {
-          polygonRefs_[static_cast<std::size_t>(prev)].next = next;
-        } else {
-          nodes_[static_cast<std::size_t>(n)].polygons = next;
-        }
-      } else {
-        prev = r;
-      }
-    }
-    prev = -1;
-    for (int r = nodes_[static_cast<std::size_t>(n)].brushes, next; r >= 0; r = next) {
-      next = brushRefs_[static_cast<std::size_t>(r)].next;
-      const int b = brushRefs_[static_cast<std::size_t>(r)].item;
-      if (!insideAllChildren(n, brushes_[static_cast<std::size_t>(b)].bounds)) {
-        filterIntoTree(ItemKind::Brush, n, r, b);
-        if (prev >= 0) {
-          brushRefs_[static_cast<std::size_t>(prev)].next = next;
-        } else {
-          nodes_[static_cast<std::size_t>(n)].brushes = next;
-        }
-      } else {
-        prev = r;
-      }
-    }
-  }
+  BNode& split = node(nodeNum);
+  split.planeType = planeType;
+  split.planeDist = planeDist;
+  split.children[0] = frontNode;
+  split.children[1] = backNode;
+  // The new split can leave items of this node and of every ancestor no
+  // longer inside all children.
+  for (int n = nodeNum; n != kNone; n = node(n).parent) pushItemsDown(n);
   createAxialBSPTree(frontNode, frontBounds);
   createAxialBSPTree(backNode, backBounds);
+}
+
+void ModelBuilder::pushItemsDown(int nodeNum) {
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    const bool isPolygon = kind == ItemKind::Polygon;
+    auto ref = [&](int r) -> BRef& { return isPolygon ? polygonRef(r) : brushRef(r); };
+    int& head = isPolygon ? node(nodeNum).polygons : node(nodeNum).brushes;
+    int prev = kNone;
+    for (int r = head, next; r != kNone; r = next) {
+      next = ref(r).next;
+      const int item = ref(r).item;
+      if (insideAllChildren(nodeNum, isPolygon ? polygon(item).bounds : brush(item).bounds)) {
+        prev = r;
+        continue;
+      }
+      filterIntoTree(kind, nodeNum, r, item);
+      (prev != kNone ? ref(prev).next : head) = next;  // unlink it here
+    }
+  }
 }
 
 Bounds ModelBuilder::nodeBounds() const {
   // The original's CM_GetNodeBounds: both corners of every item as points
   // (so a cleared item bounds makes the result +-infinity), zero if empty.
   Bounds b;
-  for (const BNode& node : nodes_) {
-    for (int r = node.polygons; r >= 0; r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-      const BPolygon& p = polygons_[static_cast<std::size_t>(polygonRefs_[static_cast<std::size_t>(r)].item)];
-      b.addPoint(p.bounds.min);
-      b.addPoint(p.bounds.max);
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
+    for (const int p : polygonsAt(n)) {
+      b.addPoint(polygon(p).bounds.min);
+      b.addPoint(polygon(p).bounds.max);
     }
-    for (int r = node.brushes; r >= 0; r = brushRefs_[static_cast<std::size_t>(r)].next) {
-      const BBrush& br = brushes_[static_cast<std::size_t>(brushRefs_[static_cast<std::size_t>(r)].item)];
-      b.addPoint(br.bounds.min);
-      b.addPoint(br.bounds.max);
+    for (const int br : brushesAt(n)) {
+      b.addPoint(brush(br).bounds.min);
+      b.addPoint(brush(br).bounds.max);
     }
   }
   if (b.min.x > b.max.x) b = Bounds{Vec3{}, Vec3{}};

@@ -1,9 +1,35 @@
-// buildCollisionModels: one collision model per map entity with primitives.
+// buildCollisionModels: one collision model per map entity with primitives,
+// and the steps that build one (ModelBuilder::build).
 #include "cmkit/compile.h"
 
 #include "compile/builder.h"
 
 namespace cmkit {
+
+namespace detail {
+
+CollisionModel ModelBuilder::build() {
+  allocNode();  // the root
+  // Brushes with collision contents (bounds, contents, material), linked into the root.
+  std::vector<BrushPrimitive> brushPrims = convertBrushes();
+  // The axial BSP tree over the brushes (more than 4 of them), before any polygon.
+  createBSPTreeForBrushes();
+  prepareVertexHash();
+  // Brush sides and patches -> polygons: chopped by the brushes, vertices
+  // welded, edges shared, each filtered into the tree.
+  convertPrimitivesToPolygons(brushPrims);
+  mergePolygons();
+  markInternalEdges();
+  // The immutable layout: compacted arrays, the tree flattened in pre-order.
+  CollisionModel model;
+  model.name = name_;
+  const Remap remap = compactVerticesAndEdges(model);
+  flattenTree(model, remap);
+  finishModel(model);
+  return model;
+}
+
+}  // namespace detail
 
 Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
                                                    const BuildOptions& options) {

@@ -5,19 +5,23 @@
 // hold singly linked lists of polygon and brush references, new references
 // are prepended, merged polygons replace references in place. The list order
 // decides the order of polygons in .cm files and of several results, so it is
-// reproduced exactly. finish() flattens everything into a CollisionModel.
+// reproduced exactly. build() (build.cpp) lists the steps; the last ones
+// flatten everything into a CollisionModel.
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
-#include "geometry/winding.h"
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "cmkit/model.h"
+#include "geometry/winding.h"
+#include "model/material_cache.h"
+#include "model/tree_filter.h"
 
 namespace cmkit::detail {
 
@@ -32,26 +36,9 @@ inline Bounds unionBounds(const Bounds& a, const Bounds& b) {
   return r;
 }
 
-/// A material as the builder sees it: canonical name and collision info.
-struct BuildMaterial {
-  std::string name;  ///< canonical
-  MaterialInfo info;
-};
-
-/// Materials of one build (all models of a map): raw name -> material index.
-class MaterialCache {
- public:
-  explicit MaterialCache(const MaterialTable& table) : table_(table) {}
-  /// Index of the material (same canonical name -> same index).
-  int find(const std::string& rawName);
-  const BuildMaterial& operator[](int i) const { return materials_[static_cast<std::size_t>(i)]; }
-
- private:
-  const MaterialTable& table_;
-  std::unordered_map<std::string, int> byRaw_;
-  std::unordered_map<std::string, int> byCanonical_;
-  std::vector<BuildMaterial> materials_;
-};
+/// "None" for the int indices of the build state: no node, no reference, no
+/// material, the end of a reference list.
+inline constexpr int kNone = -1;
 
 struct BEdge {
   std::int32_t v[2] = {0, 0};
@@ -63,34 +50,62 @@ struct BPolygon {
   Bounds bounds;
   Plane plane;
   std::uint32_t contents = 0;
-  int material = -1;
+  int material = kNone;
   int checkcount = 0;
   bool freed = false;
-  std::vector<int> edges;
+  std::vector<int> edges;  ///< signed edge numbers (negative: used from v[1] to v[0])
 };
 
 struct BBrush {
   Bounds bounds;
   std::uint32_t contents = 0;
-  int material = -1;
+  int material = kNone;
   int primitiveNum = 0;
   int checkcount = 0;
   std::vector<Plane> planes;
 };
 
 struct BNode {
-  int planeType = -1;
+  int planeType = kNone;  ///< kNone for a leaf, else the axis of the split plane
   Real planeDist = 0;
-  int children[2] = {-1, -1};
-  int parent = -1;
-  int polygons = -1;  ///< head of the polygon reference list (index into refs), -1 = empty
-  int brushes = -1;   ///< head of the brush reference list
+  int children[2] = {kNone, kNone};
+  int parent = kNone;
+  int polygons = kNone;  ///< head of the polygon reference list (index into the refs)
+  int brushes = kNone;   ///< head of the brush reference list
+  bool isLeaf() const { return planeType == kNone; }
 };
 
 /// A reference to a polygon or brush in a node's list.
 struct BRef {
-  int item = -1;
-  int next = -1;
+  int item = kNone;
+  int next = kNone;
+};
+
+/// The items (polygon or brush indices) of one node's reference list, in
+/// list order, for range-for.
+class RefList {
+ public:
+  class Iterator {
+   public:
+    Iterator(const std::vector<BRef>& refs, int r) : refs_(&refs), r_(r) {}
+    int operator*() const { return (*refs_)[static_cast<std::size_t>(r_)].item; }
+    Iterator& operator++() {
+      r_ = (*refs_)[static_cast<std::size_t>(r_)].next;
+      return *this;
+    }
+    bool operator!=(const Iterator& o) const { return r_ != o.r_; }
+
+   private:
+    const std::vector<BRef>* refs_;
+    int r_;
+  };
+  RefList(const std::vector<BRef>& refs, int head) : refs_(refs), head_(head) {}
+  Iterator begin() const { return {refs_, head_}; }
+  Iterator end() const { return {refs_, kNone}; }
+
+ private:
+  const std::vector<BRef>& refs_;
+  int head_;
 };
 
 /// Counters the original prints (PrintModelInfo).
@@ -108,7 +123,7 @@ class ModelBuilder {
  public:
   ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
                std::vector<std::string>* warnings);
-  /// Runs the whole pipeline and returns the flattened model.
+  /// Runs the whole pipeline (the list of steps) and returns the flattened model.
   CollisionModel build();
 
  private:
@@ -118,11 +133,18 @@ class ModelBuilder {
     std::vector<Plane> planes;      ///< after FixDegeneracies
     std::vector<Winding> windings;  ///< of sides 0..n-2 (the bounds pass)
   };
+  /// Brushes with collision contents, linked into the root; per primitive the
+  /// planes and windings convertBrushSides uses later.
+  std::vector<BrushPrimitive> convertBrushes();
   void convertBrush(const MapBrush& brush, int primitiveNum, BrushPrimitive& out);
+  /// Brush sides and patches -> polygons, in primitive order.
+  void convertPrimitivesToPolygons(std::vector<BrushPrimitive>& brushPrims);
   void convertBrushSides(const MapBrush& brush, BrushPrimitive& prim);
   void convertPatch(const MapPatch& patch, int primitiveNum);
 
   // ---- polygons.cpp
+  /// The vertex welding hash, over the bounds of the brushes (or a default box).
+  void prepareVertexHash();
   void clearHash(const Bounds& bounds);
   bool getVertex(const Vec3& v, int& vertexNum);
   bool getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1num);
@@ -138,53 +160,119 @@ class ModelBuilder {
   bool chopWindingListWithBrush(const BBrush& b);
 
   // ---- bsp.cpp
+  /// The axial BSP tree, only for models with more than a few brushes.
+  void createBSPTreeForBrushes();
   int allocNode();
-  int allocRef(int item);
   void addPolygonToNode(int node, int polygon);
   void addBrushToNode(int node, int brush);
+  /// The tree as model/tree_filter.h walks it, while it grows.
+  struct GrowingTree {
+    const std::vector<BNode>& nodes;
+    const BNode& at(std::int32_t n) const { return nodes[static_cast<std::size_t>(n)]; }
+    bool isLeaf(std::int32_t n) const { return at(n).isLeaf(); }
+    int axis(std::int32_t n) const { return at(n).planeType; }
+    Real dist(std::int32_t n) const { return at(n).planeDist; }
+    std::int32_t child(std::int32_t n, int side) const { return at(n).children[side]; }
+    bool insideAllChildren(std::int32_t n, const Bounds& b) const {
+      return detail::insideAllChildren(*this, n, b);
+    }
+  };
   bool insideAllChildren(int node, const Bounds& bounds) const;
   enum class ItemKind { Polygon, Brush };
   /// Links a polygon or brush into every node below `node` its bounds reach
-  /// (stopping where it is inside all children); `ref` >= 0 moves that
-  /// existing reference instead of making new ones.
+  /// by the tree-filter rule (model/tree_filter.h); `ref` != kNone moves that
+  /// existing reference (to one of the nodes) instead of making a new one.
   void filterIntoTree(ItemKind kind, int node, int ref, int item);
   bool findSplitter(int node, const Bounds& bounds, int& planeType, Real& planeDist) const;
   void createAxialBSPTree(int node, const Bounds& bounds);
+  /// The items of `node` that are no longer inside all its children go down the tree.
+  void pushItemsDown(int node);
   Bounds nodeBounds() const;
 
   // ---- merge.cpp
+  /// Coplanar polygons that share an edge, merged into one convex polygon.
+  void mergePolygons();
   void mergeTreePolygons(int node);
   bool mergePolygonWithTreePolygons(int node, int polygon);
   int tryMergePolygons(int p1, int p2);
   void replacePolygons(int node, int p1, int p2, int newp);
 
   // ---- internal_edges.cpp
+  /// Edges that a trace can never touch first, marked internal.
+  void markInternalEdges();
   void findInternalEdges(int node);
   void findInternalPolygonEdges(int node, int polygon);
   void findInternalEdgesOnPolygon(int p1, int p2);
   bool pointInsidePolygon(const BPolygon& p, const Vec3& v) const;
 
-  // ---- finish.cpp
-  CollisionModel finish();
+  // ---- flatten.cpp: the model's arrays (the original's OptimizeArrays and
+  // the layout of model.h)
+  struct Remap {
+    std::vector<int> vertices;  ///< build vertex -> model vertex
+    std::vector<int> edges;     ///< build edge -> model edge (0: dropped)
+  };
+  /// Vertices used by an edge, edges used by a polygon, into the model.
+  Remap compactVerticesAndEdges(CollisionModel& model) const;
+  /// Nodes in pre-order; polygons and brushes in the order of their first reference.
+  void flattenTree(CollisionModel& model, const Remap& remap) const;
+  /// Bounds, contents, edge normals and statistics of the flattened model.
+  void finishModel(CollisionModel& model) const;
+
+  // ---- typed access to the build state (int indices, as in the original)
+  Vec3& vertex(int v) { return vertices_[static_cast<std::size_t>(v)]; }
+  const Vec3& vertex(int v) const { return vertices_[static_cast<std::size_t>(v)]; }
+  /// The edge of a signed edge number (the sign is the direction of use).
+  BEdge& edge(int edgeNum) { return edges_[static_cast<std::size_t>(std::abs(edgeNum))]; }
+  const BEdge& edge(int edgeNum) const { return edges_[static_cast<std::size_t>(std::abs(edgeNum))]; }
+  BPolygon& polygon(int p) { return polygons_[static_cast<std::size_t>(p)]; }
+  const BPolygon& polygon(int p) const { return polygons_[static_cast<std::size_t>(p)]; }
+  BBrush& brush(int b) { return brushes_[static_cast<std::size_t>(b)]; }
+  const BBrush& brush(int b) const { return brushes_[static_cast<std::size_t>(b)]; }
+  BNode& node(int n) { return nodes_[static_cast<std::size_t>(n)]; }
+  const BNode& node(int n) const { return nodes_[static_cast<std::size_t>(n)]; }
+  BRef& polygonRef(int r) { return polygonRefs_[static_cast<std::size_t>(r)]; }
+  BRef& brushRef(int r) { return brushRefs_[static_cast<std::size_t>(r)]; }
+  const BRef& polygonRef(int r) const { return polygonRefs_[static_cast<std::size_t>(r)]; }
+  const BRef& brushRef(int r) const { return brushRefs_[static_cast<std::size_t>(r)]; }
+  /// The polygons / brushes linked into a node, in list order.
+  RefList polygonsAt(int n) const { return {polygonRefs_, node(n).polygons}; }
+  RefList brushesAt(int n) const { return {brushRefs_, node(n).brushes}; }
+
+  /// Visits `node` and the nodes below it that the bounds reach, where only
+  /// bounds entirely beyond a plane skip a child (touching reaches both):
+  /// each node before those below it, the back subtree before the front one
+  /// (the original's recursion). visit(n) returns false to stop the walk;
+  /// the result is false when it was stopped.
+  template <class Visit>
+  bool walkTouching(int nodeNum, const Bounds& bounds, Visit&& visit) {
+    for (;;) {
+      if (!visit(nodeNum)) return false;
+      const BNode& here = node(nodeNum);
+      if (here.isLeaf()) return true;
+      if (bounds.min[here.planeType] > here.planeDist) {
+        nodeNum = here.children[0];
+      } else if (bounds.max[here.planeType] < here.planeDist) {
+        nodeNum = here.children[1];
+      } else {
+        const int front = here.children[0];
+        if (!walkTouching(here.children[1], bounds, visit)) return false;
+        nodeNum = front;
+      }
+    }
+  }
 
   /// True when each edge starts at the vertex where the one before it ends
   /// (cyclically): the edges outline a polygon.
   bool edgesFormLoop(const std::vector<int>& edgeNums) const {
-    auto startVertex = [&](int e) { return edges_[static_cast<std::size_t>(std::abs(e))].v[e > 0 ? 0 : 1]; };
+    auto startVertex = [&](int e) { return edge(e).v[e > 0 ? 0 : 1]; };
     for (std::size_t k = 0; k < edgeNums.size(); ++k) {
       const int prev = edgeNums[k == 0 ? edgeNums.size() - 1 : k - 1];
       if (startVertex(-prev) != startVertex(edgeNums[k])) return false;
     }
     return true;
   }
-  Vec3 edgeStart(int edgeNum) const {
-    const BEdge& e = edges_[static_cast<std::size_t>(edgeNum < 0 ? -edgeNum : edgeNum)];
-    return vertices_[static_cast<std::size_t>(edgeNum < 0 ? e.v[1] : e.v[0])];
-  }
-  Vec3 edgeEnd(int edgeNum) const {
-    const BEdge& e = edges_[static_cast<std::size_t>(edgeNum < 0 ? -edgeNum : edgeNum)];
-    return vertices_[static_cast<std::size_t>(edgeNum < 0 ? e.v[0] : e.v[1])];
-  }
+  Vec3 edgeStart(int edgeNum) const { return vertex(edge(edgeNum).v[edgeNum < 0 ? 1 : 0]); }
+  Vec3 edgeEnd(int edgeNum) const { return vertex(edge(edgeNum).v[edgeNum < 0 ? 0 : 1]); }
 
   const MapEntity& entity_;
   std::string name_;
@@ -203,22 +291,25 @@ class ModelBuilder {
   std::vector<BNode> nodes_;  ///< nodes_[0] is the root
   std::vector<BRef> polygonRefs_;
   std::vector<BRef> brushRefs_;
-  int freePolygonRef_ = -1;
+  int freePolygonRef_ = kNone;
   BuildCounters counters_;
   int checkCount_ = 0;
+  std::vector<std::int32_t> filterStack_;  ///< scratch of filterIntoTree
 
   // vertex and edge hashes
   static constexpr int kVertexHashSize = 4096;
   Vec3 hashMin_;
   std::vector<int> vertexHashHead_;
   std::vector<int> vertexHashNext_;
+  int& hashHead(int key) { return vertexHashHead_[static_cast<std::size_t>(key)]; }
+  int& hashNext(int vertexNum) { return vertexHashNext_[static_cast<std::size_t>(vertexNum)]; }
   std::unordered_map<std::uint64_t, int> edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
 
   // winding list of windingOutsideBrushes
   struct WindingList {
-    std::vector<Winding> w;
-    int numWindings = 0;
+    std::vector<Winding> w;  ///< kMaxWindings slots
+    std::size_t numWindings = 0;
     Bounds bounds;
     Vec3 origin;
     Real radius = 0;
@@ -226,6 +317,7 @@ class ModelBuilder {
     std::uint32_t contents = 0;
     int primitiveNum = 0;
   };
+  static constexpr std::size_t kMaxWindings = tol::kMaxWindingList;
   WindingList list_;
   std::vector<Winding> outList_;
   std::vector<Winding> tmpList_;

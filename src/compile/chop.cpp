@@ -15,7 +15,7 @@ const Winding* ModelBuilder::windingOutsideBrushes(const Winding& w, const Plane
   list.origin = list.bounds.min + list.origin;
   list.bounds.min -= Vec3(tol::kChopEpsilon, tol::kChopEpsilon, tol::kChopEpsilon);
   list.bounds.max += Vec3(tol::kChopEpsilon, tol::kChopEpsilon, tol::kChopEpsilon);
-  if (list.w.empty()) list.w.resize(static_cast<std::size_t>(tol::kMaxWindingList));
+  if (list.w.empty()) list.w.resize(kMaxWindings);
   list.w[0] = w;
   list.numWindings = 1;
   list.normal = plane.normal;
@@ -34,105 +34,82 @@ const Winding* ModelBuilder::windingOutsideBrushes(const Winding& w, const Plane
 
 void ModelBuilder::chopWindingListWithTreeBrushes(int nodeNum) {
   WindingList& list = list_;
-  for (;;) {
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    for (int r = node.brushes; r >= 0; r = brushRefs_[static_cast<std::size_t>(r)].next) {
-      BBrush& b = brushes_[static_cast<std::size_t>(brushRefs_[static_cast<std::size_t>(r)].item)];
+  // (stopping once nothing is left changes nothing: later brushes would
+  // only be marked)
+  walkTouching(nodeNum, list.bounds, [&](int n) {
+    for (const int bn : brushesAt(n)) {
+      BBrush& b = brush(bn);
       if (b.checkcount == checkCount_) continue;
       b.checkcount = checkCount_;
       if (b.primitiveNum == list.primitiveNum) continue;  // the polygon's own brush
       if (b.contents != list.contents) continue;
-      int i = 0;
-      for (; i < 3; ++i) {
-        if (list.bounds.min[i] > b.bounds.max[i]) break;
-        if (list.bounds.max[i] < b.bounds.min[i]) break;
-      }
-      if (i < 3) continue;
+      if (!b.bounds.intersects(list.bounds)) continue;
       // false: the list is left as it was by this brush (a fragment on a
       // same-facing brush side, or too many fragments); the walk goes on
       // (returning here instead gives other results than the reference).
       chopWindingListWithBrush(b);
     }
-    if (node.planeType == -1) break;
-    if (list.bounds.min[node.planeType] > node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (list.bounds.max[node.planeType] < node.planeDist) {
-      nodeNum = node.children[1];
-    } else {
-      const int front = node.children[0];
-      chopWindingListWithTreeBrushes(node.children[1]);
-      if (list.numWindings == 0) return;
-      nodeNum = front;
-    }
-  }
+    return list.numWindings != 0;
+  });
 }
 
 bool ModelBuilder::chopWindingListWithBrush(const BBrush& b) {
   WindingList& list = list_;
-  const int numPlanes = static_cast<int>(b.planes.size());
+  const std::size_t numPlanes = b.planes.size();
   if (numPlanes > 64) return true;  // the original's fixed winding limit: not chopped
-  const int kMax = tol::kMaxWindingList;
-  if (outList_.empty()) outList_.resize(static_cast<std::size_t>(kMax));
-  if (tmpList_.empty()) tmpList_.resize(static_cast<std::size_t>(kMax));
+  const std::size_t kMax = kMaxWindings;
+  if (outList_.empty()) outList_.resize(kMax);
+  if (tmpList_.empty()) tmpList_.resize(kMax);
+  auto tooManyWindings = [&] {
+    warn("primitive " + std::to_string(list.primitiveNum) + " is chopped into more than " +
+         std::to_string(kMax) + " windings");
+    return false;
+  };
 
   // The side of the whole list of each inward brush plane.
-  WindingSide sidedness[64];
-  for (int i = 0; i < numPlanes; ++i) {
-    const Plane plane = b.planes[static_cast<std::size_t>(i)].flipped();
+  Side sidedness[64];
+  for (std::size_t i = 0; i < numPlanes; ++i) {
+    const Plane plane = b.planes[i].flipped();
     const Real dist = plane.distance(list.origin);
     if (dist > list.radius) {
-      sidedness[i] = WindingSide::Front;
+      sidedness[i] = Side::Front;
     } else if (dist < -list.radius) {
-      sidedness[i] = WindingSide::Back;
+      sidedness[i] = Side::Back;
     } else {
-      const Side s = list.bounds.planeSide(plane, tol::kOnEpsilon);
-      sidedness[i] = s == Side::Front  ? WindingSide::Front
-                     : s == Side::Back ? WindingSide::Back
-                                       : WindingSide::Cross;
+      sidedness[i] = list.bounds.planeSide(plane, tol::kOnEpsilon);  // Front, Back or Cross
     }
   }
 
-  int numOut = 0;
+  std::size_t numOut = 0;
   Winding front;
   Winding back;
-  for (int k = 0; k < list.numWindings; ++k) {
-    int startPlane = 0;
-    int bestNumWindings = 1 + numPlanes;
+  for (std::size_t k = 0; k < list.numWindings; ++k) {
+    std::size_t startPlane = 0;
+    std::size_t bestNumWindings = 1 + numPlanes;
     bool chopped = false;
     do {
-      front = list.w[static_cast<std::size_t>(k)];
-      int numTmp = 0;
-      for (int planeNum = startPlane, i = 0; i < numPlanes; ++i, ++planeNum) {
+      front = list.w[k];
+      std::size_t numTmp = 0;
+      for (std::size_t planeNum = startPlane, i = 0; i < numPlanes; ++i, ++planeNum) {
         if (planeNum >= numPlanes) planeNum = 0;
-        WindingSide res = sidedness[planeNum];
-        if (res == WindingSide::Cross) {
-          res = front.split(back, b.planes[static_cast<std::size_t>(planeNum)].flipped(), tol::kChopEpsilon);
-        }
+        Side res = sidedness[planeNum];
+        if (res == Side::Cross) res = front.split(back, b.planes[planeNum].flipped(), tol::kChopEpsilon);
         // A winding on a brush side facing the same way stays (coplanar
         // touching faces); all windings of the list are on that plane.
-        if (res == WindingSide::On && list.primitiveNum >= 0 &&
-            list.normal.dot(b.planes[static_cast<std::size_t>(planeNum)].normal) > 0) {
+        if (res == Side::On && list.primitiveNum >= 0 && list.normal.dot(b.planes[planeNum].normal) > 0) {
           return false;
         }
-        if (res == WindingSide::Back) {
-          if (numOut >= kMax) {
-            warn("primitive " + std::to_string(list.primitiveNum) + " is chopped into more than " +
-                 std::to_string(kMax) + " windings");
-            return false;
-          }
+        if (res == Side::Back) {
+          if (numOut >= kMax) return tooManyWindings();
           // Outside this plane: the winding does not touch the brush.
-          outList_[static_cast<std::size_t>(numOut)] = list.w[static_cast<std::size_t>(k)];
+          outList_[numOut] = list.w[k];
           ++numOut;
           chopped = false;
           break;
         }
-        if (res == WindingSide::Cross) {
-          if (numTmp >= kMax) {
-            warn("primitive " + std::to_string(list.primitiveNum) + " is chopped into more than " +
-                 std::to_string(kMax) + " windings");
-            return false;
-          }
-          tmpList_[static_cast<std::size_t>(numTmp)] = back;  // the part outside the brush
+        if (res == Side::Cross) {
+          if (numTmp >= kMax) return tooManyWindings();
+          tmpList_[numTmp] = back;  // the part outside the brush
           ++numTmp;
           chopped = true;
         }
@@ -141,13 +118,9 @@ bool ModelBuilder::chopWindingListWithBrush(const BBrush& b) {
       // Keep the start plane that leaves the fewest fragments.
       if (numTmp < bestNumWindings) {
         bestNumWindings = numTmp;
-        for (int i = 0; i < numTmp; ++i) {
-          if (numOut + i >= kMax) {
-            warn("primitive " + std::to_string(list.primitiveNum) + " is chopped into more than " +
-                 std::to_string(kMax) + " windings");
-            return false;
-          }
-          outList_[static_cast<std::size_t>(numOut + i)] = tmpList_[static_cast<std::size_t>(i)];
+        for (std::size_t i = 0; i < numTmp; ++i) {
+          if (numOut + i >= kMax) return tooManyWindings();
+          outList_[numOut + i] = tmpList_[i];
         }
         if (bestNumWindings == 1) break;
       }
@@ -155,8 +128,7 @@ bool ModelBuilder::chopWindingListWithBrush(const BBrush& b) {
     } while (chopped && startPlane < numPlanes);
     if (chopped) numOut += bestNumWindings;
   }
-  for (int k = 0; k < numOut; ++k)
-    list.w[static_cast<std::size_t>(k)] = outList_[static_cast<std::size_t>(k)];
+  for (std::size_t k = 0; k < numOut; ++k) list.w[k] = outList_[k];
   list.numWindings = numOut;
   return true;
 }

@@ -8,59 +8,47 @@
 
 namespace cmkit::detail {
 
+void ModelBuilder::markInternalEdges() {
+  ++checkCount_;
+  findInternalEdges(0);
+}
+
 void ModelBuilder::findInternalEdges(int nodeNum) {
   for (;;) {
-    for (int r = nodes_[static_cast<std::size_t>(nodeNum)].polygons; r >= 0;
-         r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-      const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
-      BPolygon& poly = polygons_[static_cast<std::size_t>(p)];
-      if (poly.checkcount == checkCount_) continue;
-      poly.checkcount = checkCount_;
+    for (const int p : polygonsAt(nodeNum)) {
+      if (polygon(p).checkcount == checkCount_) continue;
+      polygon(p).checkcount = checkCount_;
       findInternalPolygonEdges(0, p);
     }
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    findInternalEdges(node.children[1]);
-    nodeNum = node.children[0];
+    const BNode& here = node(nodeNum);
+    if (here.isLeaf()) break;
+    findInternalEdges(here.children[1]);
+    nodeNum = here.children[0];
   }
 }
 
-void ModelBuilder::findInternalPolygonEdges(int nodeNum, int polygon) {
-  const BPolygon& poly = polygons_[static_cast<std::size_t>(polygon)];
+void ModelBuilder::findInternalPolygonEdges(int nodeNum, int polygonNum) {
+  const BPolygon& poly = polygon(polygonNum);
   if (materials_[poly.material].info.twoSided) return;
-  for (;;) {
-    for (int r = nodes_[static_cast<std::size_t>(nodeNum)].polygons; r >= 0;
-         r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-      const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
+  walkTouching(nodeNum, poly.bounds, [&](int n) {
+    for (const int p : polygonsAt(n)) {
       // (polygons reached through several nodes are tested several times,
       // as in the original)
-      if (polygons_[static_cast<std::size_t>(p)].contents != poly.contents) continue;
-      if (p == polygon) continue;
-      findInternalEdgesOnPolygon(polygon, p);
+      if (polygon(p).contents != poly.contents) continue;
+      if (p == polygonNum) continue;
+      findInternalEdgesOnPolygon(polygonNum, p);
     }
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    if (poly.bounds.min[node.planeType] > node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (poly.bounds.max[node.planeType] < node.planeDist) {
-      nodeNum = node.children[1];
-    } else {
-      findInternalPolygonEdges(node.children[1], polygon);
-      nodeNum = node.children[0];
-    }
-  }
+    return true;
+  });
 }
 
 void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
-  const BPolygon& p1 = polygons_[static_cast<std::size_t>(p1Num)];
-  const BPolygon& p2 = polygons_[static_cast<std::size_t>(p2Num)];
-  for (int i = 0; i < 3; ++i) {
-    if (p1.bounds.min[i] > p2.bounds.max[i]) return;
-    if (p1.bounds.max[i] < p2.bounds.min[i]) return;
-  }
+  const BPolygon& p1 = polygon(p1Num);
+  const BPolygon& p2 = polygon(p2Num);
+  if (!p2.bounds.intersects(p1.bounds)) return;
   for (const int edgeNum : p1.edges) {
-    BEdge& edge = edges_[static_cast<std::size_t>(std::abs(edgeNum))];
-    if (edge.internal) continue;
+    BEdge& e = edge(edgeNum);
+    if (e.internal) continue;
     const Vec3 v1 = edgeStart(edgeNum);
     const Vec3 v2 = edgeEnd(edgeNum);
     // both vertices within the other polygon's bounds (expanded)
@@ -78,7 +66,7 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
     }
     const bool shared = j < p2.edges.size();
     if (shared) {
-      if (edge.numUsers > 2) continue;       // would need all users tested
+      if (e.numUsers > 2) continue;          // would need all users tested
       if (edgeNum == p2.edges[j]) continue;  // same direction: overlapping polygons
     } else {
       // both vertices on the other polygon's plane
@@ -93,7 +81,7 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
       if (!pointInsidePolygon(p2, v1)) continue;
       if (!pointInsidePolygon(p2, v2)) continue;
     }
-    edge.internal = true;
+    e.internal = true;
     counters_.numInternalEdges++;
   }
 }

@@ -20,120 +20,105 @@ void normalizeUnguarded(Vec3& v) {
 }
 }  // namespace
 
+void ModelBuilder::mergePolygons() {
+  ++checkCount_;
+  mergeTreePolygons(0);
+}
+
 void ModelBuilder::mergeTreePolygons(int nodeNum) {
   for (;;) {
     bool merged;
     do {
       merged = false;
-      for (int r = nodes_[static_cast<std::size_t>(nodeNum)].polygons; r >= 0;
-           r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-        const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
-        BPolygon& poly = polygons_[static_cast<std::size_t>(p)];
-        if (poly.checkcount == checkCount_) continue;
-        poly.checkcount = checkCount_;
+      for (const int p : polygonsAt(nodeNum)) {
+        if (polygon(p).checkcount == checkCount_) continue;
+        polygon(p).checkcount = checkCount_;
         if (mergePolygonWithTreePolygons(0, p)) {
           merged = true;
           break;  // the list changed: start it again
         }
       }
     } while (merged);
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    const int front = node.children[0];
-    mergeTreePolygons(node.children[1]);
+    const BNode& here = node(nodeNum);
+    if (here.isLeaf()) break;
+    const int front = here.children[0];
+    mergeTreePolygons(here.children[1]);
     nodeNum = front;
   }
 }
 
-bool ModelBuilder::mergePolygonWithTreePolygons(int nodeNum, int polygon) {
-  for (;;) {
-    for (int r = nodes_[static_cast<std::size_t>(nodeNum)].polygons; r >= 0;
-         r = polygonRefs_[static_cast<std::size_t>(r)].next) {
-      const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
-      if (p == polygon) continue;
-      const int newp = tryMergePolygons(polygon, p);
-      if (newp < 0) continue;
+bool ModelBuilder::mergePolygonWithTreePolygons(int nodeNum, int polygonNum) {
+  const Bounds bounds = polygon(polygonNum).bounds;
+  const bool merged = !walkTouching(nodeNum, bounds, [&](int n) {
+    for (const int p : polygonsAt(n)) {
+      if (p == polygonNum) continue;
+      const int newp = tryMergePolygons(polygonNum, p);
+      if (newp == kNone) continue;
       counters_.numMergedPolys++;
-      replacePolygons(0, polygon, p, newp);
-      for (const int e : polygons_[static_cast<std::size_t>(polygon)].edges) {
-        edges_[static_cast<std::size_t>(std::abs(e))].numUsers--;
+      replacePolygons(0, polygonNum, p, newp);
+      for (const int old : {polygonNum, p}) {
+        for (const int e : polygon(old).edges) edge(e).numUsers--;
+        polygon(old).freed = true;
+        polygon(old).edges.clear();
       }
-      for (const int e : polygons_[static_cast<std::size_t>(p)].edges) {
-        edges_[static_cast<std::size_t>(std::abs(e))].numUsers--;
-      }
-      polygons_[static_cast<std::size_t>(polygon)].freed = true;
-      polygons_[static_cast<std::size_t>(polygon)].edges.clear();
-      polygons_[static_cast<std::size_t>(p)].freed = true;
-      polygons_[static_cast<std::size_t>(p)].edges.clear();
-      return true;
+      return false;  // the lists changed: stop
     }
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    const Bounds bounds = polygons_[static_cast<std::size_t>(polygon)].bounds;
-    if (bounds.min[node.planeType] > node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (bounds.max[node.planeType] < node.planeDist) {
-      nodeNum = node.children[1];
-    } else {
-      const int front = node.children[0];
-      if (mergePolygonWithTreePolygons(node.children[1], polygon)) return true;
-      nodeNum = front;
-    }
-  }
-  return false;
+    return true;
+  });
+  return merged;
 }
 
 int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
-  const BPolygon& p1 = polygons_[static_cast<std::size_t>(p1Num)];
-  const BPolygon& p2 = polygons_[static_cast<std::size_t>(p2Num)];
-  if (p1.material != p2.material) return -1;
-  if (std::fabs(p1.plane.dist - p2.plane.dist) > tol::kNormalEpsilon) return -1;
+  const BPolygon& p1 = polygon(p1Num);
+  const BPolygon& p2 = polygon(p2Num);
+  if (p1.material != p2.material) return kNone;
+  if (std::fabs(p1.plane.dist - p2.plane.dist) > tol::kNormalEpsilon) return kNone;
   for (int i = 0; i < 3; ++i) {
-    if (std::fabs(p1.plane.normal[i] - p2.plane.normal[i]) > tol::kNormalEpsilon) return -1;
-    if (p1.bounds.min[i] > p2.bounds.max[i]) return -1;
-    if (p1.bounds.max[i] < p2.bounds.min[i]) return -1;
+    if (std::fabs(p1.plane.normal[i] - p2.plane.normal[i]) > tol::kNormalEpsilon) return kNone;
   }
+  if (!p2.bounds.intersects(p1.bounds)) return kNone;
   const int n1 = static_cast<int>(p1.edges.size());
   const int n2 = static_cast<int>(p2.edges.size());
   auto e1 = [&](int i) { return p1.edges[static_cast<std::size_t>(i)]; };
   auto e2 = [&](int j) { return p2.edges[static_cast<std::size_t>(j)]; };
   // Find the run of shared edges: the edges of each polygon just before and
   // just after it.
-  int p1BeforeShare = -1, p1AfterShare = -1, p2BeforeShare = -1, p2AfterShare = -1;
+  int p1BeforeShare = kNone, p1AfterShare = kNone, p2BeforeShare = kNone, p2AfterShare = kNone;
   for (int i = 0; i < n1; ++i) {
     const int nexti = (i + 1) % n1;
     for (int j = 0; j < n2; ++j) {
       const int prevj = (j + n2 - 1) % n2;
       if (std::abs(e1(i)) == std::abs(e2(j))) {
-        if (e1(i) == e2(j)) return -1;  // used the same way by both
+        if (e1(i) == e2(j)) return kNone;  // used the same way by both
         if (std::abs(e1(nexti)) != std::abs(e2(prevj))) {
-          if (p1AfterShare >= 0) return -1;  // more than one shared run
+          if (p1AfterShare != kNone) return kNone;  // more than one shared run
           p1AfterShare = nexti;
           p2BeforeShare = prevj;
           break;
         }
       } else if (std::abs(e1(nexti)) == std::abs(e2(prevj))) {
-        if (p1BeforeShare >= 0) return -1;
+        if (p1BeforeShare != kNone) return kNone;
         p1BeforeShare = i;
         p2AfterShare = j;
         break;
       }
     }
   }
-  if (p1BeforeShare < 0 || p1AfterShare < 0 || p2BeforeShare < 0 || p2AfterShare < 0) return -1;
+  if (p1BeforeShare == kNone || p1AfterShare == kNone || p2BeforeShare == kNone || p2AfterShare == kNone)
+    return kNone;
 
   // Convexity at both junctions.
   auto edgeDelta = [&](int edgeNum) { return edgeEnd(edgeNum) - edgeStart(edgeNum); };
   Vec3 normal = p1.plane.normal.cross(edgeDelta(e1(p1BeforeShare)));
   normalizeUnguarded(normal);
   Real dot = edgeDelta(e2(p2AfterShare)).dot(normal);
-  if (dot < -tol::kContinuousEpsilon) return -1;
+  if (dot < -tol::kContinuousEpsilon) return kNone;
   bool keep1 = dot > tol::kContinuousEpsilon;
 
   normal = p1.plane.normal.cross(edgeDelta(e2(p2BeforeShare)));
   normalizeUnguarded(normal);
   dot = edgeDelta(e1(p1AfterShare)).dot(normal);
-  if (dot < -tol::kContinuousEpsilon) return -1;
+  if (dot < -tol::kContinuousEpsilon) return kNone;
   bool keep2 = dot > tol::kContinuousEpsilon;
 
   // Collinear edges at a junction become one new edge.
@@ -142,13 +127,13 @@ int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
   if (!keep1) {
     const Vec3 a = edgeStart(e1(p1BeforeShare));
     const Vec3 b = edgeEnd(e2(p2AfterShare));
-    getEdge(a, b, newEdgeNum1, -1);
+    getEdge(a, b, newEdgeNum1, kNone);
     if (newEdgeNum1 == 0) keep1 = true;
   }
   if (!keep2) {
     const Vec3 a = edgeStart(e2(p2BeforeShare));
     const Vec3 b = edgeEnd(e1(p1AfterShare));
-    getEdge(a, b, newEdgeNum2, -1);
+    getEdge(a, b, newEdgeNum2, kNone);
     if (newEdgeNum2 == 0) keep2 = true;
   }
   // getEdge may have grown edges_ but not polygons_: p1, p2 stay valid.
@@ -171,13 +156,13 @@ int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
   if (newEdges.size() > static_cast<std::size_t>(tol::kMaxPolygonEdges)) {
     // The original would overflow its edge array here; cmkit does not merge.
     // (The edges getEdge may have made stay, like those of rejected polygons.)
-    return -1;
+    return kNone;
   }
   // With odd geometry (found by fuzzing: a patch point at 6.5e13) the shared
   // run is not what the splice above assumes and the original makes a
   // polygon whose edges do not form a loop; cmkit keeps the two polygons.
   // Real maps never get here (their .cm files validate).
-  if (!edgesFormLoop(newEdges)) return -1;
+  if (!edgesFormLoop(newEdges)) return kNone;
 
   BPolygon np;
   np.bounds = unionBounds(p1.bounds, p2.bounds);
@@ -188,7 +173,7 @@ int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
   for (const int e : newEdges) {
     if (!keep1 && e == newEdgeNum1) continue;
     if (!keep2 && e == newEdgeNum2) continue;
-    edges_[static_cast<std::size_t>(std::abs(e))].numUsers++;
+    edge(e).numUsers++;
   }
   np.edges = std::move(newEdges);
   polygons_.push_back(std::move(np));
@@ -198,23 +183,23 @@ int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
 void ModelBuilder::replacePolygons(int nodeNum, int p1, int p2, int newp) {
   for (;;) {
     bool linked = false;
-    int last = -1;
-    for (int r = nodes_[static_cast<std::size_t>(nodeNum)].polygons, next; r >= 0; r = next) {
-      next = polygonRefs_[static_cast<std::size_t>(r)].next;
-      const int p = polygonRefs_[static_cast<std::size_t>(r)].item;
+    int last = kNone;
+    for (int r = node(nodeNum).polygons, next; r != kNone; r = next) {
+      next = polygonRef(r).next;
+      const int p = polygonRef(r).item;
       if (p == p1 || p == p2) {
         if (linked) {
           // the new polygon is already linked here: drop this reference
-          if (last >= 0) {
-            polygonRefs_[static_cast<std::size_t>(last)].next = next;
+          if (last != kNone) {
+            polygonRef(last).next = next;
           } else {
-            nodes_[static_cast<std::size_t>(nodeNum)].polygons = next;
+            node(nodeNum).polygons = next;
           }
-          polygonRefs_[static_cast<std::size_t>(r)].next = freePolygonRef_;
+          polygonRef(r).next = freePolygonRef_;
           freePolygonRef_ = r;
           counters_.numPolygonRefs--;
         } else {
-          polygonRefs_[static_cast<std::size_t>(r)].item = newp;
+          polygonRef(r).item = newp;
           linked = true;
           last = r;
         }
@@ -222,17 +207,17 @@ void ModelBuilder::replacePolygons(int nodeNum, int p1, int p2, int newp) {
         last = r;
       }
     }
-    const BNode& node = nodes_[static_cast<std::size_t>(nodeNum)];
-    if (node.planeType == -1) break;
-    const Bounds& b1 = polygons_[static_cast<std::size_t>(p1)].bounds;
-    const Bounds& b2 = polygons_[static_cast<std::size_t>(p2)].bounds;
-    if (b1.min[node.planeType] > node.planeDist && b2.min[node.planeType] > node.planeDist) {
-      nodeNum = node.children[0];
-    } else if (b1.max[node.planeType] < node.planeDist && b2.max[node.planeType] < node.planeDist) {
-      nodeNum = node.children[1];
+    const BNode& here = node(nodeNum);
+    if (here.isLeaf()) break;
+    const Bounds& b1 = polygon(p1).bounds;
+    const Bounds& b2 = polygon(p2).bounds;
+    if (b1.min[here.planeType] > here.planeDist && b2.min[here.planeType] > here.planeDist) {
+      nodeNum = here.children[0];
+    } else if (b1.max[here.planeType] < here.planeDist && b2.max[here.planeType] < here.planeDist) {
+      nodeNum = here.children[1];
     } else {
-      const int front = node.children[0];
-      replacePolygons(node.children[1], p1, p2, newp);
+      const int front = here.children[0];
+      replacePolygons(here.children[1], p1, p2, newp);
       nodeNum = front;
     }
   }

@@ -34,9 +34,18 @@ std::uint64_t edgeKey(int v0, int v1) {
 
 }  // namespace
 
+void ModelBuilder::prepareVertexHash() {
+  if (!brushes_.empty()) {
+    clearHash(nodeBounds());
+  } else {
+    const Real b = tol::kDefaultHashBounds;
+    clearHash(Bounds{{-b, -b, -b}, {b, b, b}});
+  }
+}
+
 void ModelBuilder::clearHash(const Bounds& bounds) {
   hashMin_ = bounds.min;
-  vertexHashHead_.assign(kVertexHashSize, -1);
+  vertexHashHead_.assign(kVertexHashSize, kNone);
   vertexHashNext_.clear();
   edgeHashHead_.clear();
   edgeHashNext_.clear();
@@ -61,25 +70,24 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
     if (kLo[a] != kHi[a]) ++differing;
   }
   auto matches = [&](int vn) {
-    const Vec3& p = vertices_[static_cast<std::size_t>(vn)];
+    const Vec3& p = vertex(vn);
     return std::fabs(vert[2] - p[2]) < tol::kVertexEpsilon &&
            std::fabs(vert[0] - p[0]) < tol::kVertexEpsilon && std::fabs(vert[1] - p[1]) < tol::kVertexEpsilon;
   };
   // Newest first within a cell, as the original's hash chains.
   auto searchCell = [&](int key) {
-    for (int vn = vertexHashHead_[static_cast<std::size_t>(key)]; vn >= 0;
-         vn = vertexHashNext_[static_cast<std::size_t>(vn)]) {
+    for (int vn = hashHead(key); vn != kNone; vn = hashNext(vn)) {
       if (matches(vn)) return vn;
     }
-    return -1;
+    return kNone;
   };
   const int midKey = combineCells(kMid, kVertexHashSize);
   int found = searchCell(midKey);
-  if (found < 0 && differing == 1) {
+  if (found == kNone && differing == 1) {
     int other[3];
     for (int a = 0; a < 3; ++a) other[a] = kMid[a] == kLo[a] ? kHi[a] : kLo[a];
     found = searchCell(combineCells(other, kVertexHashSize));
-  } else if (found < 0 && differing > 1) {
+  } else if (found == kNone && differing > 1) {
     // The original searches all vertices in order here; any vertex within
     // the weld distance lies in one of these cells, so the lowest-numbered
     // match among them is the same vertex, found without a linear scan.
@@ -94,30 +102,29 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
       if (!seen) keys[numKeys++] = key;
     }
     for (int s = 0; s < numKeys; ++s) {
-      for (int vn = vertexHashHead_[static_cast<std::size_t>(keys[s])]; vn >= 0;
-           vn = vertexHashNext_[static_cast<std::size_t>(vn)]) {
-        if ((found < 0 || vn < found) && matches(vn)) found = vn;
+      for (int vn = hashHead(keys[s]); vn != kNone; vn = hashNext(vn)) {
+        if ((found == kNone || vn < found) && matches(vn)) found = vn;
       }
     }
   }
-  if (found >= 0) {
+  if (found != kNone) {
     vertexNum = found;
     return true;
   }
   vertexNum = static_cast<int>(vertices_.size());
   vertices_.push_back(vert);
-  vertexHashNext_.push_back(vertexHashHead_[static_cast<std::size_t>(midKey)]);
-  vertexHashHead_[static_cast<std::size_t>(midKey)] = vertexNum;
+  vertexHashNext_.push_back(hashHead(midKey));
+  hashHead(midKey) = vertexNum;
   return false;
 }
 
 bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1num) {
   if (edges_.empty()) {
     edges_.emplace_back();  // the dummy edge 0
-    edgeHashNext_.push_back(-1);
+    edgeHashNext_.push_back(kNone);
   }
-  bool found = v1num != -1 ? true : getVertex(v1, v1num);
-  int v2num = -1;
+  bool found = v1num != kNone ? true : getVertex(v1, v1num);
+  int v2num = kNone;
   found = getVertex(v2, v2num) && found;
   if (v1num == v2num) {  // degenerate: both ends welded together
     edgeNum = 0;
@@ -127,22 +134,22 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
     // Share an edge only with one polygon that uses it the other way.
     const auto it = edgeHashHead_.find(edgeKey(v2num, v1num));
     if (it != edgeHashHead_.end()) {
-      for (int e = it->second; e >= 0; e = edgeHashNext_[static_cast<std::size_t>(e)]) {
-        if (edges_[static_cast<std::size_t>(e)].numUsers != 1) continue;
-        edges_[static_cast<std::size_t>(e)].numUsers++;
+      for (int e = it->second; e != kNone; e = edgeHashNext_[static_cast<std::size_t>(e)]) {
+        if (edge(e).numUsers != 1) continue;
+        edge(e).numUsers++;
         edgeNum = -e;
         return true;
       }
     }
   }
-  BEdge edge;
-  edge.v[0] = v1num;
-  edge.v[1] = v2num;
-  edge.numUsers = 1;
+  BEdge newEdge;
+  newEdge.v[0] = v1num;
+  newEdge.v[1] = v2num;
+  newEdge.numUsers = 1;
   const int e = static_cast<int>(edges_.size());
-  edges_.push_back(edge);
+  edges_.push_back(newEdge);
   auto [it, inserted] = edgeHashHead_.try_emplace(edgeKey(v1num, v2num), e);
-  edgeHashNext_.push_back(inserted ? -1 : it->second);
+  edgeHashNext_.push_back(inserted ? kNone : it->second);
   it->second = e;
   edgeNum = e;
   return false;
@@ -151,14 +158,13 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
 void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum) {
   std::vector<int> polyEdges;
   polyEdges.reserve(static_cast<std::size_t>(w.size()));
-  int v1num = -1;
+  int v1num = kNone;  // the welded start of the next edge, once known
   for (int i = 0, j = 1; i < w.size(); ++i, ++j) {
     if (j >= w.size()) j = 0;
     int e = 0;
     getEdge(w[i], w[j], e, v1num);
     if (e != 0) {
-      const BEdge& edge = edges_[static_cast<std::size_t>(std::abs(e))];
-      v1num = edge.v[e > 0 ? 1 : 0];  // the end of this edge starts the next
+      v1num = edge(e).v[e > 0 ? 1 : 0];  // the end of this edge starts the next
       polyEdges.push_back(e);
     }
   }
@@ -188,7 +194,7 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
   p.plane = plane;
   p.bounds = w.bounds();
   polygons_.push_back(std::move(p));
-  filterIntoTree(ItemKind::Polygon, 0, -1, static_cast<int>(polygons_.size()) - 1);
+  filterIntoTree(ItemKind::Polygon, 0, kNone, static_cast<int>(polygons_.size()) - 1);
 }
 
 void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum) {

@@ -27,10 +27,10 @@ Vec3 splitPoint(const Vec3& p1, const Vec3& p2, Real d1, Real d2, const Plane& p
   return mid;
 }
 
-WindingSide classify(Real d, Real epsilon) {
-  if (d > epsilon) return WindingSide::Front;
-  if (d < -epsilon) return WindingSide::Back;
-  return WindingSide::On;
+Side classify(Real d, Real epsilon) {
+  if (d > epsilon) return Side::Front;
+  if (d < -epsilon) return Side::Back;
+  return Side::On;
 }
 
 /// A scratch array of up to kStackPoints values on the stack, else on the
@@ -71,10 +71,10 @@ struct PointSides {
       dists[n] = dists[0];
     }
   }
-  int count(WindingSide side) const { return counts[static_cast<int>(side)]; }
+  int count(Side side) const { return counts[static_cast<int>(side)]; }
 
   ScratchArray<Real> dists;
-  ScratchArray<WindingSide> sides;
+  ScratchArray<Side> sides;
   int counts[3] = {0, 0, 0};
 };
 
@@ -100,11 +100,11 @@ void Winding::clipInPlace(const Plane& plane, Real epsilon) {
   const std::size_t n = points_.size();
   if (n == 0) return;
   PointSides ps(points_, plane, epsilon);
-  if (ps.count(WindingSide::Front) == 0) {
+  if (ps.count(Side::Front) == 0) {
     points_.clear();
     return;
   }
-  if (ps.count(WindingSide::Back) == 0) return;
+  if (ps.count(Side::Back) == 0) return;
 
   // The clipped winding has at most n + 1 points; small ones are built on
   // the stack and copied back into the existing storage (no allocation).
@@ -112,45 +112,44 @@ void Winding::clipInPlace(const Plane& plane, Real epsilon) {
   std::size_t numOut = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p1 = points_[i];
-    if (ps.sides[i] == WindingSide::On) {
+    if (ps.sides[i] == Side::On) {
       out[numOut++] = p1;
       continue;
     }
-    if (ps.sides[i] == WindingSide::Front) out[numOut++] = p1;
-    if (ps.sides[i + 1] == WindingSide::On || ps.sides[i + 1] == ps.sides[i]) continue;
+    if (ps.sides[i] == Side::Front) out[numOut++] = p1;
+    if (ps.sides[i + 1] == Side::On || ps.sides[i + 1] == ps.sides[i]) continue;
     const Vec3& p2 = points_[(i + 1) % n];
     out[numOut++] = splitPoint(p1, p2, ps.dists[i], ps.dists[i + 1], plane);
   }
   points_.assign(out.data(), out.data() + numOut);
 }
 
-WindingSide Winding::split(Winding& back, const Plane& plane, Real epsilon) {
+Side Winding::split(Winding& back, const Plane& plane, Real epsilon) {
   const std::size_t n = points_.size();
   PointSides ps(points_, plane, epsilon);
-  if (ps.count(WindingSide::Back) == 0)
-    return ps.count(WindingSide::Front) == 0 ? WindingSide::On : WindingSide::Front;
-  if (ps.count(WindingSide::Front) == 0) return WindingSide::Back;
+  if (ps.count(Side::Back) == 0) return ps.count(Side::Front) == 0 ? Side::On : Side::Front;
+  if (ps.count(Side::Front) == 0) return Side::Back;
 
   ScratchArray<Vec3> front(n + 4);
   std::size_t numFront = 0;
   back.points_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p1 = points_[i];
-    if (ps.sides[i] == WindingSide::On) {
+    if (ps.sides[i] == Side::On) {
       front[numFront++] = p1;
       back.points_.push_back(p1);
       continue;
     }
-    if (ps.sides[i] == WindingSide::Front) front[numFront++] = p1;
-    if (ps.sides[i] == WindingSide::Back) back.points_.push_back(p1);
-    if (ps.sides[i + 1] == WindingSide::On || ps.sides[i + 1] == ps.sides[i]) continue;
+    if (ps.sides[i] == Side::Front) front[numFront++] = p1;
+    if (ps.sides[i] == Side::Back) back.points_.push_back(p1);
+    if (ps.sides[i + 1] == Side::On || ps.sides[i + 1] == ps.sides[i]) continue;
     const Vec3& p2 = points_[(i + 1) % n];
     const Vec3 mid = splitPoint(p1, p2, ps.dists[i], ps.dists[i + 1], plane);
     front[numFront++] = mid;
     back.points_.push_back(mid);
   }
   points_.assign(front.data(), front.data() + numFront);
-  return WindingSide::Cross;
+  return Side::Cross;
 }
 
 void Winding::reverse() { std::reverse(points_.begin(), points_.end()); }

@@ -8,9 +8,6 @@
 
 namespace cmkit::detail {
 
-/// Result of splitting a winding by a plane (the original's SIDE_* values).
-enum class WindingSide : int { Front = 0, Back = 1, On = 2, Cross = 3 };
-
 /// A convex polygon as a list of points (order defines the facing).
 class Winding {
  public:
@@ -35,7 +32,7 @@ class Winding {
   /// Splits by the plane: returns Front/Back/On when the winding is not cut
   /// (then neither it nor `back` changes), else Cross with this winding
   /// replaced by the front part and `back` set to the back part.
-  WindingSide split(Winding& back, const Plane& plane, Real epsilon);
+  Side split(Winding& back, const Plane& plane, Real epsilon);
 
   /// Reverses the point order (the facing).
   void reverse();

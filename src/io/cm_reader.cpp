@@ -9,6 +9,7 @@
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
 #include "model/edge_normals.h"
+#include "model/material_cache.h"
 #include "model/tree_filter.h"
 #include "text/cm_cursor.h"
 
@@ -24,33 +25,12 @@ constexpr std::int64_t kMaxInt = std::numeric_limits<std::int32_t>::max();
 constexpr std::int64_t kMaxReserve = 1 << 20;
 constexpr std::string_view kSections[5] = {"vertices", "edges", "nodes", "polygons", "brushes"};
 
-// Material names -> contents, looked up once per distinct name in a file.
-class MaterialCache {
- public:
-  explicit MaterialCache(const MaterialTable& table) : table_(table) {}
-  struct Entry {
-    std::string canonical;
-    std::uint32_t contents = 0;
-  };
-  const Entry& get(std::string_view name) {
-    auto it = cache_.find(std::string(name));
-    if (it != cache_.end()) return it->second;
-    Entry e{MaterialTable::canonicalName(name), 0};
-    e.contents = table_.contents(e.canonical);
-    return cache_.emplace(std::string(name), std::move(e)).first->second;
-  }
-
- private:
-  const MaterialTable& table_;
-  std::unordered_map<std::string, Entry> cache_;
-};
-
 // One model being read: the model plus the file offsets of its records, for
 // messages about references that can only be checked once every section has
 // been read.
 struct ModelReader {
   CmCursor& in;
-  MaterialCache& materialCache;
+  detail::MaterialCache& materialCache;
   CollisionModel model;
   std::unordered_map<std::string, std::int32_t> materialIndex;
   std::vector<std::size_t> edgeOffsets;     // per edge
@@ -126,10 +106,10 @@ struct ModelReader {
   }
 
   std::int32_t materialFor(std::string_view name, std::uint32_t& contents) {
-    const MaterialCache::Entry& e = materialCache.get(name);
-    contents = e.contents;
-    auto [it, added] = materialIndex.try_emplace(e.canonical, std::int32_t(model.materials.size()));
-    if (added) model.materials.push_back(e.canonical);
+    const detail::MaterialCache::Material& m = materialCache.get(name);
+    contents = m.info.contents;
+    auto [it, added] = materialIndex.try_emplace(m.name, std::int32_t(model.materials.size()));
+    if (added) model.materials.push_back(m.name);
     return it->second;
   }
 
@@ -287,7 +267,7 @@ std::uint32_t parseHeader(CmCursor& in) {
 CmFile parseFile(CmCursor& in, const MaterialTable& materials) {
   CmFile file;
   file.crc = parseHeader(in);
-  MaterialCache cache(materials);
+  detail::MaterialCache cache(materials);
   while (in.more()) {
     const std::size_t modelAt = in.tokenOffset();
     const std::string_view word = in.readName();

@@ -43,6 +43,8 @@ const std::array<std::uint32_t, kTableSize> kInvSqrtTable = makeTable();
 
 }  // namespace
 
+// float, not Real, here and in the table: the seed is made from the bits of
+// an IEEE single (exponent and mantissa positions), whatever Real is.
 float compatInvSqrt(float x) {
   const std::uint32_t a = floatBits(x);
   const double y = double(x * 0.5f);

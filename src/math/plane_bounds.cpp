@@ -13,12 +13,6 @@ std::optional<Plane> Plane::fromPoints(const Vec3& p1, const Vec3& p2, const Vec
   return Plane{n, n.dot(p2)};
 }
 
-std::optional<Plane> Plane::fromNormalAndPoint(const Vec3& normal, const Vec3& point) {
-  Vec3 n = normal;
-  if (n.normalize() == 0) return std::nullopt;
-  return Plane{n, n.dot(point)};
-}
-
 namespace {
 // Makes an exactly-axial or exactly-unit-component normal exact (the
 // original's FixDegenerateNormal). Returns true when it changed.

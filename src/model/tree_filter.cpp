@@ -1,4 +1,4 @@
-// Filtering loaded items into the stored tree: see cm_tree.h.
+// Filtering loaded items into the stored tree: see tree_filter.h.
 #include "model/tree_filter.h"
 
 #include <array>
@@ -44,7 +44,7 @@ std::vector<SubtreeSplits> subtreeSplits(const CollisionModel& model) {
   return splits;
 }
 
-bool insideAllChildren(const SubtreeSplits& s, const Bounds& b) {
+bool straddlesAllSplits(const SubtreeSplits& s, const Bounds& b) {
   for (int k = 0; k < 3; ++k) {
     if (s.lowest[std::size_t(k)] > s.highest[std::size_t(k)]) continue;  // no plane on this axis
     if (!(b.min[k] < s.lowest[std::size_t(k)])) return false;
@@ -53,32 +53,20 @@ bool insideAllChildren(const SubtreeSplits& s, const Bounds& b) {
   return true;
 }
 
-// Appends (node, item) for every node the item's bounds reach.
-void filterBounds(const CollisionModel& model, const std::vector<SubtreeSplits>& splits, const Bounds& b,
-                  std::int32_t item, std::vector<std::int32_t>& stack,
-                  std::vector<std::pair<std::int32_t, std::int32_t>>& out) {
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    std::int32_t n = stack.back();
-    stack.pop_back();
-    for (;;) {
-      const CmNode& node = model.nodes[std::size_t(n)];
-      if (node.isLeaf() || insideAllChildren(splits[std::size_t(n)], b)) {
-        out.emplace_back(n, item);
-        break;
-      }
-      if (b.min[node.planeType] >= node.planeDist) {
-        n = node.children[0];
-      } else if (b.max[node.planeType] <= node.planeDist) {
-        n = node.children[1];
-      } else {
-        stack.push_back(node.children[1]);
-        n = node.children[0];
-      }
-    }
+// A stored tree for filterIntoTree, with "inside all children" from the
+// precomputed subtree splits (the same test as the walk of
+// detail::insideAllChildren, without walking the subtree).
+struct StoredTree {
+  const CollisionModel& model;
+  const std::vector<SubtreeSplits>& splits;
+  bool isLeaf(std::int32_t n) const { return model.nodes[std::size_t(n)].isLeaf(); }
+  int axis(std::int32_t n) const { return model.nodes[std::size_t(n)].planeType; }
+  Real dist(std::int32_t n) const { return model.nodes[std::size_t(n)].planeDist; }
+  std::int32_t child(std::int32_t n, int side) const { return model.nodes[std::size_t(n)].children[side]; }
+  bool insideAllChildren(std::int32_t n, const Bounds& b) const {
+    return straddlesAllSplits(splits[std::size_t(n)], b);
   }
-}
+};
 
 // Builds the node ranges from (node, item) pairs given in item order; each
 // node's list is in reverse item order (items were prepended).
@@ -112,15 +100,22 @@ void filterItemsIntoTree(CollisionModel& model) {
     model.nodes.emplace_back();  // a single leaf
   }
   const std::vector<SubtreeSplits> splits = subtreeSplits(model);
+  const StoredTree tree{model, splits};
   std::vector<std::int32_t> stack;
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   pairs.reserve(model.polygons.size() + model.polygons.size() / 2);
-  for (std::size_t i = 0; i < model.polygons.size(); ++i)
-    filterBounds(model, splits, model.polygons[i].bounds, std::int32_t(i), stack, pairs);
+  for (std::size_t i = 0; i < model.polygons.size(); ++i) {
+    const auto item = std::int32_t(i);
+    filterIntoTree(tree, 0, model.polygons[i].bounds, stack,
+                   [&](std::int32_t n) { pairs.emplace_back(n, item); });
+  }
   buildRanges(model, pairs, model.polygonRefs, true);
   pairs.clear();
-  for (std::size_t i = 0; i < model.brushes.size(); ++i)
-    filterBounds(model, splits, model.brushes[i].bounds, std::int32_t(i), stack, pairs);
+  for (std::size_t i = 0; i < model.brushes.size(); ++i) {
+    const auto item = std::int32_t(i);
+    filterIntoTree(tree, 0, model.brushes[i].bounds, stack,
+                   [&](std::int32_t n) { pairs.emplace_back(n, item); });
+  }
   buildRanges(model, pairs, model.brushRefs, false);
 }
 

@@ -1,0 +1,151 @@
+// The end of a model build (the original's FinishModel after merging and
+// internal edges): compaction of vertices and edges (OptimizeArrays) and
+// flattening of the linked build state into the immutable CollisionModel
+// layout of model.h.
+#include <cstdlib>
+
+#include "compile/builder.h"
+#include "model/edge_normals.h"
+
+namespace cmkit::detail {
+
+ModelBuilder::Remap ModelBuilder::compactVerticesAndEdges(CollisionModel& model) const {
+  Remap remap;
+  // Vertices: those referenced by any edge slot, including the dummy edge 0
+  // and edges without users (they are compacted only afterwards).
+  remap.vertices.assign(vertices_.size(), 0);
+  std::vector<char> used(vertices_.size(), 0);
+  for (const BEdge& e : edges_) {
+    used[static_cast<std::size_t>(e.v[0])] = 1;
+    used[static_cast<std::size_t>(e.v[1])] = 1;
+  }
+  for (std::size_t i = 0; i < vertices_.size(); ++i) {
+    if (!used[i]) continue;
+    remap.vertices[i] = static_cast<int>(model.vertices.size());
+    model.vertices.push_back(vertices_[i]);
+  }
+  // Edges: those with users (edge 0 stays as the dummy).
+  remap.edges.assign(edges_.size(), 0);
+  if (edges_.empty()) return remap;
+  model.edges.emplace_back();
+  for (std::size_t i = 1; i < edges_.size(); ++i) {
+    const BEdge& e = edges_[i];
+    if (e.numUsers == 0) continue;
+    remap.edges[i] = static_cast<int>(model.edges.size());
+    CmEdge ce;
+    ce.vertex[0] = remap.vertices[static_cast<std::size_t>(e.v[0])];
+    ce.vertex[1] = remap.vertices[static_cast<std::size_t>(e.v[1])];
+    ce.internal = e.internal;
+    ce.numUsers = static_cast<std::uint8_t>(e.numUsers > 255 ? 255 : e.numUsers);
+    model.edges.push_back(ce);
+  }
+  return remap;
+}
+
+namespace {
+
+/// Build indices -> model indices, given out in the order items are first met.
+class IndexMap {
+ public:
+  explicit IndexMap(std::size_t size) : index_(size, kNone) {}
+  /// The model index of the item; add() makes it (and returns it) the first time.
+  template <class Add>
+  int get(int buildIndex, Add&& add) {
+    const auto i = static_cast<std::size_t>(buildIndex);
+    if (index_.size() <= i) index_.resize(i + 1, kNone);
+    if (index_[i] == kNone) index_[i] = add();
+    return index_[i];
+  }
+
+ private:
+  std::vector<int> index_;
+};
+
+template <class T>
+int appended(std::vector<T>& v, const T& item) {
+  v.push_back(item);
+  return static_cast<int>(v.size()) - 1;
+}
+
+}  // namespace
+
+void ModelBuilder::flattenTree(CollisionModel& model, const Remap& remap) const {
+  // Nodes in pre-order (front child first); polygons, brushes and materials
+  // in the order they are first met in that walk.
+  IndexMap polygonIndex(polygons_.size());
+  IndexMap brushIndex(brushes_.size());
+  IndexMap materialIndex(0);
+  auto modelMaterial = [&](int m) -> std::int32_t {
+    if (m == kNone) return kNone;
+    return materialIndex.get(m, [&] { return appended(model.materials, materials_[m].name); });
+  };
+  auto newPolygon = [&](const BPolygon& bp) {
+    CmPolygon cp;
+    cp.bounds = bp.bounds;
+    cp.plane = bp.plane;
+    cp.contents = bp.contents;
+    cp.material = modelMaterial(bp.material);
+    cp.firstEdge = static_cast<std::uint32_t>(model.polygonEdges.size());
+    cp.numEdges = static_cast<std::uint32_t>(bp.edges.size());
+    for (const int e : bp.edges) {
+      const int m = remap.edges[static_cast<std::size_t>(std::abs(e))];
+      model.polygonEdges.push_back(e < 0 ? -m : m);
+    }
+    return appended(model.polygons, cp);
+  };
+  auto newBrush = [&](const BBrush& bb) {
+    CmBrush cb;
+    cb.bounds = bb.bounds;
+    cb.contents = bb.contents;
+    cb.material = modelMaterial(bb.material);
+    cb.primitiveNum = bb.primitiveNum;
+    cb.firstPlane = static_cast<std::uint32_t>(model.brushPlanes.size());
+    cb.numPlanes = static_cast<std::uint32_t>(bb.planes.size());
+    model.brushPlanes.insert(model.brushPlanes.end(), bb.planes.begin(), bb.planes.end());
+    return appended(model.brushes, cb);
+  };
+
+  struct Pending {
+    int buildNode;
+    int parent;
+    int childSlot;
+  };
+  std::vector<Pending> stack;
+  stack.push_back({0, kNone, kNone});
+  while (!stack.empty()) {
+    const Pending cur = stack.back();
+    stack.pop_back();
+    const BNode& bn = node(cur.buildNode);
+    const int index = static_cast<int>(model.nodes.size());
+    if (cur.parent != kNone)
+      model.nodes[static_cast<std::size_t>(cur.parent)].children[cur.childSlot] = index;
+    CmNode cn;
+    cn.planeType = static_cast<std::int8_t>(bn.planeType);
+    cn.planeDist = bn.isLeaf() ? Real(0) : bn.planeDist;
+    cn.parent = cur.parent;
+    cn.firstPolygonRef = static_cast<std::uint32_t>(model.polygonRefs.size());
+    for (const int p : polygonsAt(cur.buildNode))
+      model.polygonRefs.push_back(polygonIndex.get(p, [&] { return newPolygon(polygon(p)); }));
+    cn.numPolygonRefs = static_cast<std::uint32_t>(model.polygonRefs.size()) - cn.firstPolygonRef;
+    cn.firstBrushRef = static_cast<std::uint32_t>(model.brushRefs.size());
+    for (const int b : brushesAt(cur.buildNode))
+      model.brushRefs.push_back(brushIndex.get(b, [&] { return newBrush(brush(b)); }));
+    cn.numBrushRefs = static_cast<std::uint32_t>(model.brushRefs.size()) - cn.firstBrushRef;
+    model.nodes.push_back(cn);
+    if (!bn.isLeaf()) {
+      // pushed back child first so that the front child is numbered first
+      stack.push_back({bn.children[1], index, 1});
+      stack.push_back({bn.children[0], index, 0});
+    }
+  }
+}
+
+void ModelBuilder::finishModel(CollisionModel& model) const {
+  computeModelBoundsAndContents(model);
+  model.stats.sharpEdges = computeEdgeNormals(model);
+  model.stats.internalEdges = counters_.numInternalEdges;
+  model.stats.containedPolygonsRemoved = counters_.numRemovedPolys;
+  model.stats.polygonsMerged = counters_.numMergedPolys;
+}
+
+}  // namespace cmkit::detail
