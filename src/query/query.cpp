@@ -2,6 +2,7 @@
 // penetration. Set-up of the trace work (the original's Translation and
 // ContentsTrm) and the transformation of results back to world space.
 #include <cmath>
+#include <vector>
 
 #include "query/trace_work.h"
 
@@ -272,21 +273,33 @@ std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, cons
   // Walk to the leaf, remembering the path: brushes straddling a split are
   // stored at interior nodes and must be seen too (the original missed
   // them). The leaf is searched first so that where the original finds a
-  // brush, the same brush is found.
-  std::int32_t path[256];
-  int depth = 0;
+  // brush, the same brush is found. The path fits a small buffer on the
+  // stack in any practical tree; a deeper one (a .cm can hold any tree)
+  // continues on the heap.
+  constexpr std::size_t kInlinePath = 128;
+  std::int32_t path[kInlinePath];
+  std::vector<std::int32_t> deeper;  // the nodes below path's end, top down
+  std::size_t depth = 0;
   std::int32_t n = 0;
   while (true) {
-    if (depth < 256) path[depth++] = n;
+    if (depth < kInlinePath)
+      path[depth++] = n;
+    else
+      deeper.push_back(n);
     const CmNode& node = model.nodes[std::size_t(n)];
     if (node.isLeaf()) break;
     n = p[node.planeType] > node.planeDist ? node.children[0] : node.children[1];
   }
-  for (int i = depth - 1; i >= 0; --i) {
-    for (std::int32_t b : model.brushesAt(model.nodes[std::size_t(path[i])]))
-      if (inside(b)) return model.brushes[std::size_t(b)].contents;
-  }
-  return 0;
+  // The first brush at `node` containing the point, -1 when none.
+  const auto brushAt = [&](std::int32_t node) -> std::int32_t {
+    for (std::int32_t b : model.brushesAt(model.nodes[std::size_t(node)]))
+      if (inside(b)) return b;
+    return -1;
+  };
+  std::int32_t found = -1;
+  for (std::size_t i = deeper.size(); found < 0 && i-- > 0;) found = brushAt(deeper[i]);
+  for (std::size_t i = depth; found < 0 && i-- > 0;) found = brushAt(path[i]);
+  return found < 0 ? 0 : model.brushes[std::size_t(found)].contents;
 }
 
 Penetration penetration(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
