@@ -66,8 +66,8 @@ ParsedRotation parse(const std::string& line, const std::vector<cmkit::ModelPtr>
   if (f.count("trmaxis")) p.query.trmAxis = mat(f["trmaxis"]);
   if (f.count("mask"))
     if (auto mask = cmkit::parseContentsMask(f["mask"])) p.query.contentMask = *mask;
-  if (f.count("origin")) p.query.model.origin = vec(f["origin"]);
-  if (f.count("modelaxis")) p.query.model.axis = mat(f["modelaxis"]);
+  if (f.count("origin")) p.query.placement.origin = vec(f["origin"]);
+  if (f.count("modelaxis")) p.query.placement.axis = mat(f["modelaxis"]);
   p.model = models[0].get();
   for (const auto& m : models)
     if (f.count("model") && m->name == f["model"]) p.model = m.get();

@@ -1,10 +1,10 @@
 // query.h: moving trace models through collision models.
 //
 // CONTRACT
-// - Units are map units; angles in degrees. A model is placed in the world at
-//   `modelOrigin` with orientation `modelAxis` (rows = the model's axes); a
-//   trace model at a position with orientation `trmAxis`. Results are in world
-//   space unless stated.
+// - Units are map units; angles in degrees. Every query names the model's
+//   place in the world `placement` (a Placement: `origin`, and `axis` whose
+//   rows are the model's axes); a trace model is at a position with
+//   orientation `trmAxis`. Results are in world space unless stated.
 // - translate(): the trace model's centre moves from `start` to `end`; the
 //   result's `fraction` in [0, 1] says how far it got before the first
 //   surface whose contents match `contentMask`. Collision is exact and
@@ -119,7 +119,7 @@ struct TranslationQuery {
   Vec3 start;
   Vec3 end;
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
   /// Also run a position test at the start and set TraceResult::startSolid.
   bool detectStartSolid = false;
 };
@@ -133,7 +133,7 @@ struct ContentsQuery {
   Mat3 trmAxis;
   Vec3 position;
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
 };
 
 /// Result of contentsTest(): the contents of the first brush or polygon found
@@ -160,7 +160,7 @@ struct ContactsQuery {
   Vec3 dir;  ///< direction of the move (need not be unit: end = start + dir * depth)
   Real depth = 0;
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
   int maxContacts = 16;
 };
 
@@ -212,7 +212,7 @@ struct RotationQuery {
   Vec3 start;                       ///< position of the trace model at the start
   Rotation rotation;                ///< world-space rotation (origin, unit axis, degrees)
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
   /// Also run a position test at the start and set TraceResult::startSolid.
   bool detectStartSolid = false;
 };

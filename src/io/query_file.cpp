@@ -281,7 +281,7 @@ ContactsQuery contactsQuery(const ParsedQuery& q) {
   cq.dir = q.dir;
   cq.depth = q.depth;
   cq.contentMask = q.contentMask;
-  cq.model = q.placement;
+  cq.placement = q.placement;
   cq.maxContacts = q.maxContacts;
   return cq;
 }

@@ -172,21 +172,21 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
   tw.quickExit = false;
   tw.contacts = out;
   tw.maxContacts = maxContacts;
-  tw.start = q.start - q.model.origin;
-  tw.end = q.end - q.model.origin;
+  tw.start = q.start - q.placement.origin;
+  tw.end = q.end - q.placement.origin;
   tw.dir = q.end - q.start;
-  const bool modelRotated = isRotated(q.model.axis);
+  const bool modelRotated = isRotated(q.placement.axis);
   if (isPointTrm(q.trm)) {
     if (modelRotated) {
-      tw.start = q.model.axis * tw.start;
-      tw.end = q.model.axis * tw.end;
-      tw.dir = q.model.axis * tw.dir;
+      tw.start = q.placement.axis * tw.start;
+      tw.end = q.placement.axis * tw.end;
+      tw.dir = q.placement.axis * tw.dir;
     }
     setupPointTrace(tw);
   } else {
     tw.pointTrace = false;
     tw.isConvex = q.trm->isConvex();
-    setupTrmTranslation(tw, *q.trm, q.trmAxis, modelRotated, q.model.axis);
+    setupTrmTranslation(tw, *q.trm, q.trmAxis, modelRotated, q.placement.axis);
   }
   traceThroughModel(tw);
 }
@@ -198,7 +198,7 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
   r.trace.endPos = q.position;
   r.trace.endAxis = q.trmAxis;
   if (isPointTrm(q.trm)) {
-    r.contents = pointContents(model, q.position, q.model);
+    r.contents = pointContents(model, q.position, q.placement);
     r.trace.contact.contents = r.contents;
     r.trace.fraction = r.contents == 0 ? 1 : 0;
     return r;
@@ -206,7 +206,7 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
   QueryWork::Scratch& s = work.scratch();
   s.begin(model);
   TraceWork tw(model, s);
-  setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.model);
+  setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.placement);
   traceThroughModel(tw);
   r.contents = tw.c.contents;
   r.trace.contact = tw.c;
@@ -217,14 +217,14 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
 
 TraceResult translate(const CollisionModel& model, const TranslationQuery& q, QueryWork& work) {
   if (q.start == q.end) {
-    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     TraceResult r = contentsTest(model, cq, work).trace;
     r.startSolid = r.fraction == 0;
     return r;
   }
   TraceResult r;
   if (q.detectStartSolid) {
-    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;
   }
   QueryWork::Scratch& s = work.scratch();
@@ -238,7 +238,7 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
   if (r.fraction < 1) {
     // A tiny fraction whose movement rounds to nothing is no movement.
     if (r.fraction > 0 && r.endPos == q.start) r.fraction = 0;
-    contactToWorld(r.contact, q.model, isRotated(q.model.axis));
+    contactToWorld(r.contact, q.placement, isRotated(q.placement.axis));
   }
   return r;
 }
@@ -251,11 +251,11 @@ int contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& wor
   QueryWork::Scratch& s = work.scratch();
   s.begin(model);
   TraceWork tw(model, s);
-  const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.model, false};
+  const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.placement, false};
   runTranslation(tw, tq, &out, q.maxContacts);
   // Unlike the original, point contacts are moved to world space too.
-  const bool modelRotated = isRotated(q.model.axis);
-  for (ContactInfo& c : out) contactToWorld(c, q.model, modelRotated);
+  const bool modelRotated = isRotated(q.placement.axis);
+  for (ContactInfo& c : out) contactToWorld(c, q.placement, modelRotated);
   return int(out.size());
 }
 
@@ -307,7 +307,7 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& q, Que
   // The trace model's vertices in the model frame.
   Vec3 verts[kMaxTrmVertices];
   int numVerts = 1;
-  const bool modelRotated = isRotated(q.model.axis);
+  const bool modelRotated = isRotated(q.placement.axis);
   if (isPointTrm(q.trm)) {
     verts[0] = q.position;
   } else {
@@ -316,8 +316,8 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& q, Que
   }
   Bounds tb;
   for (int i = 0; i < numVerts; ++i) {
-    verts[i] = verts[i] - q.model.origin;
-    if (modelRotated) verts[i] = q.model.axis * verts[i];
+    verts[i] = verts[i] - q.placement.origin;
+    if (modelRotated) verts[i] = q.placement.axis * verts[i];
     tb.addPoint(verts[i]);
   }
   (void)work;
@@ -347,7 +347,7 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& q, Que
     if (!result.stuck || best > result.depth) {
       result.stuck = true;
       result.depth = best;
-      result.direction = modelRotated ? bestNormal * q.model.axis : bestNormal;
+      result.direction = modelRotated ? bestNormal * q.placement.axis : bestNormal;
       result.contents = b.contents;
     }
   }

@@ -187,8 +187,8 @@ TEST(Translation, RotatedAndOffsetModel) {
   const CollisionModel m = ModelMaker().addBox({{-1, -100, -100}, {1, 100, 100}}).build();
   QueryWork work;
   TranslationQuery q;
-  q.model.origin = {0, 10, 5};
-  q.model.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
+  q.placement.origin = {0, 10, 5};
+  q.placement.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
   q.start = {0, -40, 0};
   q.end = {0, 60, 0};
   const TraceResult r = translate(m, q, work);
