@@ -18,8 +18,8 @@
 
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
-#include "cmkit/tools/query_format.h"
 #include "cmkit/ray_index.h"
+#include "cmkit/tools/query_format.h"
 #include "cmkit/tools/speed_test.h"
 
 namespace {
@@ -174,8 +174,8 @@ void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays ho
   std::vector<cmkit::Vec3> ends(kMoves);
   for (cmkit::Vec3& e : ends)
     for (int k = 0; k < 3; ++k) e[k] = origin[k] + random.signedUniform() * kLength;
-  const cmkit::RayIndex index(world, how == SpeedTestRays::CastBaseline ? cmkit::RayIndex::NodeTest::kBaseline
-                                                                        : cmkit::RayIndex::NodeTest::kAuto);
+  const cmkit::RayIndex index(world, how == SpeedTestRays::CastBaseline ? cmkit::RayIndex::NodeTest::Baseline
+                                                                        : cmkit::RayIndex::NodeTest::Auto);
   cmkit::QueryWork work;
   std::size_t i = 0;
   for (auto _ : state) {

@@ -14,7 +14,7 @@ void requireValid(const CollisionModel& model, std::string_view where) {
   // Odd geometry is fine (odd input gives odd shapes, as in the original);
   // broken structure is a bug in whatever produced the model.
   for (const Violation& v : validateModel(model)) {
-    if (v.kind != Violation::Structure) continue;
+    if (v.kind != Violation::Kind::Structure) continue;
     std::fprintf(stderr, "%.*s produced a corrupt model: %s\n", int(where.size()), where.data(),
                  v.toString().c_str());
     std::abort();

@@ -61,13 +61,13 @@ struct RayHit {
 /// A ray-cast acceleration structure of one model.
 class RayIndex {
  public:
-  /// Which node test cast() uses. kAuto: AVX2 if the processor (and the
-  /// build) has it, else the baseline. kBaseline: SSE2 on x86-64, plain C++
+  /// Which node test cast() uses. Auto: AVX2 if the processor (and the
+  /// build) has it, else the baseline. Baseline: SSE2 on x86-64, plain C++
   /// elsewhere; for tests and comparisons, the answers are the same.
-  enum class NodeTest { kAuto, kBaseline };
+  enum class NodeTest { Auto, Baseline };
 
   /// Indexes every polygon of `model` with a finite plane and bounds.
-  explicit RayIndex(const CollisionModel& model, NodeTest nodeTest = NodeTest::kAuto);
+  explicit RayIndex(const CollisionModel& model, NodeTest nodeTest = NodeTest::Auto);
 
   /// The first front face the segment start -> end crosses (model placed in
   /// the world by `placement`).

@@ -247,7 +247,7 @@ bool avx2Available() {
 }  // namespace
 
 RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
-    : avx2_(nodeTest == NodeTest::kAuto && avx2Available()) {
+    : avx2_(nodeTest == NodeTest::Auto && avx2Available()) {
   // The polygons that can be crossed: finite plane and bounds, an outline.
   std::vector<std::uint32_t> usable;
   std::vector<Bounds> boxes;
@@ -389,9 +389,8 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
   }
   ray.mask = contentMask;
   const detail::Arrays arrays{nodes_.data(), leaves_.data(), polygons_.data(), edges_.data(),
-                                  details_.data()};
-  const detail::Crossing found =
-      avx2_ ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
+                              details_.data()};
+  const detail::Crossing found = avx2_ ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
   if (found.slot < 0) return result;
   const Polygon& best = polygons_[std::size_t(found.slot)];
   result.fraction = found.t;

@@ -11,8 +11,8 @@
 #include <random>
 #include <thread>
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "model_fixtures.h"
@@ -285,9 +285,9 @@ TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
     const int count = m->polygons.size() > 1000 ? 6000 : 600;
     rays += count;
     // Both node tests (the same one twice where the processor has no AVX2).
-    hits += expectSameAsEveryPolygon(*m, seed, count, m->name, RayIndex::NodeTest::kAuto);
+    hits += expectSameAsEveryPolygon(*m, seed, count, m->name, RayIndex::NodeTest::Auto);
     expectSameAsEveryPolygon(*m, seed++, count, m->name + " (baseline node test)",
-                             RayIndex::NodeTest::kBaseline);
+                             RayIndex::NodeTest::Baseline);
   }
   EXPECT_GT(hits, rays / 10) << "too few hits for the comparison to mean much";
 }
@@ -298,7 +298,7 @@ TEST(RayIndex, BothNodeTestsGiveTheSameAnswers) {
   const auto models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   const CollisionModel& world = *models.front();
-  const RayIndex best(world), baseline(world, RayIndex::NodeTest::kBaseline);
+  const RayIndex best(world), baseline(world, RayIndex::NodeTest::Baseline);
   EXPECT_FALSE(baseline.usesAvx2());
   if (!best.usesAvx2()) GTEST_SKIP() << "this processor (or build) has no AVX2: there is one node test only";
   int hits = 0;
