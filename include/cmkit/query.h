@@ -89,7 +89,14 @@ struct TraceResult {
   bool startSolid = false;
 };
 
-/// Caller-owned scratch memory for queries (one per thread; reusable).
+namespace detail {
+struct QueryScratch;
+struct QueryWorkAccess;
+}  // namespace detail
+
+/// Caller-owned scratch memory for queries (one per thread; reusable). Its
+/// contents are the library's own business: a QueryWork is only created,
+/// moved and handed to queries.
 class QueryWork {
  public:
   QueryWork();
@@ -99,11 +106,9 @@ class QueryWork {
   QueryWork(const QueryWork&) = delete;
   QueryWork& operator=(const QueryWork&) = delete;
 
-  struct Scratch;
-  Scratch& scratch() { return *scratch_; }
-
  private:
-  std::unique_ptr<Scratch> scratch_;
+  friend struct detail::QueryWorkAccess;
+  std::unique_ptr<detail::QueryScratch> scratch_;
 };
 
 /// Where a model is placed in the world.

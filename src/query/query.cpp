@@ -203,7 +203,7 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
     r.trace.fraction = r.contents == 0 ? 1 : 0;
     return r;
   }
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.placement);
@@ -227,7 +227,7 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
     ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;
   }
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   runTranslation(tw, q, nullptr, 0);
@@ -248,7 +248,7 @@ int contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& wor
   out.clear();
   const Vec3 end = q.start + q.dir * q.depth;
   if (end == q.start || q.maxContacts <= 0) return 0;  // a position test finds no contacts
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.placement, false};

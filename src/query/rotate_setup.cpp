@@ -58,7 +58,7 @@ bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& a
 /// contact in world space in `contact`.
 Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startAngle, Real endAngle,
                 QueryWork& work, ContactInfo& contact) {
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   RotationWork rw;
