@@ -25,7 +25,6 @@ void exerciseModels(std::span<const ModelPtr> models) {
   QueryWork work;
   const TraceModel point = TraceModel::point();
   const auto box = TraceModel::box(Bounds{{-8, -8, -8}, {8, 8, 8}});
-  std::vector<ContactInfo> contactsOut;
   for (const ModelPtr& m : models) {
     if (!m) continue;
     const RayIndex rays(*m);  // any model, even an empty one, can be indexed
@@ -54,7 +53,7 @@ void exerciseModels(std::span<const ModelPtr> models) {
         k.dir = e[1] - e[0];
         k.depth = 1;
         k.contentMask = ~0u;
-        (void)contacts(*m, k, work, contactsOut);
+        (void)contacts(*m, k, work);
       }
       (void)pointContents(*m, e[0]);
       (void)rays.cast(e[0], e[1], ~0u);

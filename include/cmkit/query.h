@@ -169,11 +169,14 @@ struct ContactsQuery {
   int maxContacts = 16;
 };
 
+/// Result of contacts(): the contacts found, in the order the walk met them.
+struct ContactsResult {
+  std::vector<ContactInfo> contacts;
+};
+
 /// The original's Contacts: every surface the trace model touches when moved
-/// from start up to start + dir * depth, at most maxContacts of them,
-/// appended to `out` (which is cleared first). Returns the count.
-int contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work,
-             std::vector<ContactInfo>& out);
+/// from start up to start + dir * depth, at most maxContacts of them.
+ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work);
 
 /// How a trace model overlapping solid can get out.
 struct Penetration {

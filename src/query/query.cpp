@@ -243,11 +243,11 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
   return r;
 }
 
-int contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work,
-             std::vector<ContactInfo>& out) {
-  out.clear();
+ContactsResult contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work) {
+  ContactsResult result;
+  std::vector<ContactInfo>& out = result.contacts;
   const Vec3 end = q.start + q.dir * q.depth;
-  if (end == q.start || q.maxContacts <= 0) return 0;  // a position test finds no contacts
+  if (end == q.start || q.maxContacts <= 0) return result;  // a position test finds no contacts
   detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
@@ -256,7 +256,7 @@ int contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& wor
   // Unlike the original, point contacts are moved to world space too.
   const bool modelRotated = isRotated(q.placement.axis);
   for (ContactInfo& c : out) contactToWorld(c, q.placement, modelRotated);
-  return int(out.size());
+  return result;
 }
 
 std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement) {

@@ -3,6 +3,7 @@
 // caches inside the shared model).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -224,6 +225,8 @@ struct TraceWork {
   /// that the walk finds every other one.
   void addContact() {
     if (int(contacts->size()) >= maxContacts) return;
+    // One allocation for the usual handful of contacts, made on the first.
+    if (contacts->capacity() == 0) contacts->reserve(std::size_t(std::min(maxContacts, 16)));
     contacts->push_back(c);
     fraction = 1;
   }
