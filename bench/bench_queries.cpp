@@ -148,7 +148,7 @@ void runRayCasts(benchmark::State& state, Lt4Scene& scene) {
   std::size_t i = 0;
   for (auto _ : state) {
     const cmkit::ParsedQuery& q = *queries[i];
-    benchmark::DoNotOptimize(indexOf[i]->cast(q.position, q.end, q.contentMask, q.placement));
+    benchmark::DoNotOptimize(indexOf[i]->cast({q.position, q.end, q.contentMask, q.placement}));
     if (++i == queries.size()) i = 0;
   }
   state.SetItemsProcessed(state.iterations());
@@ -181,7 +181,7 @@ void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays ho
   for (auto _ : state) {
     const cmkit::Vec3& end = ends[how == SpeedTestRays::TranslateRepeated ? i / kRepeats : i];
     if (how == SpeedTestRays::Cast || how == SpeedTestRays::CastBaseline) {
-      benchmark::DoNotOptimize(index.cast(origin, end, kMask));
+      benchmark::DoNotOptimize(index.cast({origin, end, kMask}));
     } else {
       cmkit::TranslationQuery q;
       q.start = origin;

@@ -56,7 +56,7 @@ void exerciseModels(std::span<const ModelPtr> models) {
         (void)contacts(*m, k, work);
       }
       (void)pointContents(*m, e[0]);
-      (void)rays.cast(e[0], e[1], ~0u);
+      (void)rays.cast({e[0], e[1], ~0u});
     }
     if (box) {
       RotationQuery r;

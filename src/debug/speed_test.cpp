@@ -187,7 +187,7 @@ SpeedTestReport runSpeedTest(const CollisionModel& model, const TraceModel& trm,
                        index.usesAvx2()};
     report.rays = runBatch("ray cast", n, options, [&](int i, const Pose& pose, QueryWork&) {
       const Vec3 end = pose.position + plan.moves[std::size_t(i)];
-      const RayHit hit = index.cast(pose.position, end, options.contentMask, options.placement);
+      const RayHit hit = index.cast({pose.position, end, options.contentMask, options.placement});
       TraceResult r;
       r.fraction = hit.fraction;
       r.endPos = hit.hit() ? hit.point : end;
