@@ -104,8 +104,9 @@ struct QueryScratch {
     Real p1f, p2f;
     Vec3 p1, p2;
   };
-  std::vector<WalkSegment> walkStack;  ///< the far sides the tree walk has still to visit
-  TrmFeatures trm;                     ///< the trace model of the current query
+  std::vector<WalkSegment> walkStack;   ///< the far sides the tree walk has still to visit
+  std::vector<std::int32_t> nodeStack;  ///< nodes a box walk has still to visit (penetration)
+  TrmFeatures trm;                      ///< the trace model of the current query
 
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
