@@ -16,7 +16,7 @@
 namespace cmkit {
 namespace {
 
-/// A double-precision vector for the equations (inputs are float).
+/// A double-precision vector for the equations (inputs are Real).
 struct DVec {
   double x = 0, y = 0, z = 0;
   DVec() = default;
