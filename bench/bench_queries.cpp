@@ -18,8 +18,8 @@
 
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
-#include "cmkit/tools/query_format.h"
 #include "cmkit/ray_index.h"
+#include "cmkit/tools/query_format.h"
 #include "cmkit/tools/speed_test.h"
 
 namespace {
@@ -148,7 +148,7 @@ void runRayCasts(benchmark::State& state, Lt4Scene& scene) {
   std::size_t i = 0;
   for (auto _ : state) {
     const cmkit::ParsedQuery& q = *queries[i];
-    benchmark::DoNotOptimize(indexOf[i]->cast(q.position, q.end, q.contentMask, q.placement));
+    benchmark::DoNotOptimize(indexOf[i]->cast({q.position, q.end, q.contentMask, q.placement}));
     if (++i == queries.size()) i = 0;
   }
   state.SetItemsProcessed(state.iterations());
@@ -174,14 +174,14 @@ void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays ho
   std::vector<cmkit::Vec3> ends(kMoves);
   for (cmkit::Vec3& e : ends)
     for (int k = 0; k < 3; ++k) e[k] = origin[k] + random.signedUniform() * kLength;
-  const cmkit::RayIndex index(world, how == SpeedTestRays::CastBaseline ? cmkit::RayIndex::NodeTest::kBaseline
-                                                                        : cmkit::RayIndex::NodeTest::kAuto);
+  const cmkit::RayIndex index(world, how == SpeedTestRays::CastBaseline ? cmkit::RayIndex::NodeTest::Baseline
+                                                                        : cmkit::RayIndex::NodeTest::Auto);
   cmkit::QueryWork work;
   std::size_t i = 0;
   for (auto _ : state) {
     const cmkit::Vec3& end = ends[how == SpeedTestRays::TranslateRepeated ? i / kRepeats : i];
     if (how == SpeedTestRays::Cast || how == SpeedTestRays::CastBaseline) {
-      benchmark::DoNotOptimize(index.cast(origin, end, kMask));
+      benchmark::DoNotOptimize(index.cast({origin, end, kMask}));
     } else {
       cmkit::TranslationQuery q;
       q.start = origin;

@@ -14,7 +14,7 @@ void requireValid(const CollisionModel& model, std::string_view where) {
   // Odd geometry is fine (odd input gives odd shapes, as in the original);
   // broken structure is a bug in whatever produced the model.
   for (const Violation& v : validateModel(model)) {
-    if (v.kind != Violation::Structure) continue;
+    if (v.kind != Violation::Kind::Structure) continue;
     std::fprintf(stderr, "%.*s produced a corrupt model: %s\n", int(where.size()), where.data(),
                  v.toString().c_str());
     std::abort();
@@ -25,7 +25,6 @@ void exerciseModels(std::span<const ModelPtr> models) {
   QueryWork work;
   const TraceModel point = TraceModel::point();
   const auto box = TraceModel::box(Bounds{{-8, -8, -8}, {8, 8, 8}});
-  std::vector<ContactInfo> contactsOut;
   for (const ModelPtr& m : models) {
     if (!m) continue;
     const RayIndex rays(*m);  // any model, even an empty one, can be indexed
@@ -54,10 +53,10 @@ void exerciseModels(std::span<const ModelPtr> models) {
         k.dir = e[1] - e[0];
         k.depth = 1;
         k.contentMask = ~0u;
-        (void)contacts(*m, k, work, contactsOut);
+        (void)contacts(*m, k, work);
       }
       (void)pointContents(*m, e[0]);
-      (void)rays.cast(e[0], e[1], ~0u);
+      (void)rays.cast({e[0], e[1], ~0u});
     }
     if (box) {
       RotationQuery r;

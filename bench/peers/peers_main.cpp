@@ -243,8 +243,9 @@ int main(int argc, char** argv) {
   // The same rays through the RayIndex of the world model.
   std::vector<char> cmkitRay(n);
   Comparison rayCmp{"ray cast (point)", "bullet"};
-  rayCmp.cmkitNs = fastestPass(
-      n, passes, [&](std::size_t i) { cmkitRay[i] = rayIndex.cast(origin, ends[i], kMask).hit(); });
+  rayCmp.cmkitNs = fastestPass(n, passes, [&](std::size_t i) {
+    cmkitRay[i] = rayIndex.cast({origin, ends[i], kMask}).hit();
+  });
   rayCmp.peerNs = pointCmp.peerNs;
   agreement(rayCmp, cmkitRay, peerPoint);
   print(rayCmp, times);

@@ -1,10 +1,10 @@
 // query.h: moving trace models through collision models.
 //
 // CONTRACT
-// - Units are map units; angles in degrees. A model is placed in the world at
-//   `modelOrigin` with orientation `modelAxis` (rows = the model's axes); a
-//   trace model at a position with orientation `trmAxis`. Results are in world
-//   space unless stated.
+// - Units are map units; angles in degrees. Every query names the model's
+//   place in the world `placement` (a Placement: `origin`, and `axis` whose
+//   rows are the model's axes); a trace model is at a position with
+//   orientation `trmAxis`. Results are in world space unless stated.
 // - translate(): the trace model's centre moves from `start` to `end`; the
 //   result's `fraction` in [0, 1] says how far it got before the first
 //   surface whose contents match `contentMask`. Collision is exact and
@@ -86,7 +86,14 @@ struct TraceResult {
   bool startSolid = false;
 };
 
-/// Caller-owned scratch memory for queries (one per thread; reusable).
+namespace detail {
+struct QueryScratch;
+struct QueryWorkAccess;
+}  // namespace detail
+
+/// Caller-owned scratch memory for queries (one per thread; reusable). Its
+/// contents are the library's own business: a QueryWork is only created,
+/// moved and handed to queries.
 class QueryWork {
  public:
   QueryWork();
@@ -96,11 +103,9 @@ class QueryWork {
   QueryWork(const QueryWork&) = delete;
   QueryWork& operator=(const QueryWork&) = delete;
 
-  struct Scratch;
-  Scratch& scratch() { return *scratch_; }
-
  private:
-  std::unique_ptr<Scratch> scratch_;
+  friend struct detail::QueryWorkAccess;
+  std::unique_ptr<detail::QueryScratch> scratch_;
 };
 
 /// Where a model is placed in the world.
@@ -116,7 +121,7 @@ struct TranslationQuery {
   Vec3 start;
   Vec3 end;
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
   /// Also run a position test at the start and set TraceResult::startSolid.
   bool detectStartSolid = false;
 };
@@ -130,7 +135,7 @@ struct ContentsQuery {
   Mat3 trmAxis;
   Vec3 position;
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
 };
 
 /// Result of contentsTest(): the contents of the first brush or polygon found
@@ -157,15 +162,18 @@ struct ContactsQuery {
   Vec3 dir;  ///< direction of the move (need not be unit: end = start + dir * depth)
   Real depth = 0;
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
   int maxContacts = 16;
 };
 
+/// Result of contacts(): the contacts found, in the order the walk met them.
+struct ContactsResult {
+  std::vector<ContactInfo> contacts;
+};
+
 /// The original's Contacts: every surface the trace model touches when moved
-/// from start up to start + dir * depth, at most maxContacts of them,
-/// appended to `out` (which is cleared first). Returns the count.
-int contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work,
-             std::vector<ContactInfo>& out);
+/// from start up to start + dir * depth, at most maxContacts of them.
+ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work);
 
 /// How a trace model overlapping solid can get out.
 struct Penetration {
@@ -209,7 +217,7 @@ struct RotationQuery {
   Vec3 start;                       ///< position of the trace model at the start
   Rotation rotation;                ///< world-space rotation (origin, unit axis, degrees)
   std::uint32_t contentMask = contents::kMaskSolid;
-  Placement model;
+  Placement placement;
   /// Also run a position test at the start and set TraceResult::startSolid.
   bool detectStartSolid = false;
 };

@@ -34,7 +34,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include "cmkit/contents.h"
 #include "cmkit/math.h"
@@ -58,76 +58,51 @@ struct RayHit {
   bool hit() const { return polygon >= 0; }
 };
 
-/// A ray-cast acceleration structure of one model.
+/// A ray cast: the segment start -> end against the model placed in the
+/// world by `placement`, hitting polygons whose contents match the mask.
+struct RayCastQuery {
+  Vec3 start;
+  Vec3 end;
+  std::uint32_t contentMask = contents::kMaskSolid;
+  Placement placement = {};
+};
+
+namespace detail {
+struct RayIndexData;
+}  // namespace detail
+
+/// A ray-cast acceleration structure of one model. Copies share the
+/// (immutable) index.
 class RayIndex {
  public:
-  /// Which node test cast() uses. kAuto: AVX2 if the processor (and the
-  /// build) has it, else the baseline. kBaseline: SSE2 on x86-64, plain C++
+  /// Which node test cast() uses. Auto: AVX2 if the processor (and the
+  /// build) has it, else the baseline. Baseline: SSE2 on x86-64, plain C++
   /// elsewhere; for tests and comparisons, the answers are the same.
-  enum class NodeTest { kAuto, kBaseline };
+  enum class NodeTest { Auto, Baseline };
 
   /// Indexes every polygon of `model` with a finite plane and bounds.
-  explicit RayIndex(const CollisionModel& model, NodeTest nodeTest = NodeTest::kAuto);
+  explicit RayIndex(const CollisionModel& model, NodeTest nodeTest = NodeTest::Auto);
 
-  /// The first front face the segment start -> end crosses (model placed in
-  /// the world by `placement`).
-  RayHit cast(const Vec3& start, const Vec3& end, std::uint32_t contentMask = contents::kMaskSolid,
-              const Placement& placement = {}) const;
+  ~RayIndex();
+  RayIndex(const RayIndex&);
+  RayIndex(RayIndex&&) noexcept;
+  RayIndex& operator=(const RayIndex&);
+  RayIndex& operator=(RayIndex&&) noexcept;
+
+  /// The first front face the segment query.start -> query.end crosses
+  /// (model placed in the world by query.placement).
+  RayHit cast(const RayCastQuery& query) const;
 
   /// Whether cast() tests nodes with AVX2.
-  bool usesAvx2() const { return avx2_; }
+  bool usesAvx2() const;
   /// Number of 8-wide nodes, and of polygons indexed.
-  std::size_t numNodes() const { return nodes_.size(); }
-  std::size_t numPolygons() const { return polygons_.size(); }
+  std::size_t numNodes() const;
+  std::size_t numPolygons() const;
   /// Heap memory held.
   std::size_t memoryBytes() const;
 
-  /// Children per node.
-  static constexpr int kWidth = 8;
-  /// A node of the hierarchy: eight children's boxes (structure of arrays, so
-  /// that one SIMD test checks all eight), what they are and which contents
-  /// they hold (256 bytes).
-  struct alignas(64) Node {
-    float min[3][kWidth];
-    float max[3][kWidth];
-    std::uint32_t child[kWidth];     ///< node index, or kLeaf | leaf index
-    std::uint32_t contents[kWidth];  ///< OR of the contents below each child (0: empty slot)
-  };
-  static constexpr std::uint32_t kLeaf = 0x80000000u;
-
-  /// A leaf: a run of polygons.
-  struct Leaf {
-    std::uint32_t first = 0;
-    std::uint32_t count = 0;
-  };
-  /// What the crossing test needs of a polygon, in leaf order (32 bytes).
-  struct Polygon {
-    Vec3 normal;
-    Real dist = 0;
-    std::uint32_t contents = 0;
-    std::int32_t index = 0;  ///< in the model
-    std::uint32_t firstEdge = 0;
-    std::uint32_t numEdges = 0;
-  };
-  /// What is read only for a polygon that accepts a crossing.
-  struct PolygonDetail {
-    Bounds acceptBox;  ///< where the polygon accepts a crossing
-    std::int32_t material = -1;
-  };
-  /// An edge line of a polygon, in the model's stored direction, and whether
-  /// the polygon uses it reversed.
-  struct EdgeLine {
-    float p[6];
-    std::uint32_t reversed;
-  };
-
  private:
-  std::vector<Node> nodes_;
-  std::vector<Leaf> leaves_;
-  std::vector<Polygon> polygons_;
-  std::vector<EdgeLine> edges_;
-  std::vector<PolygonDetail> details_;  ///< parallel to polygons_
-  bool avx2_ = false;
+  std::shared_ptr<const detail::RayIndexData> data_;  ///< immutable: copies share it
 };
 
 }  // namespace cmkit

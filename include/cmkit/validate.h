@@ -39,13 +39,13 @@ struct Violation {
   /// polygon, an empty brush, an edge shared by three polygons, non-finite
   /// coordinates); real maps give some, and the map compiler keeps them as
   /// the original does.
-  enum Kind { Structure, Geometry };
+  enum class Kind { Structure, Geometry };
 
   std::string model;     ///< model name
   std::string itemKind;  ///< "vertex", "edge", "polygon", "brush", "node" or "model"
   std::int64_t item = -1;
   std::string message;
-  Kind kind = Structure;
+  Kind kind = Kind::Structure;
 
   /// "model "NAME" polygon 12: message".
   std::string toString() const;

@@ -158,7 +158,7 @@ SpeedTestReport runSpeedTest(const CollisionModel& model, const TraceModel& trm,
     q.start = pose.position;
     q.end = pose.position + plan.moves[std::size_t(i)];
     q.contentMask = options.contentMask;
-    q.model = options.model;
+    q.placement = options.placement;
     return translate(model, q, work);
   });
   if (options.rotations) {
@@ -170,7 +170,7 @@ SpeedTestReport runSpeedTest(const CollisionModel& model, const TraceModel& trm,
       q.start = pose.position;
       q.rotation = Rotation(pose.position + turn.originOffset, turn.axis, options.angle);
       q.contentMask = options.contentMask;
-      q.model = options.model;
+      q.placement = options.placement;
       return rotate(model, q, work);
     });
   } else {
@@ -187,7 +187,7 @@ SpeedTestReport runSpeedTest(const CollisionModel& model, const TraceModel& trm,
                        index.usesAvx2()};
     report.rays = runBatch("ray cast", n, options, [&](int i, const Pose& pose, QueryWork&) {
       const Vec3 end = pose.position + plan.moves[std::size_t(i)];
-      const RayHit hit = index.cast(pose.position, end, options.contentMask, options.model);
+      const RayHit hit = index.cast({pose.position, end, options.contentMask, options.placement});
       TraceResult r;
       r.fraction = hit.fraction;
       r.endPos = hit.hit() ? hit.point : end;

@@ -275,7 +275,7 @@ ContactsQuery contactsQuery(const ParsedQuery& q) {
   cq.dir = q.dir;
   cq.depth = q.depth;
   cq.contentMask = q.contentMask;
-  cq.model = q.placement;
+  cq.placement = q.placement;
   cq.maxContacts = q.maxContacts;
   return cq;
 }
@@ -295,7 +295,8 @@ double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQ
     case QueryOp::Contents:
       return contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work).contents;
     case QueryOp::Contacts:
-      return contacts(m, contactsQuery(q), work, contactsOut);
+      contactsOut = contacts(m, contactsQuery(q), work).contacts;
+      return double(contactsOut.size());
     case QueryOp::Rotation:
       return rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work)
           .fraction;
@@ -322,8 +323,8 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
       return out;
     }
     case QueryOp::Contacts: {
-      std::vector<ContactInfo> found;
-      const int n = contacts(m, contactsQuery(q), work, found);
+      const std::vector<ContactInfo> found = contacts(m, contactsQuery(q), work).contacts;
+      const int n = int(found.size());
       out = "count=" + std::to_string(n);
       for (int i = 0; i < n; ++i) {
         out += ' ';

@@ -31,12 +31,12 @@ class Validator {
 
  private:
   void report(const char* kind, std::int64_t item, std::string message,
-              Violation::Kind violation = Violation::Structure) {
+              Violation::Kind violation = Violation::Kind::Structure) {
     if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), violation});
   }
   /// An odd shape rather than corrupt data (see Violation::Kind).
   void reportGeometry(const char* kind, std::int64_t item, std::string message) {
-    report(kind, item, std::move(message), Violation::Geometry);
+    report(kind, item, std::move(message), Violation::Kind::Geometry);
   }
   static std::string str(Real v) {
     char buf[32];

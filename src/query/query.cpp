@@ -2,6 +2,7 @@
 // penetration. Set-up of the trace work (the original's Translation and
 // ContentsTrm) and the transformation of results back to world space.
 #include <cmath>
+#include <vector>
 
 #include "query/trace_work.h"
 
@@ -157,21 +158,21 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
   tw.quickExit = false;
   tw.contacts = out;
   tw.maxContacts = maxContacts;
-  tw.start = q.start - q.model.origin;
-  tw.end = q.end - q.model.origin;
+  tw.start = q.start - q.placement.origin;
+  tw.end = q.end - q.placement.origin;
   tw.dir = q.end - q.start;
-  const bool modelRotated = isRotated(q.model.axis);
+  const bool modelRotated = isRotated(q.placement.axis);
   if (isPointTrm(q.trm)) {
     if (modelRotated) {
-      tw.start = q.model.axis * tw.start;
-      tw.end = q.model.axis * tw.end;
-      tw.dir = q.model.axis * tw.dir;
+      tw.start = q.placement.axis * tw.start;
+      tw.end = q.placement.axis * tw.end;
+      tw.dir = q.placement.axis * tw.dir;
     }
     setupPointTrace(tw);
   } else {
     tw.pointTrace = false;
     tw.isConvex = q.trm->isConvex();
-    setupTrmTranslation(tw, *q.trm, q.trmAxis, modelRotated, q.model.axis);
+    setupTrmTranslation(tw, *q.trm, q.trmAxis, modelRotated, q.placement.axis);
   }
   traceThroughModel(tw);
 }
@@ -183,15 +184,15 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
   r.trace.endPos = q.position;
   r.trace.endAxis = q.trmAxis;
   if (isPointTrm(q.trm)) {
-    r.contents = pointContents(model, q.position, q.model);
+    r.contents = pointContents(model, q.position, q.placement);
     r.trace.contact.contents = r.contents;
     r.trace.fraction = r.contents == 0 ? 1 : 0;
     return r;
   }
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
-  setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.model);
+  setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.placement);
   traceThroughModel(tw);
   r.contents = tw.c.contents;
   r.trace.contact = tw.c;
@@ -202,17 +203,17 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
 
 TraceResult translate(const CollisionModel& model, const TranslationQuery& q, QueryWork& work) {
   if (q.start == q.end) {
-    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     TraceResult r = contentsTest(model, cq, work).trace;
     r.startSolid = r.fraction == 0;
     return r;
   }
   TraceResult r;
   if (q.detectStartSolid) {
-    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;
   }
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   runTranslation(tw, q, nullptr, 0);
@@ -223,25 +224,25 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
   if (r.fraction < 1) {
     // A tiny fraction whose movement rounds to nothing is no movement.
     if (r.fraction > 0 && r.endPos == q.start) r.fraction = 0;
-    contactToWorld(r.contact, q.model, isRotated(q.model.axis));
+    contactToWorld(r.contact, q.placement, isRotated(q.placement.axis));
   }
   return r;
 }
 
-int contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work,
-             std::vector<ContactInfo>& out) {
-  out.clear();
+ContactsResult contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work) {
+  ContactsResult result;
+  std::vector<ContactInfo>& out = result.contacts;
   const Vec3 end = q.start + q.dir * q.depth;
-  if (end == q.start || q.maxContacts <= 0) return 0;  // a position test finds no contacts
-  QueryWork::Scratch& s = work.scratch();
+  if (end == q.start || q.maxContacts <= 0) return result;  // a position test finds no contacts
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
-  const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.model, false};
+  const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.placement, false};
   runTranslation(tw, tq, &out, q.maxContacts);
   // Unlike the original, point contacts are moved to world space too.
-  const bool modelRotated = isRotated(q.model.axis);
-  for (ContactInfo& c : out) contactToWorld(c, q.model, modelRotated);
-  return int(out.size());
+  const bool modelRotated = isRotated(q.placement.axis);
+  for (ContactInfo& c : out) contactToWorld(c, q.placement, modelRotated);
+  return result;
 }
 
 std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement) {
@@ -258,21 +259,33 @@ std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, cons
   // Walk to the leaf, remembering the path: brushes straddling a split are
   // stored at interior nodes and must be seen too (the original missed
   // them). The leaf is searched first so that where the original finds a
-  // brush, the same brush is found.
-  std::int32_t path[256];
-  int depth = 0;
+  // brush, the same brush is found. The path fits a small buffer on the
+  // stack in any practical tree; a deeper one (a .cm can hold any tree)
+  // continues on the heap.
+  constexpr std::size_t kInlinePath = 128;
+  std::int32_t path[kInlinePath];
+  std::vector<std::int32_t> deeper;  // the nodes below path's end, top down
+  std::size_t depth = 0;
   std::int32_t n = 0;
   while (true) {
-    if (depth < 256) path[depth++] = n;
+    if (depth < kInlinePath)
+      path[depth++] = n;
+    else
+      deeper.push_back(n);
     const CmNode& node = model.nodes[std::size_t(n)];
     if (node.isLeaf()) break;
     n = p[node.planeType] > node.planeDist ? node.children[0] : node.children[1];
   }
-  for (int i = depth - 1; i >= 0; --i) {
-    for (std::int32_t b : model.brushesAt(model.nodes[std::size_t(path[i])]))
-      if (inside(b)) return model.brushes[std::size_t(b)].contents;
-  }
-  return 0;
+  // The first brush at `node` containing the point, -1 when none.
+  const auto brushAt = [&](std::int32_t node) -> std::int32_t {
+    for (std::int32_t b : model.brushesAt(model.nodes[std::size_t(node)]))
+      if (inside(b)) return b;
+    return -1;
+  };
+  std::int32_t found = -1;
+  for (std::size_t i = deeper.size(); found < 0 && i-- > 0;) found = brushAt(deeper[i]);
+  for (std::size_t i = depth; found < 0 && i-- > 0;) found = brushAt(path[i]);
+  return found < 0 ? 0 : model.brushes[std::size_t(found)].contents;
 }
 
 Penetration penetration(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
@@ -280,7 +293,7 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& q, Que
   // The trace model's vertices in the model frame.
   Vec3 verts[kMaxTrmVertices];
   int numVerts = 1;
-  const bool modelRotated = isRotated(q.model.axis);
+  const bool modelRotated = isRotated(q.placement.axis);
   if (isPointTrm(q.trm)) {
     verts[0] = q.position;
   } else {
@@ -289,18 +302,19 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& q, Que
   }
   Bounds tb;
   for (int i = 0; i < numVerts; ++i) {
-    verts[i] = verts[i] - q.model.origin;
-    if (modelRotated) verts[i] = q.model.axis * verts[i];
+    verts[i] = verts[i] - q.placement.origin;
+    if (modelRotated) verts[i] = q.placement.axis * verts[i];
     tb.addPoint(verts[i]);
   }
-  (void)work;
   // Every brush whose bounds meet the trace model: separating-plane test on
   // its planes. The trace model is outside the brush along a plane when all
   // its vertices are in front; the depth along that plane is how far the
-  // deepest vertex is behind it.
-  for (std::size_t bi = 0; bi < model.brushes.size(); ++bi) {
-    const CmBrush& b = model.brushes[bi];
-    if (!(b.contents & q.contentMask) || !b.bounds.intersects(tb) || b.numPlanes == 0) continue;
+  // deepest vertex is behind it. The deepest brush wins, the lowest brush
+  // index on equal depths (as a scan of all brushes in order would choose).
+  std::int32_t chosen = -1;
+  const auto testBrush = [&](std::int32_t bi) {
+    const CmBrush& b = model.brushes[std::size_t(bi)];
+    if (!(b.contents & q.contentMask) || !b.bounds.intersects(tb) || b.numPlanes == 0) return;
     Real best = tol::kBoundsInfinity;
     Vec3 bestNormal;
     bool separated = false;
@@ -316,12 +330,38 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& q, Que
         bestNormal = plane.normal;
       }
     }
-    if (separated) continue;
-    if (!result.stuck || best > result.depth) {
+    if (separated) return;
+    if (!result.stuck || best > result.depth || (best == result.depth && bi < chosen)) {
+      chosen = bi;
       result.stuck = true;
       result.depth = best;
-      result.direction = modelRotated ? bestNormal * q.model.axis : bestNormal;
+      result.direction = modelRotated ? bestNormal * q.placement.axis : bestNormal;
       result.contents = b.contents;
+    }
+  };
+  if (model.nodes.empty()) {  // no tree (a hand-made model): every brush
+    for (std::size_t bi = 0; bi < model.brushes.size(); ++bi) testBrush(std::int32_t(bi));
+    return result;
+  }
+  // The brushes come from the tree: every node whose region the trace
+  // model's bounds touch (closed: touching a split plane visits both sides),
+  // each brush once.
+  detail::QueryScratch& s = detail::scratchOf(work);
+  s.begin(model);
+  std::vector<std::int32_t>& pending = s.nodeStack;
+  pending.assign(1, 0);
+  while (!pending.empty()) {
+    std::int32_t n = pending.back();
+    pending.pop_back();
+    while (true) {
+      const CmNode& node = model.nodes[std::size_t(n)];
+      for (const std::int32_t b : model.brushesAt(node))
+        if (!s.testAndMark(s.brushChecked, std::size_t(b))) testBrush(b);
+      if (node.isLeaf()) break;
+      const bool front = tb.max[node.planeType] >= node.planeDist;
+      const bool back = tb.min[node.planeType] <= node.planeDist;
+      if (front && back) pending.push_back(node.children[0]);
+      n = back ? node.children[1] : node.children[0];
     }
   }
   return result;

@@ -16,7 +16,7 @@
 namespace cmkit {
 namespace {
 
-/// A double-precision vector for the equations (inputs are float).
+/// A double-precision vector for the equations (inputs are Real).
 struct DVec {
   double x = 0, y = 0, z = 0;
   DVec() = default;
@@ -174,7 +174,7 @@ void rotateTrmVertexThroughPolygon(TraceWork& tw, RotationWork& rw, std::int32_t
     return;
   if (!(u < rw.maxTan)) return;
   const auto edges = tw.model.edgesOf(poly);
-  const QueryWork::Scratch& s = tw.scratch;
+  const detail::QueryScratch& s = tw.scratch;
   if (!rayInsideEdges(point, dir, int(edges.size()), [&](int k, bool& reversed) -> const Pluecker& {
         reversed = edges[std::size_t(k)] < 0;
         return s.polygonEdgeLines[std::size_t(k)];
@@ -365,7 +365,7 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
 
 bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CollisionModel& m = tw.model;
-  QueryWork::Scratch& s = tw.scratch;
+  detail::QueryScratch& s = tw.scratch;
   RotationWork& rw = *tw.rotation;
   if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
@@ -417,7 +417,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     const CmEdge& edge = m.edges[e];
     if (edge.internal) continue;
-    QueryWork::Scratch::Feature& cache = s.touchCache(s.edges[e]);
+    detail::QueryScratch::Feature& cache = s.touchCache(s.edges[e]);
     const std::uint32_t todo = trmEdgesHere & ~cache.side;
     if (!todo) continue;
     cache.side |= todo;

@@ -58,7 +58,7 @@ bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& a
 /// contact in world space in `contact`.
 Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startAngle, Real endAngle,
                 QueryWork& work, ContactInfo& contact) {
-  QueryWork::Scratch& s = work.scratch();
+  detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   RotationWork rw;
@@ -69,12 +69,12 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   tw.positionTest = false;
   tw.quickExit = false;
 
-  const bool modelRotated = isRotated(q.model.axis);
-  const Mat3& modelAxis = q.model.axis;
+  const bool modelRotated = isRotated(q.placement.axis);
+  const Mat3& modelAxis = q.placement.axis;
   // The axis point in the plane of the trace start, in the model's frame.
-  Vec3 start = q.start - q.model.origin;
+  Vec3 start = q.start - q.placement.origin;
   const Vec3& worldAxis = q.rotation.axis;
-  Vec3 origin = q.rotation.origin - q.model.origin;
+  Vec3 origin = q.rotation.origin - q.placement.origin;
   origin = origin + worldAxis * (worldAxis.dot(start) - worldAxis.dot(origin));
   Vec3 axis = worldAxis;
   if (modelRotated) {
@@ -113,7 +113,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
     tw.numEdges = trm.numEdges();
     tw.numPolys = trm.numPolygons();
     const bool trmRotated = isRotated(q.trmAxis);
-    const Vec3 worldStart = q.start - q.model.origin;
+    const Vec3 worldStart = q.start - q.placement.origin;
     for (int i = 0; i < tw.numVerts; ++i) {
       Vec3 p = trm.vertex(i);
       if (trmRotated) p = p * q.trmAxis;
@@ -209,7 +209,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
 
   if (rw.maxTan == initialTan) return 1;
   contact = tw.c;
-  contactToWorld(contact, q.model);
+  contactToWorld(contact, q.placement);
   const double f = std::fabs(std::atan(rw.maxTan) * 360 / kPi / double(endAngle - startAngle));
   return Real(std::min(f, 1.0));
 }
@@ -220,7 +220,7 @@ TraceResult rotate(const CollisionModel& model, const RotationQuery& q, QueryWor
   const Real angle = q.rotation.angle;
   const bool point = isPointTrm(q.trm);
   if (angle == 0) {  // a position test
-    const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     TraceResult r = contentsTest(model, cq, work).trace;
     r.startSolid = r.fraction == 0;
     r.endPos = q.start;
@@ -229,7 +229,7 @@ TraceResult rotate(const CollisionModel& model, const RotationQuery& q, QueryWor
   }
   TraceResult r;
   if (q.detectStartSolid) {
-    const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+    const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;
   }
   // Parts below 180 degrees: a full turn (and more) in three 120-degree

@@ -3,6 +3,7 @@
 // caches inside the shared model).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -58,10 +59,12 @@ inline constexpr std::size_t edgeGroups(std::size_t numEdges) {
   return (numEdges + kEdgeGroup - 1) / kEdgeGroup;
 }
 
-/// Per-model-feature marks and caches, valid for one query. A mark or cache
-/// entry is valid when its generation equals the current one, so starting a
-/// query costs nothing but a counter increment.
-struct QueryWork::Scratch {
+namespace detail {
+
+/// Per-model-feature marks and caches, valid for one query (what a QueryWork
+/// holds). A mark or cache entry is valid when its generation equals the
+/// current one, so starting a query costs nothing but a counter increment.
+struct QueryScratch {
   /// Everything a query keeps about one model edge or vertex, together so
   /// that one cache line serves the mark and the side caches (the marks are
   /// read for every edge of every polygon met, mostly cache misses on a
@@ -101,8 +104,9 @@ struct QueryWork::Scratch {
     Real p1f, p2f;
     Vec3 p1, p2;
   };
-  std::vector<WalkSegment> walkStack;  ///< the far sides the tree walk has still to visit
-  TrmFeatures trm;                     ///< the trace model of the current query
+  std::vector<WalkSegment> walkStack;   ///< the far sides the tree walk has still to visit
+  std::vector<std::int32_t> nodeStack;  ///< nodes a box walk has still to visit (penetration)
+  TrmFeatures trm;                      ///< the trace model of the current query
 
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
@@ -151,6 +155,14 @@ struct QueryWork::Scratch {
   }
 };
 
+/// The library's way into a QueryWork (its scratch is private to users).
+struct QueryWorkAccess {
+  static QueryScratch& scratch(QueryWork& work) { return *work.scratch_; }
+};
+inline QueryScratch& scratchOf(QueryWork& work) { return QueryWorkAccess::scratch(work); }
+
+}  // namespace detail
+
 /// A hint to start loading the cache line at p (no effect on results).
 inline void prefetch(const void* p) {
 #if defined(__GNUC__)
@@ -167,11 +179,11 @@ struct RotationWork;
 
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
-  TraceWork(const CollisionModel& m, QueryWork::Scratch& s)
+  TraceWork(const CollisionModel& m, detail::QueryScratch& s)
       : model(m), scratch(s), vertices(s.trm.vertices), edges(s.trm.edges), polys(s.trm.polys) {}
 
   const CollisionModel& model;
-  QueryWork::Scratch& scratch;
+  detail::QueryScratch& scratch;
 
   int numVerts = 0, numEdges = 0, numPolys = 0;
   std::array<WorkVertex, kMaxTrmVertices>& vertices;  ///< scratch.trm.vertices
@@ -214,6 +226,8 @@ struct TraceWork {
   /// that the walk finds every other one.
   void addContact() {
     if (int(contacts->size()) >= maxContacts) return;
+    // One allocation for the usual handful of contacts, made on the first.
+    if (contacts->capacity() == 0) contacts->reserve(std::size_t(std::min(maxContacts, 16)));
     contacts->push_back(c);
     fraction = 1;
   }
@@ -296,7 +310,7 @@ inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) {
 template <class F>
 void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
   const CollisionModel& m = tw.model;
-  QueryWork::Scratch& s = tw.scratch;
+  detail::QueryScratch& s = tw.scratch;
   for (const std::int32_t edgeNum : edges) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edges[e])) continue;
@@ -323,7 +337,8 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
 /// edges' stored direction).
-void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryWork::Scratch& s);
+void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
+                         detail::QueryScratch& s);
 
 /// Sets tw's feature counts from `trm` and its vertices at tw.start (turned by
 /// trmAxis, then into the model's frame when modelRotated), each with the

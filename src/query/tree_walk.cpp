@@ -7,12 +7,12 @@
 
 namespace cmkit {
 
-QueryWork::QueryWork() : scratch_(std::make_unique<Scratch>()) {}
+QueryWork::QueryWork() : scratch_(std::make_unique<detail::QueryScratch>()) {}
 QueryWork::~QueryWork() = default;
 QueryWork::QueryWork(QueryWork&&) noexcept = default;
 QueryWork& QueryWork::operator=(QueryWork&&) noexcept = default;
 
-void QueryWork::Scratch::begin(const CollisionModel& model) {
+void detail::QueryScratch::begin(const CollisionModel& model) {
   auto grow = [](auto& v, std::size_t n) {
     if (v.size() < n) v.resize(n);
   };
@@ -78,7 +78,7 @@ void traceBoxThroughTree(TraceWork& tw, std::int32_t nodeNum, const Bounds& box)
 // caller's scratch (no recursion: a degenerate deep tree cannot overflow the
 // thread's stack, and a point trace saves the calls).
 void traceThroughTree(TraceWork& tw) {
-  using Segment = QueryWork::Scratch::WalkSegment;
+  using Segment = detail::QueryScratch::WalkSegment;
   std::vector<Segment>& pending = tw.scratch.walkStack;
   pending.clear();
   Segment cur{0, 0, 1, tw.start, tw.end};
@@ -167,7 +167,7 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
 }
 
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
-                         QueryWork::Scratch& s) {
+                         detail::QueryScratch& s) {
   if (s.polygonEdgeLines.size() < edges.size()) s.polygonEdgeLines.resize(edges.size());
   for (std::size_t i = 0; i < edges.size(); ++i)
     s.polygonEdgeLines[i] = modelEdgeLine(m, std::size_t(std::abs(edges[i])));

@@ -7,10 +7,13 @@
 // ray_index_kernel.h. Every polygon test is exact in the sense that the index
 // returns precisely what testing every polygon would return (tests compare it
 // with that brute force): node boxes are padded beyond the region in which a
-// polygon accepts a crossing.
+// polygon accepts a crossing. The node boxes, the slab reciprocals and entry
+// distances are float on purpose (SIMD float lanes; ray_index_layout.h); the
+// geometry is Real.
 #include "cmkit/ray_index.h"
 
 #include "ray/ray_index_kernel.h"
+#include "ray/ray_index_layout.h"
 
 // SSE2 on x86-64; any other target (or -DCMKIT_NO_SIMD, to test it) uses the
 // portable loop in enteredChildren, which does the same arithmetic.
@@ -23,10 +26,28 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <utility>
+#include <vector>
 
 namespace cmkit {
+
+namespace detail {
+/// What a RayIndex holds (built once, then shared by its copies).
+struct RayIndexData : RayLayout {
+  std::vector<Node> nodes;
+  std::vector<Leaf> leaves;
+  std::vector<Polygon> polygons;
+  std::vector<EdgeLine> edges;
+  std::vector<PolygonDetail> details;  ///< parallel to polygons
+  bool avx2 = false;
+};
+}  // namespace detail
+
 namespace {
+
+using Node = detail::RayLayout::Node;
+constexpr int kWidth = detail::RayLayout::kWidth;
 
 /// Polygons per leaf the builder aims for (the surface-area heuristic may
 /// stop earlier); more than this and a node is always split.
@@ -188,15 +209,15 @@ class BinaryBuilder {
 
 // The node test loads each row of eight floats (and the contents) with one
 // aligned 32-byte load (AVX2) or two 16-byte ones (SSE2).
-static_assert(sizeof(RayIndex::Node) == 256 && alignof(RayIndex::Node) % 32 == 0);
-static_assert(offsetof(RayIndex::Node, max) % 32 == 0 && offsetof(RayIndex::Node, contents) % 32 == 0);
+static_assert(sizeof(Node) == 256 && alignof(Node) % 32 == 0);
+static_assert(offsetof(Node, max) % 32 == 0 && offsetof(Node, contents) % 32 == 0);
 
 bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
 
 /// Which children of a node the ray enters before `best` and that hold
 /// contents of the mask (bit k for child k), and where it enters each box
 /// (`entry`, clipped to [0, best]).
-int enteredChildren(const RayIndex::Node& n, const detail::Ray& r, float best, float* entry) {
+int enteredChildren(const Node& n, const detail::Ray& r, float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
   // Two halves of four children.
@@ -221,7 +242,7 @@ int enteredChildren(const RayIndex::Node& n, const detail::Ray& r, float best, f
   return half(0) | half(1) << 4;
 #else  // the same arithmetic one child at a time
   int hits = 0;
-  for (int k = 0; k < RayIndex::kWidth; ++k) {
+  for (int k = 0; k < kWidth; ++k) {
     float tNear = 0, tFar = best;
     for (int axis = 0; axis < 3; ++axis) {
       const auto* nearRow = reinterpret_cast<const float*>(base + r.nearRow[axis]);
@@ -246,8 +267,12 @@ bool avx2Available() {
 }
 }  // namespace
 
-RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
-    : avx2_(nodeTest == NodeTest::kAuto && avx2Available()) {
+RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest) {
+  using Index = detail::RayIndexData;
+  const auto data = std::make_shared<Index>();
+  data_ = data;
+  Index& d = *data;
+  d.avx2 = nodeTest == NodeTest::Auto && avx2Available();
   // The polygons that can be crossed: finite plane and bounds, an outline.
   std::vector<std::uint32_t> usable;
   std::vector<Bounds> boxes;
@@ -266,28 +291,28 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
   const std::vector<BinaryNode>& bn = binary.nodes();
 
   // Polygons and their edge lines in leaf order.
-  polygons_.reserve(usable.size());
-  details_.reserve(usable.size());
+  d.polygons.reserve(usable.size());
+  d.details.reserve(usable.size());
   for (const std::uint32_t k : binary.order()) {
     const CmPolygon& p = model.polygons[usable[k]];
-    Polygon r;
+    Index::Polygon r;
     r.normal = p.plane.normal;
     r.dist = p.plane.dist;
     r.contents = p.contents;
     r.index = std::int32_t(usable[k]);
-    r.firstEdge = std::uint32_t(edges_.size());
+    r.firstEdge = std::uint32_t(d.edges.size());
     r.numEdges = p.numEdges;
     for (const std::int32_t e : model.edgesOf(p)) {
       const CmEdge& edge = model.edges[std::size_t(std::abs(e))];
       const Pluecker line = Pluecker::fromLine(model.vertices[std::size_t(edge.vertex[0])],
                                                model.vertices[std::size_t(edge.vertex[1])]);
-      EdgeLine l{};
+      Index::EdgeLine l{};
       for (int c = 0; c < 6; ++c) l.p[c] = line[c];
       l.reversed = e < 0;
-      edges_.push_back(l);
+      d.edges.push_back(l);
     }
-    polygons_.push_back(r);
-    details_.push_back({boxes[k], p.material});
+    d.polygons.push_back(r);
+    d.details.push_back({boxes[k], p.material});
   }
 
   // Collapse: each 8-wide node takes the binary node's children, then opens
@@ -312,26 +337,26 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
       kids[open] = bn[inner].left;
       kids[n++] = bn[inner].right;
     }
-    const auto me = std::uint32_t(nodes_.size());
-    nodes_.emplace_back();
+    const auto me = std::uint32_t(d.nodes.size());
+    d.nodes.emplace_back();
     std::array<std::uint32_t, kWidth> refs{};
     for (std::size_t k = 0; k < n; ++k) {
       const BinaryNode& c = bn[kids[k]];
       if (c.count) {
-        refs[k] = kLeaf | std::uint32_t(leaves_.size());
-        leaves_.push_back({c.first, c.count});
+        refs[k] = Index::kLeaf | std::uint32_t(d.leaves.size());
+        d.leaves.push_back({c.first, c.count});
       } else {
         refs[k] = self(self, kids[k]);
       }
     }
-    Node& node = nodes_[me];
+    Node& node = d.nodes[me];
     for (std::size_t k = 0; k < kWidth; ++k) {
       if (k >= n) {  // an empty slot: a box nothing enters, no contents
         for (int a = 0; a < 3; ++a) {
           node.min[a][k] = std::numeric_limits<float>::max();
           node.max[a][k] = -std::numeric_limits<float>::max();
         }
-        node.child[k] = kLeaf;
+        node.child[k] = Index::kLeaf;
         node.contents[k] = 0;
         continue;
       }
@@ -348,21 +373,37 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest)
   collapse(collapse, 0);
 }
 
+RayIndex::~RayIndex() = default;
+RayIndex::RayIndex(const RayIndex&) = default;
+RayIndex::RayIndex(RayIndex&&) noexcept = default;
+RayIndex& RayIndex::operator=(const RayIndex&) = default;
+RayIndex& RayIndex::operator=(RayIndex&&) noexcept = default;
+
+bool RayIndex::usesAvx2() const { return data_ && data_->avx2; }
+std::size_t RayIndex::numNodes() const { return data_ ? data_->nodes.size() : 0; }
+std::size_t RayIndex::numPolygons() const { return data_ ? data_->polygons.size() : 0; }
+
 std::size_t RayIndex::memoryBytes() const {
-  return nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
-         polygons_.capacity() * sizeof(Polygon) + edges_.capacity() * sizeof(EdgeLine) +
-         details_.capacity() * sizeof(PolygonDetail);
+  if (!data_) return 0;
+  const detail::RayIndexData& d = *data_;
+  return d.nodes.capacity() * sizeof(d.nodes[0]) + d.leaves.capacity() * sizeof(d.leaves[0]) +
+         d.polygons.capacity() * sizeof(d.polygons[0]) + d.edges.capacity() * sizeof(d.edges[0]) +
+         d.details.capacity() * sizeof(d.details[0]);
 }
 
 namespace detail {
 Crossing castBaseline(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildren); }
 }  // namespace detail
 
-RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t contentMask,
-                      const Placement& placement) const {
+RayHit RayIndex::cast(const RayCastQuery& query) const {
+  const Vec3& worldStart = query.start;
+  const Vec3& worldEnd = query.end;
+  const Placement& placement = query.placement;
   RayHit result;
-  if (nodes_.empty() || !worldStart.isFinite() || !worldEnd.isFinite() || worldStart == worldEnd)
+  if (!data_ || data_->nodes.empty() || !worldStart.isFinite() || !worldEnd.isFinite() ||
+      worldStart == worldEnd)
     return result;
+  const detail::RayIndexData& d = *data_;
   const bool rotated = !placement.axis.isIdentity();
   Vec3 start = worldStart - placement.origin, end = worldEnd - placement.origin;
   if (rotated) {
@@ -387,17 +428,16 @@ RayHit RayIndex::cast(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_
     ray.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
                              : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
   }
-  ray.mask = contentMask;
-  const detail::Arrays arrays{nodes_.data(), leaves_.data(), polygons_.data(), edges_.data(),
-                                  details_.data()};
-  const detail::Crossing found =
-      avx2_ ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
+  ray.mask = query.contentMask;
+  const detail::Arrays arrays{d.nodes.data(), d.leaves.data(), d.polygons.data(), d.edges.data(),
+                              d.details.data()};
+  const detail::Crossing found = d.avx2 ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
   if (found.slot < 0) return result;
-  const Polygon& best = polygons_[std::size_t(found.slot)];
+  const detail::RayLayout::Polygon& best = d.polygons[std::size_t(found.slot)];
   result.fraction = found.t;
   result.polygon = best.index;
   result.contents = best.contents;
-  result.material = details_[std::size_t(found.slot)].material;
+  result.material = d.details[std::size_t(found.slot)].material;
   result.point = worldStart + (worldEnd - worldStart) * found.t;
   result.normal = rotated ? best.normal * placement.axis : best.normal;
   result.dist = best.dist + placement.origin.dot(result.normal);

@@ -16,7 +16,7 @@ namespace {
 
 /// As enteredChildren in ray_index.cpp, the same arithmetic on all eight
 /// children at once.
-int enteredChildrenAvx2(const RayIndex::Node& n, const Ray& r, float best, float* entry) {
+int enteredChildrenAvx2(const RayLayout::Node& n, const Ray& r, float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
   const auto row = [base](std::size_t offset) {
     return _mm256_load_ps(reinterpret_cast<const float*>(base + offset));

@@ -18,19 +18,21 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "cmkit/ray_index.h"
+#include "ray/ray_index_layout.h"
 
 namespace cmkit::detail {
 
+// FLOAT ON PURPOSE: the node test works on float lanes (RayLayout::Node's
+// boxes, Ray::inv, the entry distances); the sign test reads float bits.
 static_assert(sizeof(Real) == sizeof(float), "the kernel's node test and sign test are written for float");
 
 /// What the walk reads of a RayIndex.
 struct Arrays {
-  const RayIndex::Node* nodes;
-  const RayIndex::Leaf* leaves;
-  const RayIndex::Polygon* polygons;
-  const RayIndex::EdgeLine* edges;
-  const RayIndex::PolygonDetail* details;
+  const RayLayout::Node* nodes;
+  const RayLayout::Leaf* leaves;
+  const RayLayout::Polygon* polygons;
+  const RayLayout::EdgeLine* edges;
+  const RayLayout::PolygonDetail* details;
 };
 
 /// A ray in the model's space with its per-ray constants. The near face of
@@ -82,7 +84,7 @@ static inline bool signBit(float x) {
 /// crossings go to the lower model polygon index (`bestIndex`).
 static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ray& r, Crossing& best,
                                std::int32_t& bestIndex) {
-  const RayIndex::Polygon& p = index.polygons[slot];
+  const RayLayout::Polygon& p = index.polygons[slot];
   const Vec3& n = p.normal;
   if (!(n.x * r.dir[0] + n.y * r.dir[1] + n.z * r.dir[2] < 0)) return;  // only front faces
   const Real d1 = n.x * r.start[0] + n.y * r.start[1] + n.z * r.start[2] - p.dist;
@@ -93,10 +95,10 @@ static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ra
   if (!(denom > 0)) return;
   const Real t = d1 / denom;
   if (t > best.t || (t == best.t && p.index > bestIndex)) return;
-  const RayIndex::EdgeLine* lines = index.edges + p.firstEdge;
+  const RayLayout::EdgeLine* lines = index.edges + p.firstEdge;
   const Real* ray = r.line;
   for (std::uint32_t j = 0; j < p.numEdges; ++j) {
-    const float* l = lines[j].p;
+    const Real* l = lines[j].p;
     const Real product =
         l[0] * ray[4] + l[1] * ray[5] + l[2] * ray[3] + l[4] * ray[0] + l[5] * ray[1] + l[3] * ray[2];
     if (lines[j].reversed ^ std::uint32_t(signBit(product))) return;  // outside this edge
@@ -117,7 +119,7 @@ static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ra
 /// `entry`.
 template <class EnteredChildren>
 static Crossing walk(const Arrays& index, const Ray& r, EnteredChildren enteredChildren) {
-  constexpr int kWidth = RayIndex::kWidth;
+  constexpr int kWidth = RayLayout::kWidth;
   Crossing best{1, -1};
   std::int32_t bestIndex = 0x7fffffff;
   // At most kWidth - 1 children wait per level, and a node sorts its
@@ -126,12 +128,12 @@ static Crossing walk(const Arrays& index, const Ray& r, EnteredChildren enteredC
   std::size_t sp = 0;
   std::uint32_t ref = 0;
   for (;;) {
-    if (ref & RayIndex::kLeaf) {
-      const RayIndex::Leaf& leaf = index.leaves[ref & ~RayIndex::kLeaf];
+    if (ref & RayLayout::kLeaf) {
+      const RayLayout::Leaf& leaf = index.leaves[ref & ~RayLayout::kLeaf];
       for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
         if (index.polygons[i].contents & r.mask) testPolygon(index, i, r, best, bestIndex);
     } else {
-      const RayIndex::Node& n = index.nodes[ref];
+      const RayLayout::Node& n = index.nodes[ref];
       alignas(32) float entry[kWidth];
       const auto hits = unsigned(enteredChildren(n, r, float(best.t), entry));
       if (hits) {

@@ -296,13 +296,13 @@ TEST(Manager, RayIndexIsBuiltOnceAndDroppedWithItsModel) {
   const Bounds box = mm.get(world)->bounds;
   const Vec3 mid = (box.min + box.max) * Real(0.5);
   const Vec3 from{mid.x, mid.y, box.max.z + 64}, to{mid.x, mid.y, box.min.z - 64};
-  const RayHit hit = (*a)->cast(from, to, ~0u);
+  const RayHit hit = (*a)->cast({from, to, ~0u});
   ASSERT_TRUE(hit.hit());
 
   EXPECT_FALSE(mm.rayIndex(ModelHandle{7}).ok());
   ASSERT_TRUE(mm.free(world).ok());
   EXPECT_FALSE(mm.rayIndex(world).ok()) << "a freed model has no index";
-  const RayHit again = (*a)->cast(from, to, ~0u);  // an index handed out stays usable
+  const RayHit again = (*a)->cast({from, to, ~0u});  // an index handed out stays usable
   EXPECT_EQ(again.polygon, hit.polygon);
   EXPECT_EQ(again.fraction, hit.fraction);
   mm.clear();

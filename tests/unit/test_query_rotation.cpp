@@ -149,8 +149,8 @@ TEST(Rotation, PlacedModelGivesTheSameAnswerInTheWorld) {
   RotationQuery q = boxQuery(box, 90);
   q.start = {1000, 0, 0};
   q.rotation.origin = {1000, 0, 0};
-  q.model.origin = {1000, 0, 0};
-  q.model.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
+  q.placement.origin = {1000, 0, 0};
+  q.placement.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
   const TraceResult r = rotate(m, q, work);
   EXPECT_NEAR(r.fraction, boxCornerAngle() / 90, 1e-5);
   expectVecNear(r.contact.normal, {0, -1, 0}, 1e-6f);

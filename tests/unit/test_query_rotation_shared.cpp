@@ -92,7 +92,7 @@ TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
       q.trm = n % 6 == 5 ? nullptr : &trms[std::size_t(n % 5)];
       const Vec3 lo = m.bounds.min, size = m.bounds.size();
       q.start = {lo.x + u(rng) * size.x, lo.y + u(rng) * size.y, lo.z + u(rng) * size.z};
-      ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.model};
+      ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
       if (contentsTest(m, cq, work).contents != 0) continue;
       Vec3 axis{unit(rng), unit(rng), unit(rng)};
       if (n % 2) axis = {0, 0, unit(rng) < 0 ? -1.0f : 1.0f};
@@ -107,7 +107,7 @@ TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
       EXPECT_GE(r.fraction, 0.0f);
       EXPECT_LE(r.fraction, 1.0f);
       EXPECT_LT(r.endAxis.orthonormalityError(), 1e-4f);
-      ContentsQuery end{q.trm, r.endAxis, r.endPos, q.contentMask, q.model};
+      ContentsQuery end{q.trm, r.endAxis, r.endPos, q.contentMask, q.placement};
       if (contentsTest(m, end, work).contents != 0) {
         ++endInSolid;
         std::printf("%s query %d: free start, fraction %.6f, end pose in solid\n", name, n,

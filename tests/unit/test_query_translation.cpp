@@ -187,8 +187,8 @@ TEST(Translation, RotatedAndOffsetModel) {
   const CollisionModel m = ModelMaker().addBox({{-1, -100, -100}, {1, 100, 100}}).build();
   QueryWork work;
   TranslationQuery q;
-  q.model.origin = {0, 10, 5};
-  q.model.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
+  q.placement.origin = {0, 10, 5};
+  q.placement.axis = Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}};
   q.start = {0, -40, 0};
   q.end = {0, 60, 0};
   const TraceResult r = translate(m, q, work);
@@ -308,15 +308,14 @@ TEST(Contacts, AllSurfacesAlongTheMove) {
       ModelMaker().addBox({{-100, -100, -16}, {100, 100, 0}}).addBox({{20, -100, 0}, {40, 100, 100}}).build();
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
   QueryWork work;
-  std::vector<ContactInfo> found;
   ContactsQuery q;
   q.trm = &box;
   q.start = {3.9f, 0, 0.1f};
   q.dir = {1, 0, -1};
   q.depth = 1;
   q.maxContacts = 32;
-  const int n = contacts(m, q, work, found);
-  ASSERT_EQ(n, int(found.size()));
+  const std::vector<ContactInfo> found = contacts(m, q, work).contacts;
+  ASSERT_FALSE(found.empty());
   bool floor = false, wall = false;
   for (const ContactInfo& c : found) {
     floor |= c.normal == Vec3(0, 0, 1);
@@ -325,9 +324,9 @@ TEST(Contacts, AllSurfacesAlongTheMove) {
   EXPECT_TRUE(floor);
   EXPECT_TRUE(wall);
   q.maxContacts = 1;
-  EXPECT_EQ(contacts(m, q, work, found), 1);
+  EXPECT_EQ(contacts(m, q, work).contacts.size(), 1u);
   q.depth = 0;
-  EXPECT_EQ(contacts(m, q, work, found), 0);
+  EXPECT_TRUE(contacts(m, q, work).contacts.empty());
 }
 
 TEST(PointContents, SeesBrushesAndHandlesRotation) {

@@ -11,8 +11,8 @@
 #include <random>
 #include <thread>
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "model_fixtures.h"
@@ -106,7 +106,7 @@ int expectSameAsEveryPolygon(const CollisionModel& m, unsigned seed, int count, 
   for (const auto& [s, e] : randomSegments(m.bounds, seed, count)) {
     const std::uint32_t masks[] = {kAll, contents::kMaskSolid, contents::kWater | contents::kPlayerClip};
     const std::uint32_t mask = masks[i++ % 3];
-    const RayHit fast = index.cast(s, e, mask);
+    const RayHit fast = index.cast({s, e, mask});
     const BruteHit slow = castEveryPolygon(m, s, e, mask);
     EXPECT_EQ(fast.polygon, slow.polygon) << what << ": (" << s.x << " " << s.y << " " << s.z << ") -> ("
                                           << e.x << " " << e.y << " " << e.z << ")";
@@ -127,7 +127,7 @@ TEST(RayIndex, HitsTheFloorWhereItCrosses) {
   const CollisionModel m = floorBox();
   const RayIndex index(m);
   EXPECT_EQ(index.numPolygons(), 6u);
-  const RayHit h = index.cast({8, -4, 64}, {8, -4, -64});
+  const RayHit h = index.cast({{8, -4, 64}, {8, -4, -64}});
   ASSERT_TRUE(h.hit());
   EXPECT_EQ(h.fraction, 0.5f);  // 64 of 128 units down
   EXPECT_EQ(h.point, Vec3(8, -4, 0));
@@ -137,7 +137,7 @@ TEST(RayIndex, HitsTheFloorWhereItCrosses) {
   EXPECT_EQ(h.contents, contents::kSolid | contents::kOpaque);
   EXPECT_EQ(h.material, 0);
   // A slanted ray: from (-40, 0, 30) to (20, 0, -30) crosses z = 0 at x = -10, halfway.
-  const RayHit s = index.cast({-40, 0, 30}, {20, 0, -30});
+  const RayHit s = index.cast({{-40, 0, 30}, {20, 0, -30}});
   ASSERT_TRUE(s.hit());
   EXPECT_EQ(s.fraction, 0.5f);
   EXPECT_EQ(s.point, Vec3(-10, 0, 0));
@@ -145,35 +145,35 @@ TEST(RayIndex, HitsTheFloorWhereItCrosses) {
 
 TEST(RayIndex, TouchingCountsAtBothEnds) {
   const RayIndex index(floorBox());
-  const RayHit ends = index.cast({0, 0, 64}, {0, 0, 0});  // ends exactly on the floor
+  const RayHit ends = index.cast({{0, 0, 64}, {0, 0, 0}});  // ends exactly on the floor
   ASSERT_TRUE(ends.hit());
   EXPECT_EQ(ends.fraction, 1.0f);
-  const RayHit starts = index.cast({0, 0, 0}, {0, 0, -8});  // starts on it, moves in
+  const RayHit starts = index.cast({{0, 0, 0}, {0, 0, -8}});  // starts on it, moves in
   ASSERT_TRUE(starts.hit());
   EXPECT_EQ(starts.fraction, 0.0f);
-  EXPECT_FALSE(index.cast({0, 0, 0}, {0, 0, 8}).hit());     // leaves it
-  EXPECT_FALSE(index.cast({0, 0, 8}, {0, 0, 0.5f}).hit());  // stops short
+  EXPECT_FALSE(index.cast({{0, 0, 0}, {0, 0, 8}}).hit());     // leaves it
+  EXPECT_FALSE(index.cast({{0, 0, 8}, {0, 0, 0.5f}}).hit());  // stops short
 }
 
 TEST(RayIndex, PolygonsAreOneSided) {
   const CollisionModel m = floorBox();
   const RayIndex index(m);
-  EXPECT_FALSE(index.cast({0, 0, -8}, {0, 0, 64}).hit()) << "from inside the box, out through the top";
+  EXPECT_FALSE(index.cast({{0, 0, -8}, {0, 0, 64}}).hit()) << "from inside the box, out through the top";
   // Through the whole box from below: only the bottom face faces the ray.
-  const RayHit h = index.cast({0, 0, -32}, {0, 0, 32});
+  const RayHit h = index.cast({{0, 0, -32}, {0, 0, 32}});
   ASSERT_TRUE(h.hit());
   EXPECT_EQ(h.polygon, polygonWithNormal(m, {0, 0, -1}));
   EXPECT_EQ(h.fraction, 0.25f);  // z = -16 is 16 of 64 units up
   // Along the floor's plane: parallel, no hit.
-  EXPECT_FALSE(index.cast({-100, 0, 0}, {100, 0, 0}).hit());
+  EXPECT_FALSE(index.cast({{-100, 0, 0}, {100, 0, 0}}).hit());
   // Beside the box.
-  EXPECT_FALSE(index.cast({70, 0, 64}, {70, 0, -64}).hit());
+  EXPECT_FALSE(index.cast({{70, 0, 64}, {70, 0, -64}}).hit());
 }
 
 TEST(RayIndex, ContentMaskSelectsSurfaces) {
   const RayIndex water(floorBox(contents::kWater));
-  EXPECT_FALSE(water.cast({0, 0, 64}, {0, 0, -64}, contents::kMaskSolid).hit());
-  const RayHit h = water.cast({0, 0, 64}, {0, 0, -64}, contents::kWater);
+  EXPECT_FALSE(water.cast({{0, 0, 64}, {0, 0, -64}, contents::kMaskSolid}).hit());
+  const RayHit h = water.cast({{0, 0, 64}, {0, 0, -64}, contents::kWater});
   ASSERT_TRUE(h.hit());
   EXPECT_EQ(h.contents, contents::kWater);
 }
@@ -187,16 +187,16 @@ TEST(RayIndex, NearestOfManyAndTiesToTheLowerIndex) {
                                .addBox({{-32, -32, 80}, {32, 32, 88}})
                                .build();
   const RayIndex index(m);
-  const RayHit down = index.cast({0, 0, 200}, {0, 0, -100});
+  const RayHit down = index.cast({{0, 0, 200}, {0, 0, -100}});
   ASSERT_TRUE(down.hit());
   EXPECT_EQ(down.point.z, 88.0f);
-  const RayHit up = index.cast({0, 0, -100}, {0, 0, 200});
+  const RayHit up = index.cast({{0, 0, -100}, {0, 0, 200}});
   ASSERT_TRUE(up.hit());
   EXPECT_EQ(up.point.z, 0.0f);
   // Two identical boxes: every face exists twice; the lower index wins.
   const CollisionModel twice =
       test::ModelMaker().addBox({{-8, -8, -8}, {8, 8, 8}}).addBox({{-8, -8, -8}, {8, 8, 8}}).build();
-  const RayHit h = RayIndex(twice).cast({0, 0, 50}, {0, 0, -50});
+  const RayHit h = RayIndex(twice).cast({{0, 0, 50}, {0, 0, -50}});
   ASSERT_TRUE(h.hit());
   EXPECT_EQ(h.polygon, polygonWithNormal(twice, {0, 0, 1}));
   EXPECT_LT(std::size_t(h.polygon), twice.polygons.size() / 2);
@@ -222,7 +222,7 @@ TEST(RayIndex, NoLeaksThroughSharedEdges) {
       const Vec3 from = target + (outward * 60) + Vec3{dir(rng), dir(rng), dir(rng)} * 20;
       const Vec3 to = from + (target - from) * 2;  // through the edge point and beyond
       ++rays;
-      const RayHit h = index.cast(from, to, kAll);
+      const RayHit h = index.cast({from, to, kAll});
       ASSERT_TRUE(h.hit()) << "ray " << rays << " slipped through edge " << e;
       EXPECT_NEAR(h.fraction, 0.5f, 1e-3f);
     }
@@ -240,7 +240,7 @@ TEST(RayIndex, PlacedModelsTransformRaysAndResults) {
   const Vec3 worldPoint = Vec3{8, -4, 0} * placed.axis + placed.origin;
   const Vec3 worldNormal = Vec3{0, 0, 1} * placed.axis;
   const Vec3 from = worldPoint + worldNormal * 40, to = worldPoint - worldNormal * 40;
-  const RayHit h = index.cast(from, to, contents::kMaskSolid, placed);
+  const RayHit h = index.cast({from, to, contents::kMaskSolid, placed});
   ASSERT_TRUE(h.hit());
   EXPECT_NEAR(h.fraction, 0.5f, 1e-5f);
   EXPECT_NEAR((h.point - worldPoint).length(), 0.0f, 1e-3f);
@@ -258,10 +258,10 @@ TEST(RayIndex, PlacedModelsTransformRaysAndResults) {
 TEST(RayIndex, BadInputMisses) {
   const RayIndex index(floorBox());
   const Real nan = std::numeric_limits<Real>::quiet_NaN(), inf = std::numeric_limits<Real>::infinity();
-  EXPECT_FALSE(index.cast({0, 0, 8}, {0, 0, 8}).hit());  // no movement
-  EXPECT_FALSE(index.cast({nan, 0, 8}, {0, 0, -8}).hit());
-  EXPECT_FALSE(index.cast({0, 0, 8}, {0, inf, -8}).hit());
-  EXPECT_FALSE(RayIndex(CollisionModel{}).cast({0, 0, 8}, {0, 0, -8}).hit());
+  EXPECT_FALSE(index.cast({{0, 0, 8}, {0, 0, 8}}).hit());  // no movement
+  EXPECT_FALSE(index.cast({{nan, 0, 8}, {0, 0, -8}}).hit());
+  EXPECT_FALSE(index.cast({{0, 0, 8}, {0, inf, -8}}).hit());
+  EXPECT_FALSE(RayIndex(CollisionModel{}).cast({{0, 0, 8}, {0, 0, -8}}).hit());
   EXPECT_EQ(RayIndex(CollisionModel{}).numNodes(), 0u);
 }
 
@@ -285,9 +285,9 @@ TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
     const int count = m->polygons.size() > 1000 ? 6000 : 600;
     rays += count;
     // Both node tests (the same one twice where the processor has no AVX2).
-    hits += expectSameAsEveryPolygon(*m, seed, count, m->name, RayIndex::NodeTest::kAuto);
+    hits += expectSameAsEveryPolygon(*m, seed, count, m->name, RayIndex::NodeTest::Auto);
     expectSameAsEveryPolygon(*m, seed++, count, m->name + " (baseline node test)",
-                             RayIndex::NodeTest::kBaseline);
+                             RayIndex::NodeTest::Baseline);
   }
   EXPECT_GT(hits, rays / 10) << "too few hits for the comparison to mean much";
 }
@@ -298,12 +298,12 @@ TEST(RayIndex, BothNodeTestsGiveTheSameAnswers) {
   const auto models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   const CollisionModel& world = *models.front();
-  const RayIndex best(world), baseline(world, RayIndex::NodeTest::kBaseline);
+  const RayIndex best(world), baseline(world, RayIndex::NodeTest::Baseline);
   EXPECT_FALSE(baseline.usesAvx2());
   if (!best.usesAvx2()) GTEST_SKIP() << "this processor (or build) has no AVX2: there is one node test only";
   int hits = 0;
   for (const auto& [s, e] : randomSegments(world.bounds, 17, 20000)) {
-    const RayHit a = best.cast(s, e), b = baseline.cast(s, e);
+    const RayHit a = best.cast({s, e}), b = baseline.cast({s, e});
     ASSERT_EQ(a.polygon, b.polygon);
     ASSERT_EQ(std::memcmp(&a.fraction, &b.fraction, sizeof(Real)), 0);
     ASSERT_EQ(a.point, b.point);
@@ -326,7 +326,7 @@ TEST(RayIndex, PointTranslationStopsNoLater) {
   QueryWork work;
   int bothHit = 0, samePolygon = 0;
   for (const auto& [s, e] : randomSegments(world.bounds, 11, 6000)) {
-    const RayHit ray = index.cast(s, e);
+    const RayHit ray = index.cast({s, e});
     const TraceResult point = translate(world, {nullptr, {}, s, e, contents::kMaskSolid, {}, false}, work);
     if (!ray.hit()) continue;
     ASSERT_LT(point.fraction, 1.0f) << "the ray hit, the point trace passed";
@@ -346,12 +346,12 @@ TEST(RayIndex, SameResultsFromManyThreads) {
   const RayIndex index(*models.front());
   const auto segments = randomSegments(models.front()->bounds, 5, 4000);
   std::vector<RayHit> single;
-  for (const auto& [s, e] : segments) single.push_back(index.cast(s, e));
+  for (const auto& [s, e] : segments) single.push_back(index.cast({s, e}));
   std::vector<std::vector<RayHit>> perThread(3);
   std::vector<std::thread> threads;
   for (auto& out : perThread)
     threads.emplace_back([&] {
-      for (const auto& [s, e] : segments) out.push_back(index.cast(s, e));
+      for (const auto& [s, e] : segments) out.push_back(index.cast({s, e}));
     });
   for (auto& t : threads) t.join();
   for (const auto& out : perThread) {

@@ -44,7 +44,7 @@ void registerValidate(CLI::App& app) {
       const CollisionModel& m = *(*models)[i];
       const std::vector<Violation> found = validateModel(m, *maxPerModel);
       for (const Violation& v : found) {
-        const bool odd = v.kind == Violation::Geometry;
+        const bool odd = v.kind == Violation::Kind::Geometry;
         fmt::print("{}: #{} {}{}\n", *path, i, v.toString(), odd ? " [geometry]" : "");
         geometry += odd;
       }

@@ -44,9 +44,9 @@ struct SpeedTestOptions {
   std::uint32_t seed = 0;   ///< seed of the generator (the original: always 0)
   int threads = 1;          ///< worker threads, each with its own QueryWork
   std::uint32_t contentMask = contents::kSolid | contents::kPlayerClip;
-  Vec3 origin;      ///< start of every move (the original: cm_testOrigin)
-  Mat3 trmAxis;     ///< orientation of the trace model at the start
-  Placement model;  ///< where the collision model is placed
+  Vec3 origin;          ///< start of every move (the original: cm_testOrigin)
+  Mat3 trmAxis;         ///< orientation of the trace model at the start
+  Placement placement;  ///< where the collision model is placed
 };
 
 /// Statistics of one batch (all translations or all rotations).
