@@ -27,6 +27,10 @@
 
 namespace cmkit {
 
+namespace detail {
+class TraceModelBuilder;  // builds the shapes (internal)
+}  // namespace detail
+
 /// Limits of a trace model (the original's MAX_TRACEMODEL_*). Queries cache
 /// per-feature side bits in 32-bit words, which is what bounds these.
 inline constexpr int kMaxTrmVertices = 32;
@@ -169,7 +173,7 @@ class TraceModel {
   std::string describe() const;
 
  private:
-  friend class TraceModelBuilder;
+  friend class detail::TraceModelBuilder;
   // What a query's set-up reads first is at the front (the counts, bounds,
   // offset and vertices): the fixed-size arrays are mostly unused, and a
   // query should touch few of their cache lines.

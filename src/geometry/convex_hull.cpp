@@ -36,7 +36,7 @@ constexpr double kHullRelativeEpsilon = 1e-5;
 
 }  // namespace
 
-Result<std::vector<std::vector<int>>> TraceModelBuilder::hullFaces(std::span<const Vec3> points) {
+Result<std::vector<std::vector<int>>> detail::TraceModelBuilder::hullFaces(std::span<const Vec3> points) {
   const size_t n = points.size();
   std::vector<DVec> p(n);
   double scale = 0;

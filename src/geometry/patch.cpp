@@ -10,7 +10,7 @@
 
 #include "cmkit/tolerances.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 namespace {
 
@@ -242,4 +242,4 @@ PatchGrid subdividePatchForCollision(const MapPatch& patch) {
   return grid;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

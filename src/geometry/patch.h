@@ -7,7 +7,7 @@
 
 #include "cmkit/map.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 /// A grid of points after subdivision: point (column j, row i) at
 /// i * width + j, with the same meaning of width/height as MapPatch.
@@ -32,4 +32,4 @@ PatchGrid subdividePatchForCollision(const MapPatch& patch);
 /// in float, in that operation order.
 Vec3 sampleBezierPatchPoint(const Vec3 (&ctrl)[3][3], Real u, Real v);
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -11,6 +11,8 @@
 
 namespace cmkit {
 
+using detail::TraceModelBuilder;
+
 std::string_view toString(TrmShape shape) {
   switch (shape) {
     case TrmShape::Point:
@@ -39,7 +41,7 @@ std::string_view toString(TrmShape shape) {
 
 // ---- TraceModelBuilder ------------------------------------------------------
 
-TraceModel TraceModelBuilder::finish(const Vec3& offset, bool convex, bool computePlanes) {
+TraceModel detail::TraceModelBuilder::finish(const Vec3& offset, bool convex, bool computePlanes) {
   TraceModel& t = trm_;
   t.offset_ = offset;
   t.isConvex_ = convex;
@@ -62,7 +64,7 @@ TraceModel TraceModelBuilder::finish(const Vec3& offset, bool convex, bool compu
   return t;
 }
 
-int TraceModelBuilder::generateEdgeNormals(TraceModel& t) {
+int detail::TraceModelBuilder::generateEdgeNormals(TraceModel& t) {
   int sharp = 0;
   for (int i = 0; i <= t.numEdges_; ++i) t.edges_[size_t(i)].normal = Vec3{};
   for (int i = 0; i < t.numPolygons_; ++i) {
@@ -92,9 +94,9 @@ int TraceModelBuilder::generateEdgeNormals(TraceModel& t) {
   return sharp;
 }
 
-Result<TraceModel> TraceModelBuilder::fromFaceLoops(TrmShape shape, std::span<const Vec3> points,
-                                                    const std::vector<std::vector<int>>& loops,
-                                                    const Vec3& offset) {
+Result<TraceModel> detail::TraceModelBuilder::fromFaceLoops(TrmShape shape, std::span<const Vec3> points,
+                                                            const std::vector<std::vector<int>>& loops,
+                                                            const Vec3& offset) {
   // Vertices keep their relative order; points on no face are dropped.
   std::vector<int> remap(points.size(), -1);
   for (const auto& loop : loops)

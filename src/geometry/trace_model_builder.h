@@ -9,7 +9,7 @@
 
 #include "cmkit/trace_model.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 class TraceModelBuilder {
  public:
@@ -61,4 +61,4 @@ class TraceModelBuilder {
   TraceModel trm_;
 };
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -248,9 +248,9 @@ struct ModelReader {
     checkReferences();
     // What the original does after reading a model.
     detail::filterItemsIntoTree(model);
-    model.stats.sharpEdges = computeEdgeNormals(model);
+    model.stats.sharpEdges = detail::computeEdgeNormals(model);
     for (std::size_t i = 1; i < model.edges.size(); ++i) model.stats.internalEdges += model.edges[i].internal;
-    computeModelBoundsAndContents(model);
+    detail::computeModelBoundsAndContents(model);
   }
 };
 

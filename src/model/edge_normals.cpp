@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace cmkit {
+namespace cmkit::detail {
 
 namespace {
 
@@ -96,4 +96,4 @@ void computeModelBoundsAndContents(CollisionModel& model) {
   model.contents = contents;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

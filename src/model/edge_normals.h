@@ -5,7 +5,7 @@
 
 #include "cmkit/model.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 /// Computes every edge's `normal` from the polygons that use it and returns
 /// the number of "sharp" events (an edge whose second face bends back more
@@ -32,4 +32,4 @@ int computeEdgeNormals(CollisionModel& model);
 /// empty brush's cleared bounds count; no items gives zero bounds).
 void computeModelBoundsAndContents(CollisionModel& model);
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -4,10 +4,10 @@
 
 #include "query/trace_work.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   if (s.testAndMark(s.brushChecked, std::size_t(brushNum))) return false;
   const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
   if (!(b.contents & tw.contentMask)) return false;
@@ -45,7 +45,7 @@ bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
 
 bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CollisionModel& m = tw.model;
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
   if (!(poly.contents & tw.contentMask)) return false;
@@ -200,4 +200,4 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis
   }
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -6,7 +6,7 @@
 
 #include "query/trace_work.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 namespace {
 
@@ -178,6 +178,12 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
 }
 
 }  // namespace
+
+}  // namespace cmkit::detail
+
+namespace cmkit {
+
+using namespace detail;  // the query internals (trace_work.h)
 
 ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
   ContentsResult r;

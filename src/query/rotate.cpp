@@ -13,7 +13,7 @@
 
 #include "query/rotate_work.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 namespace {
 
 /// A double-precision vector for the equations (inputs are Real).
@@ -174,7 +174,7 @@ void rotateTrmVertexThroughPolygon(TraceWork& tw, RotationWork& rw, std::int32_t
     return;
   if (!(u < rw.maxTan)) return;
   const auto edges = tw.model.edgesOf(poly);
-  const detail::QueryScratch& s = tw.scratch;
+  const QueryScratch& s = tw.scratch;
   if (!rayInsideEdges(point, dir, int(edges.size()), [&](int k, bool& reversed) -> const Pluecker& {
         reversed = edges[std::size_t(k)] < 0;
         return s.polygonEdgeLines[std::size_t(k)];
@@ -365,7 +365,7 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
 
 bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CollisionModel& m = tw.model;
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   RotationWork& rw = *tw.rotation;
   if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
@@ -417,7 +417,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     const CmEdge& edge = m.edges[e];
     if (edge.internal) continue;
-    detail::QueryScratch::Feature& cache = s.touchCache(s.edges[e]);
+    QueryScratch::Feature& cache = s.touchCache(s.edges[e]);
     const std::uint32_t todo = trmEdgesHere & ~cache.side;
     if (!todo) continue;
     cache.side |= todo;
@@ -450,4 +450,4 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   return finishPolygon(tw, rw);
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -15,7 +15,7 @@
 
 #include "query/rotate_work.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -58,7 +58,7 @@ bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& a
 /// contact in world space in `contact`.
 Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startAngle, Real endAngle,
                 QueryWork& work, ContactInfo& contact) {
-  detail::QueryScratch& s = detail::scratchOf(work);
+  QueryScratch& s = scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
   RotationWork rw;
@@ -215,6 +215,12 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
 }
 
 }  // namespace
+
+}  // namespace cmkit::detail
+
+namespace cmkit {
+
+using namespace detail;  // the query internals (trace_work.h)
 
 TraceResult rotate(const CollisionModel& model, const RotationQuery& q, QueryWork& work) {
   const Real angle = q.rotation.angle;

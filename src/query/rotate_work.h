@@ -14,7 +14,7 @@
 
 #include "query/trace_work.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 /// Rotation data of a trace-model vertex.
 struct RotVertex {
@@ -72,4 +72,4 @@ Vec3 rotateByTanHalf(const Vec3& p, const Vec3& origin, const Vec3& axis, double
 /// 180 degrees; not padded.
 Bounds arcBounds(const Vec3& rotationOrigin, const Vec3& axis, const Vec3& p, const Vec3& end);
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

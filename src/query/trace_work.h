@@ -12,7 +12,7 @@
 
 #include "cmkit/query.h"
 
-namespace cmkit {
+namespace cmkit::detail {
 
 /// A trace-model vertex during a query (model space).
 struct WorkVertex {
@@ -58,8 +58,6 @@ inline constexpr std::size_t kEdgeGroup = 64;
 inline constexpr std::size_t edgeGroups(std::size_t numEdges) {
   return (numEdges + kEdgeGroup - 1) / kEdgeGroup;
 }
-
-namespace detail {
 
 /// Per-model-feature marks and caches, valid for one query (what a QueryWork
 /// holds). A mark or cache entry is valid when its generation equals the
@@ -161,8 +159,6 @@ struct QueryWorkAccess {
 };
 inline QueryScratch& scratchOf(QueryWork& work) { return QueryWorkAccess::scratch(work); }
 
-}  // namespace detail
-
 /// A hint to start loading the cache line at p (no effect on results).
 inline void prefetch(const void* p) {
 #if defined(__GNUC__)
@@ -179,11 +175,11 @@ struct RotationWork;
 
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
-  TraceWork(const CollisionModel& m, detail::QueryScratch& s)
+  TraceWork(const CollisionModel& m, QueryScratch& s)
       : model(m), scratch(s), vertices(s.trm.vertices), edges(s.trm.edges), polys(s.trm.polys) {}
 
   const CollisionModel& model;
-  detail::QueryScratch& scratch;
+  QueryScratch& scratch;
 
   int numVerts = 0, numEdges = 0, numPolys = 0;
   std::array<WorkVertex, kMaxTrmVertices>& vertices;  ///< scratch.trm.vertices
@@ -310,7 +306,7 @@ inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) {
 template <class F>
 void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
   const CollisionModel& m = tw.model;
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   for (const std::int32_t edgeNum : edges) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edges[e])) continue;
@@ -337,8 +333,7 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
 /// edges' stored direction).
-void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
-                         detail::QueryScratch& s);
+void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryScratch& s);
 
 /// Sets tw's feature counts from `trm` and its vertices at tw.start (turned by
 /// trmAxis, then into the model's frame when modelRotated), each with the
@@ -364,4 +359,4 @@ inline bool isPointTrm(const TraceModel* trm) {
   return s.x <= 0 && s.y <= 0 && s.z <= 0;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

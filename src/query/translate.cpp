@@ -16,7 +16,7 @@
 #define CMKIT_SIDES_SSE2 1
 #endif
 
-namespace cmkit {
+namespace cmkit::detail {
 namespace {
 
 /// Fraction of the move a-> b at which a point first gets within
@@ -81,14 +81,14 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 
 // Which side of each edge line of the current polygon the path of every
 // moving trace-model vertex passes, and which edges are used backwards (see
-// the masks in detail::QueryScratch). A side is the sign bit of (edge i's line,
+// the masks in QueryScratch). A side is the sign bit of (edge i's line,
 // stored direction) . (vertex v's line), the product the original caches per
 // model edge. It depends only on the edge and the vertex, so computing all of
 // a polygon's at once gives the same bits as the cache, without its branches
 // and scattered memory.
 void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
   const CollisionModel& m = tw.model;
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
     s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
@@ -166,7 +166,7 @@ void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, 
 // edges used backwards, the positive of the others) and reach the plane
 // before the nearest hit so far.
 void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
-  const detail::QueryScratch& s = tw.scratch;
+  const QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(poly.numEdges);
   std::uint32_t inside = 0;
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
@@ -190,7 +190,7 @@ void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, con
 // its two vertices pass on different sides.
 void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum, std::size_t i) {
   const CollisionModel& m = tw.model;
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::int32_t edgeNum = m.edgesOf(poly)[i];
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
@@ -244,7 +244,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
 // Trace-model edge trmEdgeNum against the polygon edges to test, in their
 // order: those whose line its two vertices pass on different sides.
 void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
-  const detail::QueryScratch& s = tw.scratch;
+  const QueryScratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::size_t groups = edgeGroups(poly.numEdges);
   for (std::size_t g = 0; g < groups; ++g) {
@@ -260,7 +260,7 @@ void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int tr
 void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
                                       std::size_t vertexNum, const Vec3& p, const Vec3& endp,
                                       const Pluecker& pl) {
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   const Real f = translationPlaneFraction(tp.plane, p, endp);
   if (!(f < tw.fraction)) return;
@@ -322,7 +322,7 @@ void shrinkTraceBounds(TraceWork& tw) {
 // it. True when the trace model is blocked completely.
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
   const CollisionModel& m = tw.model;
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
   // The sides of the polygon's edge lines the trace-model vertices pass.
@@ -363,7 +363,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
 }  // namespace
 
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   for (const std::int32_t polyNum : polygons) {
     if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
@@ -379,7 +379,7 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 }
 
 bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
-  detail::QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
   // The culls' loads, started together (a mispredicted cull would otherwise
   // hold up the next polygon's).
   for (const std::int32_t polyNum : polygons) prefetch(&tw.model.polygons[std::size_t(polyNum)]);
@@ -391,4 +391,4 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
   return false;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

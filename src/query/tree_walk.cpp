@@ -12,7 +12,11 @@ QueryWork::~QueryWork() = default;
 QueryWork::QueryWork(QueryWork&&) noexcept = default;
 QueryWork& QueryWork::operator=(QueryWork&&) noexcept = default;
 
-void detail::QueryScratch::begin(const CollisionModel& model) {
+}  // namespace cmkit
+
+namespace cmkit::detail {
+
+void QueryScratch::begin(const CollisionModel& model) {
   auto grow = [](auto& v, std::size_t n) {
     if (v.size() < n) v.resize(n);
   };
@@ -211,4 +215,4 @@ void traceThroughModel(TraceWork& tw) {
   traceThroughTree(tw);
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

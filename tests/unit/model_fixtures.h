@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "model/edge_normals.h"
 #include "cmkit/contents.h"
 #include "cmkit/model.h"
 #include "cmkit/trace_model.h"
+#include "model/edge_normals.h"
 
 namespace cmkit::test {
 
@@ -80,7 +80,7 @@ class ModelMaker {
       m.bounds.addBounds(p.bounds);
       m.contents |= p.contents;
     }
-    computeEdgeNormals(m);
+    detail::computeEdgeNormals(m);
     return m;
   }
 

@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <limits>
 
-#include "model/edge_normals.h"
 #include "cm_test_util.h"
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
 #include "cmkit/validate.h"
+#include "model/edge_normals.h"
 #include "test_support.h"
 
 namespace cmkit {
@@ -258,14 +258,14 @@ TEST(CmFile, EdgeNormalsOfAFoldAndASharpEdge) {
   leaf.numPolygonRefs = 2;
   m.nodes = {leaf};
   m.polygonRefs = {0, 1};
-  EXPECT_EQ(computeEdgeNormals(m), 1);
+  EXPECT_EQ(detail::computeEdgeNormals(m), 1);
   // The sharp edge's normal points out of both faces (-y) with length 1/0.3.
   const Vec3 n = m.edges[1].normal;
   EXPECT_LT(n.y, 0);
   EXPECT_NEAR(n.length(), 1 / 0.3, 1e-3);
   EXPECT_NEAR(n.x, 0, 1e-6);
   // Again: the pass resets and recomputes.
-  EXPECT_EQ(computeEdgeNormals(m), 1);
+  EXPECT_EQ(detail::computeEdgeNormals(m), 1);
   EXPECT_EQ(m.edges[1].normal, n);
   // Boundary edge 2 of polygon a: outward in-plane normal.
   EXPECT_NEAR(m.edges[2].normal.x, std::sqrt(0.5), 1e-6);

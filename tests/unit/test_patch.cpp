@@ -14,9 +14,9 @@
 namespace {
 
 using cmkit::MapPatch;
-using cmkit::PatchGrid;
-using cmkit::subdividePatchForCollision;
 using cmkit::Vec3;
+using cmkit::detail::PatchGrid;
+using cmkit::detail::subdividePatchForCollision;
 
 /// A patch from columns (file groups) of points: cols[j][i] -> i*width+j.
 MapPatch patchFromColumns(const std::vector<std::vector<Vec3>>& cols) {
@@ -147,14 +147,14 @@ TEST(Patch, BezierSampleUsesTheOriginalFormula) {
   const Vec3 ctrl[3][3] = {{{0, 0, 0}, {0, 10, 0}, {0, 20, 0}},
                            {{10, 0, 5}, {10, 10, 5}, {10, 20, 5}},
                            {{20, 0, 0}, {20, 10, 0}, {20, 20, 0}}};
-  EXPECT_EQ(cmkit::sampleBezierPatchPoint(ctrl, 0, 0), (Vec3{0, 0, 0}));
-  EXPECT_EQ(cmkit::sampleBezierPatchPoint(ctrl, 0.5f, 0.5f), (Vec3{10, 10, 2.5f}));
-  EXPECT_EQ(cmkit::sampleBezierPatchPoint(ctrl, 1, 1), (Vec3{20, 20, 0}));
+  EXPECT_EQ(cmkit::detail::sampleBezierPatchPoint(ctrl, 0, 0), (Vec3{0, 0, 0}));
+  EXPECT_EQ(cmkit::detail::sampleBezierPatchPoint(ctrl, 0.5f, 0.5f), (Vec3{10, 10, 2.5f}));
+  EXPECT_EQ(cmkit::detail::sampleBezierPatchPoint(ctrl, 1, 1), (Vec3{20, 20, 0}));
   // q(1/3) with a=0, b=5, c=0: (0 - 10 + 0)/9 + 10/3, in float.
   const float u = 1.0f / 3.0f;
   const float qa = 0.0f - 2.0f * 5.0f + 0.0f;
   const float qb = 2.0f * 5.0f - 2.0f * 0.0f;
-  EXPECT_EQ(cmkit::sampleBezierPatchPoint(ctrl, u, 0).z, qa * u * u + qb * u + 0.0f);
+  EXPECT_EQ(cmkit::detail::sampleBezierPatchPoint(ctrl, u, 0).z, qa * u * u + qb * u + 0.0f);
 }
 
 TEST(Patch, InvalidPatchesGiveAnEmptyGrid) {

@@ -377,7 +377,7 @@ CollisionModel hundredEdgeFloor() {
   m.nodes[0].numPolygonRefs = 1;
   m.bounds = floor.bounds;
   m.contents = floor.contents;
-  computeEdgeNormals(m);
+  detail::computeEdgeNormals(m);
   return m;
 }
 
