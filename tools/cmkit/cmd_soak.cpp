@@ -293,8 +293,12 @@ class Soak {
     q.contentMask = o_.mask;
     return q;
   }
+  /// Nothing of the mask overlaps the trace model at `pos`. (A point's
+  /// contents test reports the first brush containing it whatever the mask,
+  /// so points use pointContents and the mask here.)
   bool isFree(Ctx& c, const Shape& s, const Vec3& pos) const {
-    return contentsTest(world_, at(s, pos), c.work).contents == 0;
+    if (s.trm.isPoint()) return (pointContents(world_, pos) & o_.mask) == 0;
+    return (contentsTest(world_, at(s, pos), c.work).contents & o_.mask) == 0;
   }
   /// A free position inside the map: point traces along +-x, +-y, +-z all
   /// hit a surface (so not in the void around the map).
