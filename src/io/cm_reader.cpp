@@ -1,13 +1,13 @@
 // Reading .cm files (the original's LoadCollisionModelFile and its Parse*
 // functions): see cm_file.h for what is accepted and what a model holds
 // after loading.
-#include <fstream>
 #include <limits>
-#include <sstream>
+#include <new>
 #include <unordered_map>
 
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
+#include "cmkit/text_file.h"
 #include "model/edge_normals.h"
 #include "model/material_cache.h"
 #include "model/tree_filter.h"
@@ -16,6 +16,10 @@
 namespace cmkit {
 
 namespace {
+
+/// readCmFileCrc reads at most this much of the file: the header is at its
+/// start (comments before it may push it a little down).
+constexpr std::size_t kCrcHeadBytes = 4096;
 
 using detail::CmCursor;
 
@@ -282,18 +286,6 @@ CmFile parseFile(CmCursor& in, const MaterialTable& materials) {
   return file;
 }
 
-Result<std::string> readWholeFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return Error("cannot open the file", path);
-  f.seekg(0, std::ios::end);
-  const std::streamoff size = f.tellg();
-  if (size < 0) return Error("cannot read the file", path);
-  f.seekg(0, std::ios::beg);
-  std::string text(std::size_t(size), '\0');
-  if (size > 0 && !f.read(text.data(), size)) return Error("cannot read the file", path);
-  return text;
-}
-
 }  // namespace
 
 Result<CmFile> parseCmText(std::string_view text, std::string fileName, const MaterialTable& materials) {
@@ -302,22 +294,21 @@ Result<CmFile> parseCmText(std::string_view text, std::string fileName, const Ma
     return parseFile(in, materials);
   } catch (const detail::SyntaxError& e) {
     return detail::toError(e, std::move(fileName));
+  } catch (const std::bad_alloc&) {  // counts in the file far beyond its size
+    return Error("out of memory while reading the models", std::move(fileName));
   }
 }
 
 Result<CmFile> loadCmFile(const std::string& path, const MaterialTable& materials) {
-  Result<std::string> text = readWholeFile(path);
+  Result<std::string> text = readTextFile(path);
   if (!text) return text.error();
   return parseCmText(*text, path, materials);
 }
 
 Result<std::uint32_t> readCmFileCrc(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return Error("cannot open the file", path);
-  std::string head(4096, '\0');
-  f.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(f.gcount()));
-  CmCursor in(head);
+  Result<std::string> head = readTextFile(path, kCrcHeadBytes);
+  if (!head) return head.error();
+  CmCursor in(*head);
   try {
     return parseHeader(in);
   } catch (const detail::SyntaxError& e) {

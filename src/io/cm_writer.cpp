@@ -2,7 +2,9 @@
 // text the original writes, see cm_file.h.
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <new>
 
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
@@ -242,12 +244,22 @@ std::string writeCmText(std::span<const ModelPtr> models, std::uint32_t crc, con
 
 Status saveCmFile(const std::string& path, std::span<const ModelPtr> models, std::uint32_t crc,
                   const CmWriteOptions& options) {
-  const std::string text = writeCmText(models, crc, options);
+  std::string text;
+  try {
+    text = writeCmText(models, crc, options);
+  } catch (const std::bad_alloc&) {
+    return Error("out of memory while writing the models (nothing written)", path);
+  }
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Error("is a directory, not a file", path);
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   if (!f) return Error("cannot create the file", path);
   f.write(text.data(), std::streamsize(text.size()));
   f.close();
-  if (!f) return Error("cannot write the file", path);
+  if (!f) {
+    std::filesystem::remove(path, ec);  // no partial file left behind
+    return Error("cannot write the file", path);
+  }
   return Ok{};
 }
 

@@ -1,6 +1,8 @@
 // The shared pieces of the query-line format: see fields.h.
 #include "io/fields.h"
 
+#include "text/text_cursor.h"
+
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -16,6 +18,7 @@ bool isSeparator(char c) { return c == ' ' || c == '\t'; }
 }  // namespace
 
 std::string_view trimLine(std::string_view s) {
+  s = withoutUtf8Bom(s);  // the first line of a file saved with a byte-order mark
   while (!s.empty() && isLineSpace(s.front())) s.remove_prefix(1);
   while (!s.empty() && isLineSpace(s.back())) s.remove_suffix(1);
   return s;
@@ -97,6 +100,19 @@ std::optional<long long> parseInt(std::string_view text) {
   const long long v = std::strtoll(s.c_str(), &end, 10);
   if (end != s.c_str() + s.size()) return std::nullopt;
   return v;
+}
+
+bool scannedRealsFinite(std::string_view text, std::size_t count) {
+  const std::string s(text);
+  const char* p = s.c_str();
+  for (std::size_t i = 0; i < count; ++i) {
+    char* end = nullptr;
+    const float v = std::strtof(p, &end);
+    if (end == p) return true;  // scanning stops here: what was read is finite
+    if (!std::isfinite(v)) return false;
+    p = end;
+  }
+  return true;
 }
 
 void scanReals(std::string_view text, std::span<float> out) {

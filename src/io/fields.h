@@ -21,7 +21,8 @@
 
 namespace cmkit::detail {
 
-/// `s` without spaces, tabs, CRs and LFs at either end.
+/// `s` without spaces, tabs, CRs and LFs at either end, and without a
+/// leading UTF-8 byte-order mark (the first line of some files).
 std::string_view trimLine(std::string_view s);
 
 /// The first word of a line (up to a space or tab) and the rest after it.
@@ -72,5 +73,10 @@ std::optional<long long> parseInt(std::string_view text);
 /// not a number. The values read replace the first entries of `out`, the
 /// rest keep theirs.
 void scanReals(std::string_view text, std::span<float> out);
+
+/// False when one of the first `count` numbers that scanReals would read is
+/// not a finite float (inf, nan, or beyond the float range like 1e999;
+/// scanReals would skip those or take them as they are).
+bool scannedRealsFinite(std::string_view text, std::size_t count);
 
 }  // namespace cmkit::detail

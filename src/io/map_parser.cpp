@@ -5,11 +5,11 @@
 // SyntaxError that parseMapText catches and turns into an Error: nothing
 // escapes the public API, and a failing parse never returns a partial map.
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <new>
 #include <utility>
 
 #include "cmkit/map.h"
+#include "cmkit/text_file.h"
 #include "cmkit/tolerances.h"
 #include "io/fields.h"
 #include "io/map_crc.h"
@@ -167,7 +167,21 @@ class Parser {
         fail(v, "expected the quoted value of key \"" + std::string(t.text) + "\", found " + describe(v));
       }
       if (equalsIgnoreCase(t.text, "mapversion") && v.text == "220") fail(t, std::string(kValve220Message));
+      checkPlacementKey(t, v);
       setKey(entity, t.text, v.text);
+    }
+  }
+  /// The keys that place the entity's model ("origin", "rotation", "angle")
+  /// must hold finite numbers: "inf", "nan" or "1e999" would put every
+  /// vertex at infinity.
+  static void checkPlacementKey(const Token& key, const Token& value) {
+    std::size_t count = 0;
+    if (equalsIgnoreCase(key.text, "origin")) count = 3;
+    if (equalsIgnoreCase(key.text, "rotation")) count = 9;
+    if (equalsIgnoreCase(key.text, "angle")) count = 1;
+    if (count > 0 && !detail::scannedRealsFinite(value.text, count)) {
+      fail(value, "the value of key \"" + std::string(key.text) +
+                      "\" has a number that is not a finite float: \"" + std::string(value.text) + "\"");
     }
   }
   /// As the original's dictionary: a repeated key (case-insensitive)
@@ -353,16 +367,15 @@ Result<MapFile> parseMapText(std::string_view text, std::string fileName) {
     return parser.parseFile(fileName);
   } catch (const detail::SyntaxError& e) {
     return detail::toError(e, std::move(fileName));
+  } catch (const std::bad_alloc&) {
+    return Error("out of memory while parsing the map", std::move(fileName));
   }
 }
 
 Result<MapFile> loadMapFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error("cannot open the map file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Error("cannot read the map file", path);
-  return parseMapText(ss.str(), path);
+  Result<std::string> text = readTextFile(path);
+  if (!text) return text.error();
+  return parseMapText(*text, path);
 }
 
 }  // namespace cmkit

@@ -16,13 +16,13 @@
 // nested braces, are skipped). Keywords are case-insensitive.
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
+#include <new>
 #include <optional>
-#include <sstream>
 #include <system_error>
 
 #include "cmkit/contents.h"
 #include "cmkit/materials.h"
+#include "cmkit/text_file.h"
 #include "text/lexer.h"
 
 namespace cmkit {
@@ -226,12 +226,13 @@ void MaterialTable::addMtrText(std::string_view text, const std::string& fileNam
 }
 
 Status MaterialTable::addMtrFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error("cannot open the material file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return Error("cannot read the material file", path);
-  addMtrText(ss.str(), path);
+  Result<std::string> text = readTextFile(path);
+  if (!text) return Error("material file: " + text.error().message, path);
+  try {
+    addMtrText(*text, path);
+  } catch (const std::bad_alloc&) {
+    return Error("out of memory while reading the material file", path);
+  }
   return Ok{};
 }
 

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <filesystem>
 #include <mutex>
+#include <new>
 
 #include "cmkit/cm_file.h"
 
@@ -19,6 +20,20 @@ std::string cmPathForMap(const std::string& mapPath) {
   return p.string();
 }
 
+/// Runs a loading step and turns what it could throw (running out of memory
+/// on a huge file, a filesystem error) into an Error: the manager's loaders,
+/// like every loader of cmkit, never throw.
+template <class F>
+auto withoutExceptions(const std::string& path, F&& step) -> decltype(step()) {
+  try {
+    return step();
+  } catch (const std::bad_alloc&) {
+    return Error("out of memory while loading", path);
+  } catch (const std::exception& e) {
+    return Error(e.what(), path);
+  }
+}
+
 }  // namespace
 
 std::string ModelManager::handleError(ModelHandle handle) const {
@@ -29,61 +44,66 @@ std::string ModelManager::handleError(ModelHandle handle) const {
 
 Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const MaterialTable& materials,
                                             const LoadMapOptions& options) {
-  Result<MapFile> map = loadMapFile(mapPath);
-  if (!map) return map.error();
-  LoadMapResult result;
-  result.geometryCrc = map->geometryCrc;
-  std::vector<ModelPtr> models;
-  const std::string cmPath = cmPathForMap(mapPath);
-  // The original's LoadMap: a .cm written for exactly this geometry is used
-  // instead of building. A .cm that fails to parse is ignored (rebuilt).
-  if (!options.forceRebuild && std::filesystem::exists(cmPath)) {
-    Result<std::uint32_t> crc = readCmFileCrc(cmPath);
-    if (crc && (*crc == map->geometryCrc || *crc == 0)) {
-      Result<CmFile> cm = loadCmFile(cmPath, materials);
-      if (cm) {
-        models = std::move(cm->models);
-        result.fromCmFile = true;
+  return withoutExceptions(mapPath, [&]() -> Result<LoadMapResult> {
+    Result<MapFile> map = loadMapFile(mapPath);
+    if (!map) return map.error();
+    LoadMapResult result;
+    result.geometryCrc = map->geometryCrc;
+    std::vector<ModelPtr> models;
+    const std::string cmPath = cmPathForMap(mapPath);
+    // The original's LoadMap: a .cm written for exactly this geometry is used
+    // instead of building. A .cm that fails to parse is ignored (rebuilt).
+    std::error_code ec;
+    if (!options.forceRebuild && std::filesystem::exists(cmPath, ec)) {
+      Result<std::uint32_t> crc = readCmFileCrc(cmPath);
+      if (crc && (*crc == map->geometryCrc || *crc == 0)) {
+        Result<CmFile> cm = loadCmFile(cmPath, materials);
+        if (cm) {
+          models = std::move(cm->models);
+          result.fromCmFile = true;
+          result.cmPath = cmPath;
+        }
+      }
+    }
+    if (!result.fromCmFile) {
+      Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, options.build);
+      if (!built) return built.error();
+      models = std::move(*built);
+      if (options.writeCmFile) {
+        Status saved = saveCmFile(cmPath, models, map->geometryCrc);
+        if (!saved) return saved.error();
         result.cmPath = cmPath;
       }
     }
-  }
-  if (!result.fromCmFile) {
-    Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, options.build);
-    if (!built) return built.error();
-    models = std::move(*built);
-    if (options.writeCmFile) {
-      Status saved = saveCmFile(cmPath, models, map->geometryCrc);
-      if (!saved) return saved.error();
-      result.cmPath = cmPath;
+    std::unique_lock lock(mutex_);
+    models_.clear();
+    byName_.clear();
+    rayIndexes_.clear();
+    for (ModelPtr& m : models) {
+      const auto index = std::int32_t(models_.size());
+      byName_[m->name].push_back(index);
+      models_.push_back(std::move(m));
+      result.handles.push_back(ModelHandle{index});
     }
-  }
-  std::unique_lock lock(mutex_);
-  models_.clear();
-  byName_.clear();
-  rayIndexes_.clear();
-  for (ModelPtr& m : models) {
-    const auto index = std::int32_t(models_.size());
-    byName_[m->name].push_back(index);
-    models_.push_back(std::move(m));
-    result.handles.push_back(ModelHandle{index});
-  }
-  return result;
+    return result;
+  });
 }
 
 Result<std::vector<ModelHandle>> ModelManager::loadCm(const std::string& path,
                                                       const MaterialTable& materials) {
-  Result<CmFile> cm = loadCmFile(path, materials);
-  if (!cm) return cm.error();
-  std::vector<ModelHandle> handles;
-  std::unique_lock lock(mutex_);
-  for (ModelPtr& m : cm->models) {
-    const auto index = std::int32_t(models_.size());
-    byName_[m->name].push_back(index);
-    models_.push_back(std::move(m));
-    handles.push_back(ModelHandle{index});
-  }
-  return handles;
+  return withoutExceptions(path, [&]() -> Result<std::vector<ModelHandle>> {
+    Result<CmFile> cm = loadCmFile(path, materials);
+    if (!cm) return cm.error();
+    std::vector<ModelHandle> handles;
+    std::unique_lock lock(mutex_);
+    for (ModelPtr& m : cm->models) {
+      const auto index = std::int32_t(models_.size());
+      byName_[m->name].push_back(index);
+      models_.push_back(std::move(m));
+      handles.push_back(ModelHandle{index});
+    }
+    return handles;
+  });
 }
 
 ModelHandle ModelManager::add(ModelPtr model) {

@@ -1,6 +1,7 @@
 // Tokenizer for Doom 3 text formats; see lexer.h.
 #include "text/lexer.h"
 
+#include <cmath>
 #include <utility>
 
 namespace cmkit::detail {
@@ -54,7 +55,10 @@ Token Lexer::scan() {
     }
     t.kind = TokenKind::Number;
     t.text = text_.substr(start, pos_ - start);
-    if (!originalNumberValue(t.text)) fail(t, "bad number '" + std::string(t.text) + "'");
+    const std::optional<float> value = originalNumberValue(t.text);
+    if (!value) fail(t, "bad number '" + std::string(t.text) + "'");
+    if (!std::isfinite(*value))
+      fail(t, "the number " + std::string(t.text) + " is not a finite float (beyond 3.4e38)");
     return t;
   }
   if (isNameStart(c)) {

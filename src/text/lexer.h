@@ -7,9 +7,11 @@
 // token) and single-character punctuation. Comments (// and /* */) and
 // whitespace are skipped.
 //
-// A malformed token (unterminated string or comment, bad number, control
-// character) throws a SyntaxError after consuming it, so that a reader that
-// catches it and carries on (the .mtr reader) makes progress.
+// A malformed token (unterminated string or comment, bad number, a number
+// that is not a finite float such as 1e999, control character) throws a
+// SyntaxError after consuming it, so that a reader that catches it and
+// carries on (the .mtr reader) makes progress. A leading UTF-8 byte-order
+// mark is skipped (text_cursor.h).
 #pragma once
 
 #include <optional>
@@ -38,7 +40,7 @@ struct Token {
 class Lexer : private TextCursor {
  public:
   /// The text must outlive the lexer.
-  explicit Lexer(std::string_view text) : TextCursor(text), lines_(text) {}
+  explicit Lexer(std::string_view text) : TextCursor(text), lines_(TextCursor::text()) {}
 
   /// The next token (kind End at the end of the input).
   Token next();

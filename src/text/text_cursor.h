@@ -31,11 +31,21 @@ struct SyntaxError {
 /// The Error a public entry point returns for a SyntaxError in `fileName`.
 Error toError(const SyntaxError& e, std::string fileName);
 
+/// The UTF-8 byte-order mark that some editors put at the start of a file.
+inline constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+/// `text` without a leading UTF-8 byte-order mark. Every reader skips it, so
+/// that line 1, column 1 is the first visible character.
+inline std::string_view withoutUtf8Bom(std::string_view text) {
+  return text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? text.substr(kUtf8Bom.size()) : text;
+}
+
 /// The value of a number's text exactly as the original lexer computes it:
 /// integer digits accumulated in double (v = v*10 + d), fraction digits with a
 /// running multiplier (m = 0.1; v += d*m; m *= 0.1), the exponent as 10^n
 /// built by repeated multiplication and applied by * or /, then a cast to
-/// float. No sign. nullopt when the text is not a well-formed number.
+/// float. No sign. nullopt when the text is not a well-formed number; the
+/// value may be infinite (1e999 overflows the float): the readers reject it.
 std::optional<float> originalNumberValue(std::string_view text);
 
 /// Line and column of byte offsets of one text. Counting goes forward from
@@ -54,10 +64,12 @@ class LineCounter {
 };
 
 /// A position in a text (which outlives it) with whitespace and comment
-/// skipping; the readers build their tokens on it.
+/// skipping; the readers build their tokens on it. A leading UTF-8
+/// byte-order mark is not part of the text (offsets, lines and columns count
+/// from after it).
 class TextCursor {
  public:
-  explicit TextCursor(std::string_view text) : text_(text) {}
+  explicit TextCursor(std::string_view text) : text_(withoutUtf8Bom(text)) {}
 
   std::string_view text() const { return text_; }
   /// Byte offset of the cursor.

@@ -14,6 +14,7 @@
 #include "cmkit/tools/query_format.h"
 #include "commands.h"
 #include "model_loading.h"
+#include "option_checks.h"
 
 namespace cmkit::cli {
 
@@ -36,14 +37,6 @@ struct BenchOptions {
   bool noRotation = false;
   SpeedTestOptions test;
 };
-
-bool parseVec3(const std::string& text, Vec3& out) {
-  float x = 0, y = 0, z = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &x, &y, &z, &tail) != 3) return false;
-  out = {x, y, z};
-  return true;
-}
 
 }  // namespace
 
@@ -219,9 +212,8 @@ int runBench(const BenchOptions& o) {
   test.rotations = !o.noRotation;
   if (o.origin.empty()) {
     test.origin = (world.bounds.min + world.bounds.max) * Real(0.5);
-  } else if (!parseVec3(o.origin, test.origin)) {
-    fmt::print(stderr, "cmkit bench: --origin: expected x,y,z, got '{}'\n", o.origin);
-    return kExitBadInput;
+  } else {
+    test.origin = *parseFiniteVec3(o.origin);  // checked while parsing the options
   }
   fmt::print("{}: ", o.models);
   return runAndPrintSpeedTest(world, *trm, o.trm, test) ? 0 : 1;
@@ -250,15 +242,20 @@ void registerBench(CLI::App& app) {
       "  cmkit bench --suite ../shared/reference");
   cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file; the first model is tested");
   cmd->add_option("--trm", o->trm, "trace model (query-format syntax)")->capture_default_str();
-  cmd->add_option("--origin", o->origin, "start of the moves x,y,z (default: centre of the model's bounds)");
+  cmd->add_option("--origin", o->origin, "start of the moves x,y,z (default: centre of the model's bounds)")
+      ->check(finiteVec3());
   cmd->add_option("--times", o->test.times, "queries per kind (cm_testTimes)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000000));
   cmd->add_option("--length", o->test.length, "end points within +-length per axis (cm_testLength)")
-      ->capture_default_str();
-  cmd->add_option("--angle", o->test.angle, "degrees per rotation (cm_testAngle)")->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteAtLeast(0));
+  cmd->add_option("--angle", o->test.angle, "degrees per rotation (cm_testAngle)")
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_option("--radius", o->test.radius, "rotation origins within +-radius (cm_testRadius)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteAtLeast(0));
   cmd->add_flag("--random-many", o->test.randomMany, "one shared end point / rotation (cm_testRandomMany)");
   cmd->add_flag("--walk", o->test.walk, "chained moves: each starts where the previous ended (cm_testWalk)");
   cmd->add_flag("--no-rotation", o->noRotation, "translations only");

@@ -12,8 +12,8 @@
 
 #include "bench_report.h"
 #include "cmkit/compile.h"
-#include "cmkit/tools/picture.h"
 #include "cmkit/map.h"
+#include "cmkit/tools/picture.h"
 #include "commands.h"
 #include "progress_bar.h"
 

@@ -2,12 +2,14 @@
 #include <fmt/core.h>
 
 #include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+#include <string_view>
 #include <thread>
 
+#include "cmkit/text_file.h"
 #include "cmkit/tools/query_format.h"
 #include "commands.h"
 #include "model_loading.h"
@@ -29,14 +31,18 @@ int runQueryCommand(const QueryOptions& o) {
     fmt::print(stderr, "cmkit query: {}\n", models.error().toString());
     return kExitBadInput;
   }
-  std::ifstream in(o.queries, std::ios::binary);
-  if (!in) {
-    fmt::print(stderr, "cmkit query: {}: cannot open the query file\n", o.queries);
+  const Result<std::string> text = readTextFile(o.queries);
+  if (!text) {
+    fmt::print(stderr, "cmkit query: query file: {}\n", text.error().toString());
     return kExitBadInput;
   }
   std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    if (isQueryLine(line)) lines.push_back(std::move(line));
+  for (std::size_t pos = 0; pos < text->size();) {
+    const std::size_t nl = std::min(text->find('\n', pos), text->size());
+    const std::string_view line = std::string_view(*text).substr(pos, nl - pos);
+    if (isQueryLine(line)) lines.emplace_back(line);
+    pos = nl + 1;
+  }
 
   std::vector<std::string> results(lines.size());
   const int threads = std::max(1, std::min<int>(o.threads, int(lines.size()) / 64 + 1));

@@ -7,6 +7,7 @@
 #include "cmkit/tools/picture.h"
 #include "commands.h"
 #include "model_loading.h"
+#include "option_checks.h"
 #include "trace_loading.h"
 
 namespace cmkit::cli {
@@ -107,6 +108,7 @@ void registerRender(CLI::App& app) {
   cmd->add_flag("--no-wireframe", o->noWireframe, "do not draw polygon edges");
   cmd->add_flag("--internal-edges", o->internalEdges, "also draw internal edges (green)");
   cmd->add_option("--cut", o->cut, "leave out polygons wholly above this height (z)")
+      ->check(finiteNumber())
       ->each([o](const std::string&) { o->haveCut = true; });
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   cmd->callback([o] {

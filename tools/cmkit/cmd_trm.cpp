@@ -5,6 +5,7 @@
 
 #include "cmkit/trace_model.h"
 #include "commands.h"
+#include "option_checks.h"
 
 namespace cmkit::cli {
 
@@ -28,7 +29,9 @@ void registerTrm(CLI::App& app) {
   auto spec = std::make_shared<std::string>();
   auto density = std::make_shared<double>(1.0);
   cmd->add_option("SPEC", *spec, "the trace model")->required();
-  cmd->add_option("--density", *density, "density for the mass properties")->capture_default_str();
+  cmd->add_option("--density", *density, "density for the mass properties")
+      ->capture_default_str()
+      ->check(finiteAtLeast(0));
   cmd->callback([spec, density] {
     auto trm = TraceModel::parse(*spec);
     if (!trm) {

@@ -23,6 +23,7 @@
 #include "cmkit/tools/export.h"
 #include "commands.h"
 #include "model_loading.h"
+#include "option_checks.h"
 #include "trace_loading.h"
 
 namespace cmkit::cli {
@@ -285,7 +286,8 @@ void registerView(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0, 65535));
   cmd->add_option("--viewer-dir", o->viewerDir, "the built viewer (default: viewer/dist of the source tree)");
-  cmd->add_option("--exit-after", o->exitAfter, "stop serving after this many seconds (0: never)");
+  cmd->add_option("--exit-after", o->exitAfter, "stop serving after this many seconds (0: never)")
+      ->check(finiteAtLeast(0));
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   cmd->callback([o] {
     if (int rc = runView(*o); rc != 0) std::exit(rc);

@@ -34,6 +34,9 @@ void registerView(CLI::App& app);
 /// `cmkit bench MODELS`: the original's collision speed test; `--suite DIR`.
 void registerBench(CLI::App& app);
 
+/// `cmkit soak MAP`: random sweeps and a walker, every end checked.
+void registerSoak(CLI::App& app);
+
 /// `cmkit demo [MAP]`: compile, speed test and picture of the bundled map.
 void registerDemo(CLI::App& app);
 

@@ -23,7 +23,15 @@ int main(int argc, char** argv) {
   cmkit::cli::registerExport(app);
   cmkit::cli::registerView(app);
   cmkit::cli::registerBench(app);
+  cmkit::cli::registerSoak(app);
   cmkit::cli::registerDemo(app);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end here with 0; every refused argument (an
+    // unknown option, a missing file name, a value out of range) is bad
+    // input, exit code 2 like a bad file.
+    return app.exit(e) == 0 ? 0 : cmkit::cli::kExitBadInput;
+  }
   return 0;
 }

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "commands.h"

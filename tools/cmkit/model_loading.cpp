@@ -1,7 +1,7 @@
 #include "model_loading.h"
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 
 namespace cmkit::cli {

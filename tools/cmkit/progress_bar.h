@@ -1,10 +1,12 @@
-// A progress bar on stderr for long builds (`compile`, `info`, `demo`).
+// A progress bar on stderr for long runs (`compile`, `info`, `demo` builds,
+// `soak`).
 #pragma once
 
 #include <fmt/core.h>
 
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace cmkit::cli {
 
@@ -14,18 +16,20 @@ inline constexpr int kProgressBarWidth = 40;
 /// A progress bar on stderr, redrawn only when it changes.
 class ProgressBar {
  public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
+  /// Draws "LABEL [###   ] done/total UNIT" when enabled.
+  explicit ProgressBar(bool enabled, std::string label = "building", std::string unit = "entities")
+      : enabled_(enabled), label_(std::move(label)), unit_(std::move(unit)) {}
   ~ProgressBar() { finish(); }
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
-  /// Draws `done` of `total` entities.
+  /// Draws `done` of `total`.
   void update(std::size_t done, std::size_t total) {
     if (!enabled_ || total == 0) return;
     const int filled = static_cast<int>(done * kProgressBarWidth / total);
     if (filled == lastFilled_ && done != total) return;
     lastFilled_ = filled;
-    fmt::print(stderr, "\rbuilding [{}{}] {}/{} entities", std::string(static_cast<std::size_t>(filled), '#'),
-               std::string(static_cast<std::size_t>(kProgressBarWidth - filled), ' '), done, total);
+    fmt::print(stderr, "\r{} [{}{}] {}/{} {}", label_, std::string(static_cast<std::size_t>(filled), '#'),
+               std::string(static_cast<std::size_t>(kProgressBarWidth - filled), ' '), done, total, unit_);
     std::fflush(stderr);
     drawn_ = true;
   }
@@ -37,6 +41,8 @@ class ProgressBar {
 
  private:
   bool enabled_;
+  std::string label_;
+  std::string unit_;
   bool drawn_ = false;
   int lastFilled_ = -1;
 };

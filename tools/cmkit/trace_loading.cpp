@@ -1,23 +1,9 @@
 #include "trace_loading.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "cmkit/map.h"
+#include "cmkit/text_file.h"
 
 namespace cmkit::cli {
-namespace {
-
-Result<std::string> readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{"cannot open the file", path};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-}  // namespace
-
 Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath,
                                                   const std::string& resultsPath) {
   if (resultsPath.empty()) {
@@ -26,11 +12,11 @@ Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath
   }
   std::string queries;
   if (!queriesPath.empty()) {
-    auto text = readText(queriesPath);
+    auto text = readTextFile(queriesPath);
     if (!text) return text.error();
     queries = std::move(*text);
   }
-  auto results = readText(resultsPath);
+  auto results = readTextFile(resultsPath);
   if (!results) return results.error();
   return parseTraceRecords(queries, *results);
 }

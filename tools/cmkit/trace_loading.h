@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/tools/debug_draw.h"
 #include "cmkit/query.h"
 #include "cmkit/result.h"
+#include "cmkit/tools/debug_draw.h"
 
 namespace cmkit::cli {
 

@@ -1,0 +1,27 @@
+// Checks of number options, shared by every command: a value that is not a
+// finite number (nan, inf, 1e999) or is out of its range is refused while
+// the command line is parsed, with a message naming the option, and the CLI
+// exits with kExitBadInput (main.cpp) before any work is done.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string_view>
+
+#include "cmkit/math.h"
+
+namespace cmkit::cli {
+
+/// A finite number (any sign).
+CLI::Validator finiteNumber();
+
+/// A finite number >= `lo`.
+CLI::Validator finiteAtLeast(double lo);
+
+/// "x,y,z": three finite numbers separated by commas, nothing else.
+std::optional<Vec3> parseFiniteVec3(std::string_view text);
+
+/// An option holding "x,y,z" (parseFiniteVec3).
+CLI::Validator finiteVec3();
+
+}  // namespace cmkit::cli
