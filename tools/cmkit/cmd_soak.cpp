@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "cmkit/query.h"
-#include "cmkit/text_file.h"
 #include "cmkit/tools/query_format.h"
+#include "cmkit/tools/text_file.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "progress_bar.h"
