@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "test_support.h"
 

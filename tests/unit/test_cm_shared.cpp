@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "cm_test_util.h"
-#include "cmkit/compile.h"
 #include "cmkit/cm_file.h"
+#include "cmkit/compile.h"
 #include "cmkit/validate.h"
 #include "test_support.h"
 

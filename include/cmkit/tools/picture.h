@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "cmkit/tools/debug_draw.h"
 #include "cmkit/result.h"
+#include "cmkit/tools/debug_draw.h"
 
 namespace cmkit {
 
