@@ -1,0 +1,486 @@
+// The engine of `cmkit soak` (soak.h): sweeps, the walker, the checks and
+// the classification of embedded ends.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cmkit/query.h"
+#include "cmkit/tools/query_format.h"
+#include "soak.h"
+
+namespace cmkit::cli {
+
+namespace {
+
+/// An embedded end at most this deep (penetration()) is a precision case.
+constexpr Real kPrecisionDepth = 0.01f;
+/// A move whose direction makes |cos| below this with the plane it must
+/// leave by is edge-on (grazing).
+constexpr Real kGrazingCos = 0.02f;
+/// A polygon lies on a brush plane when its normal is the plane's and its
+/// distance differs by less than this.
+constexpr Real kSamePlaneDist = 0.01f;
+constexpr Real kSameNormalDot = 0.9999f;
+/// ... and overlaps the brush's face by more than this in two directions.
+constexpr Real kFaceOverlap = 0.1f;
+/// Random positions tried per item for a free start.
+constexpr int kStartTries = 400;
+/// Steps of one walker before it starts again elsewhere (each walker is one
+/// item with its own random generator, so results do not depend on threads).
+constexpr int kWalkerStepsPerItem = 500;
+/// A walker that moves less than kStuckDistance in kStuckSteps steps is stuck.
+constexpr int kStuckSteps = 60;
+constexpr Real kStuckDistance = 1.0f;
+/// The walker: frame time, gravity, speed, step height, slide planes.
+constexpr Real kFrameTime = 1.0f / 60.0f;
+constexpr Real kGravity = 800.0f;
+constexpr Real kWalkSpeed = 320.0f;
+constexpr Real kJumpSpeed = 270.0f;
+constexpr Real kStepHeight = 18.0f;
+constexpr int kMaxSlidePlanes = 4;
+constexpr Real kOverbounce = 1.001f;
+constexpr Real kMinWalkNormalZ = 0.7f;
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool finite(const TraceResult& r) {
+  return std::isfinite(r.fraction) && finite(r.endPos) && finite(r.contact.point) &&
+         finite(r.contact.normal) && std::isfinite(r.contact.dist);
+}
+
+std::string vec(const Vec3& v) { return fmt::format("{},{},{}", v.x, v.y, v.z); }
+
+/// Which brush faces have a collision polygon, computed once. A face has
+/// one when a polygon of the mask lies in its plane (normal dot > 0.9999,
+/// |dist difference| < 0.01) and overlaps the brush's bounds by more than
+/// 0.1 units in two directions (the face, not just its edge).
+class WorldFacts {
+ public:
+  WorldFacts(const CollisionModel& world, std::uint32_t mask) : world_(world) {
+    faceHasPolygon_.resize(world.brushPlanes.size());
+    for (const CmBrush& brush : world.brushes) {
+      bool all = true;
+      for (std::uint32_t k = 0; k < brush.numPlanes; ++k) {
+        const bool has = hasPolygon(brush, world.brushPlanes[brush.firstPlane + k], mask);
+        faceHasPolygon_[brush.firstPlane + k] = has;
+        all &= has;
+      }
+      numClosed_ += all;
+    }
+  }
+  bool faceHasPolygon(const CmBrush& brush, std::uint32_t k) const {
+    return faceHasPolygon_[brush.firstPlane + k];
+  }
+  /// Brushes every face of which has a polygon.
+  std::size_t numClosed() const { return numClosed_; }
+
+ private:
+  bool hasPolygon(const CmBrush& brush, const Plane& plane, std::uint32_t mask) const {
+    for (const CmPolygon& p : world_.polygons) {
+      if (!(p.contents & mask) || p.plane.normal.dot(plane.normal) < kSameNormalDot ||
+          std::fabs(p.plane.dist - plane.dist) >= kSamePlaneDist)
+        continue;
+      const Bounds common = p.bounds.intersection(brush.bounds.expanded(kSamePlaneDist));
+      Real extent[3] = {common.max.x - common.min.x, common.max.y - common.min.y,
+                        common.max.z - common.min.z};
+      std::sort(extent, extent + 3);
+      if (extent[1] > kFaceOverlap) return true;
+    }
+    return false;
+  }
+
+  const CollisionModel& world_;
+  std::vector<bool> faceHasPolygon_;
+  std::size_t numClosed_ = 0;
+};
+
+/// The trace model's vertices placed at `pos` (one vertex for a point).
+std::vector<Vec3> placedVertices(const Shape& shape, const Vec3& pos) {
+  std::vector<Vec3> out;
+  if (shape.trm.isPoint()) return {pos};
+  for (const Vec3& v : shape.trm.vertices()) out.push_back(v + pos);
+  return out;
+}
+
+/// How far the placed vertices reach into a brush by its planes alone: the
+/// smallest push along one of its planes that frees them (> 0: overlap).
+Real brushDepth(const CollisionModel& world, const CmBrush& brush, const std::vector<Vec3>& verts,
+                Vec3* exitNormal = nullptr) {
+  Real depth = std::numeric_limits<Real>::max();
+  for (const Plane& plane : world.planesOf(brush)) {
+    Real lowest = std::numeric_limits<Real>::max();
+    for (const Vec3& v : verts) lowest = std::min(lowest, plane.normal.dot(v) - plane.dist);
+    if (-lowest < depth) {
+      depth = -lowest;
+      if (exitNormal) *exitNormal = plane.normal;
+    }
+  }
+  return depth;
+}
+
+Bounds boundsOf(const std::vector<Vec3>& verts) {
+  Bounds b;
+  for (const Vec3& v : verts) b.addPoint(v);
+  return b;
+}
+
+}  // namespace
+
+struct Soak::Impl {
+ public:
+  Impl(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
+      : world_(world), shapes_(std::move(shapes)), walker_(std::move(walker)), o_(o), facts_(world, o.mask) {
+    const Vec3 size = world.bounds.max - world.bounds.min;
+    inner_ = world.bounds.expanded(-std::min({size.x, size.y, size.z}) * 0.01f);
+  }
+
+  std::size_t numClosedBrushes() const { return facts_.numClosed(); }
+
+  /// Item i < sweeps is sweep i; after them come the walkers.
+  std::uint64_t numItems() const { return o_.sweeps + walkerItems(); }
+  std::uint64_t walkerItems() const {
+    return (o_.walkerSteps + kWalkerStepsPerItem - 1) / kWalkerStepsPerItem;
+  }
+
+  void runItem(std::uint64_t item, QueryWork& work, ItemTally& tally, std::vector<Case>& cases) {
+    std::mt19937_64 rng(o_.seed * 0x9E3779B97F4A7C15ull + item * 0xBF58476D1CE4E5B9ull + 1);
+    Ctx c{work, tally, cases, item, rng};
+    if (item < o_.sweeps) {
+      sweep(c, shapes_[item % shapes_.size()]);
+    } else {
+      const std::uint64_t w = item - o_.sweeps;
+      const std::uint64_t steps =
+          std::min<std::uint64_t>(kWalkerStepsPerItem, o_.walkerSteps - w * kWalkerStepsPerItem);
+      walk(c, int(steps));
+    }
+  }
+
+  /// Runs one translation and names what its end is: "free", or the class
+  /// of the finding (the --replay of a pasted query line).
+  std::string replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const {
+    ItemTally tally;
+    std::vector<Case> cases;
+    std::mt19937_64 rng(0);
+    Ctx c{work, tally, cases, 0, rng};
+    const TraceResult r = move(c, s, from, to);
+    if (!checkResult(c, s, from, to, r)) return kFindingNames[std::size_t(cases.front().finding)];
+    if (isFree(c, s, r.endPos)) return fmt::format("free (fraction {})", r.fraction);
+    return fmt::format("{} (fraction {}, end {})", kFindingNames[std::size_t(classify(c, s, from, r.endPos))],
+                       r.fraction, vec(r.endPos));
+  }
+
+ private:
+  struct Ctx {
+    QueryWork& work;
+    ItemTally& tally;
+    std::vector<Case>& cases;
+    std::uint64_t item;
+    std::mt19937_64& rng;
+  };
+
+  Real uniform(Ctx& c, Real lo, Real hi) const {
+    return lo + (hi - lo) * Real(double(c.rng() >> 11) * (1.0 / 9007199254740992.0));
+  }
+  Vec3 randomIn(Ctx& c, const Bounds& b) const {
+    return {uniform(c, b.min.x, b.max.x), uniform(c, b.min.y, b.max.y), uniform(c, b.min.z, b.max.z)};
+  }
+
+  TraceResult move(Ctx& c, const Shape& s, const Vec3& from, const Vec3& to) const {
+    TranslationQuery q;
+    q.trm = s.query();
+    q.start = from;
+    q.end = to;
+    q.contentMask = o_.mask;
+    return translate(world_, q, c.work);
+  }
+  ContentsQuery at(const Shape& s, const Vec3& pos) const {
+    ContentsQuery q;
+    q.trm = s.query();
+    q.position = pos;
+    q.contentMask = o_.mask;
+    return q;
+  }
+  /// Nothing of the mask overlaps the trace model at `pos`. (A point's
+  /// contents test reports the first brush containing it whatever the mask,
+  /// so points use pointContents and the mask here.)
+  bool isFree(Ctx& c, const Shape& s, const Vec3& pos) const {
+    if (s.trm.isPoint()) return (pointContents(world_, pos) & o_.mask) == 0;
+    return (contentsTest(world_, at(s, pos), c.work).contents & o_.mask) == 0;
+  }
+  /// A free position inside the map: point traces along +-x, +-y, +-z all
+  /// hit a surface (so not in the void around the map).
+  std::optional<Vec3> freeStart(Ctx& c, const Shape& s) const {
+    static const Vec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const Vec3 size = world_.bounds.max - world_.bounds.min;
+    const Real reach = size.x + size.y + size.z;
+    Shape point{"point", TraceModel::point()};
+    for (int tryNo = 0; tryNo < kStartTries; ++tryNo) {
+      const Vec3 p = randomIn(c, inner_);
+      if (!isFree(c, s, p)) continue;
+      bool enclosed = true;
+      for (const Vec3& axis : kAxes) {
+        if (move(c, point, p, p + axis * reach).fraction >= 1) {
+          enclosed = false;
+          break;
+        }
+      }
+      if (enclosed) return p;
+    }
+    return std::nullopt;
+  }
+
+  std::string translationLine(const Shape& s, const Vec3& from, const Vec3& to) const {
+    return fmt::format("translation trm={} start={} end={} mask={}\n", s.spec, vec(from), vec(to), o_.mask);
+  }
+  std::string contentsLine(const Shape& s, const Vec3& pos) const {
+    return fmt::format("contents trm={} start={} mask={}\n", s.spec, vec(pos), o_.mask);
+  }
+
+  void record(Ctx& c, Finding f, std::string lines) const {
+    // Each thread keeps its first --examples cases per class; since it runs
+    // its items in increasing order, the first ones overall are among them.
+    if (++c.tally.counts[std::size_t(f)] <= o_.examples) c.cases.push_back({c.item, f, std::move(lines)});
+  }
+
+  /// Checks a translation's result; false when a must-hold check failed.
+  bool checkResult(Ctx& c, const Shape& s, const Vec3& from, const Vec3& to, const TraceResult& r) const {
+    if (!finite(r)) {
+      record(c, Finding::NonFinite, translationLine(s, from, to));
+      return false;
+    }
+    if (!(r.fraction >= 0 && r.fraction <= 1)) {
+      record(c, Finding::FractionRange, translationLine(s, from, to));
+      return false;
+    }
+    return true;
+  }
+
+  /// Why the trace model at `end` overlaps solid after moving from `from`.
+  Finding classify(Ctx& c, const Shape& s, const Vec3& from, const Vec3& end) const {
+    const Penetration pen = penetration(world_, at(s, end), c.work);
+    if (pen.stuck && pen.depth <= kPrecisionDepth) return Finding::Precision;
+    Vec3 dir = end - from;
+    const Real length = dir.length();
+    if (length > 0) dir = dir * (1 / length);
+    const std::vector<Vec3> vEnd = placedVertices(s, end);
+    const std::vector<Vec3> vFrom = placedVertices(s, from);
+    const Bounds bEnd = boundsOf(vEnd).expanded(1);
+    if (pen.stuck) {
+      if (length > 0 && std::fabs(dir.dot(pen.direction)) < kGrazingCos) return Finding::Grazing;
+      // The brushes the end overlaps (by their planes) that the start did not.
+      bool anyOpen = false, anyClosed = false;
+      for (std::size_t b = 0; b < world_.brushes.size(); ++b) {
+        const CmBrush& brush = world_.brushes[b];
+        if (!(brush.contents & o_.mask) || !brush.bounds.intersects(bEnd)) continue;
+        if (brushDepth(world_, brush, vEnd) <= kPrecisionDepth) continue;
+        if (brushDepth(world_, brush, vFrom) > 0) continue;  // started inside it
+        (closedForMove(brush, vFrom) ? anyClosed : anyOpen) = true;
+      }
+      if (anyClosed) return Finding::ClosedBrush;
+      return Finding::BrushFace;
+    }
+    // Only polygons: was one crossed from behind (start wholly behind its
+    // plane, end straddling it)?
+    for (const CmPolygon& p : world_.polygons) {
+      if (!(p.contents & o_.mask) || !p.bounds.intersects(bEnd)) continue;
+      Real fromMax = -std::numeric_limits<Real>::max(), endMin = std::numeric_limits<Real>::max(),
+           endMax = -std::numeric_limits<Real>::max();
+      for (const Vec3& v : vFrom) fromMax = std::max(fromMax, p.plane.normal.dot(v) - p.plane.dist);
+      for (const Vec3& v : vEnd) {
+        endMin = std::min(endMin, p.plane.normal.dot(v) - p.plane.dist);
+        endMax = std::max(endMax, p.plane.normal.dot(v) - p.plane.dist);
+      }
+      if (fromMax <= 0 && endMax > 0 && endMin <= 0) return Finding::PatchBehind;
+    }
+    return Finding::OtherPolygon;
+  }
+
+  /// Whether every face the trace model had to cross to get into the brush
+  /// has a polygon: the planes the whole trace model was in front of at the
+  /// start (all planes if there is none).
+  bool closedForMove(const CmBrush& brush, const std::vector<Vec3>& vFrom) const {
+    bool anyEntry = false, allHave = true, entryHave = true;
+    for (std::uint32_t k = 0; k < brush.numPlanes; ++k) {
+      const Plane& plane = world_.brushPlanes[brush.firstPlane + k];
+      Real lowest = std::numeric_limits<Real>::max();
+      for (const Vec3& v : vFrom) lowest = std::min(lowest, plane.normal.dot(v) - plane.dist);
+      const bool has = facts_.faceHasPolygon(brush, k);
+      allHave &= has;
+      if (lowest >= 0) {
+        anyEntry = true;
+        entryHave &= has;
+      }
+    }
+    return anyEntry ? entryHave : allHave;
+  }
+
+  void sweep(Ctx& c, const Shape& s) const {
+    const std::optional<Vec3> start = freeStart(c, s);
+    if (!start) {
+      c.tally.noStart++;
+      return;
+    }
+    c.tally.sweeps++;
+    Vec3 end;
+    if (c.rng() & 1) {
+      end = randomIn(c, world_.bounds);
+    } else {
+      const Real r = uniform(c, 1, 512);
+      end = *start + Vec3{uniform(c, -r, r), uniform(c, -r, r), uniform(c, -r, r)};
+    }
+    const TraceResult r = move(c, s, *start, end);
+    if (!checkResult(c, s, *start, end, r)) return;
+    if (r.fraction < 1) c.tally.hits++;
+    if (isFree(c, s, r.endPos)) return;
+    const Finding f = classify(c, s, *start, r.endPos);
+    record(c, f, translationLine(s, *start, end) + contentsLine(s, r.endPos));
+  }
+
+  /// One slide move of the walker: up to kMaxSlidePlanes contacts per step,
+  /// the velocity clipped along each (creases between two planes followed).
+  /// False when a must-hold check failed.
+  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine) const {
+    Vec3 planes[kMaxSlidePlanes];
+    int numPlanes = 0;
+    for (int bump = 0; bump < kMaxSlidePlanes && time > 0; ++bump) {
+      const Vec3 end = pos + vel * time;
+      const TraceResult r = move(c, walker_, pos, end);
+      lastLine = translationLine(walker_, pos, end);
+      if (!checkResult(c, walker_, pos, end, r)) return false;
+      pos = r.endPos;
+      if (r.fraction >= 1) break;
+      time *= 1 - r.fraction;
+      if (numPlanes == kMaxSlidePlanes) {
+        vel = {};
+        break;
+      }
+      planes[numPlanes++] = r.contact.normal;
+      auto clip = [](const Vec3& v, const Vec3& n) {
+        const Real into = v.dot(n);
+        return into < 0 ? v - n * (into * kOverbounce) : v;
+      };
+      Vec3 next = clip(vel, r.contact.normal);
+      for (int i = 0; i + 1 < numPlanes; ++i) {
+        if (next.dot(planes[i]) < 0) {  // pushed into an earlier plane: follow the crease
+          Vec3 crease = planes[i].cross(r.contact.normal);
+          const Real len = crease.length();
+          if (len < 1e-4f) {
+            next = {};
+            break;
+          }
+          crease = crease * (1 / len);
+          next = crease * crease.dot(vel);
+        }
+      }
+      vel = next;
+      if (vel.dot(vel) < 1e-6f) break;
+    }
+    return true;
+  }
+
+  void walk(Ctx& c, int steps) const {
+    std::optional<Vec3> start = freeStart(c, walker_);
+    if (!start) {
+      c.tally.noStart++;
+      return;
+    }
+    Vec3 pos = *start, vel;
+    Vec3 wish;
+    Vec3 progressFrom = pos;
+    int sinceProgress = 0;
+    std::string lastLine;
+    for (int step = 0; step < steps; ++step) {
+      c.tally.walkerSteps++;
+      if (step % 40 == 0) {
+        const Real a = uniform(c, 0, 6.2831853f);
+        wish = {std::cos(a) * kWalkSpeed, std::sin(a) * kWalkSpeed, 0};
+      }
+      // Ground check: a short point-of-feet trace down.
+      const TraceResult down = move(c, walker_, pos, pos - Vec3{0, 0, 1});
+      if (!checkResult(c, walker_, pos, pos - Vec3{0, 0, 1}, down)) return;
+      const bool onGround = down.fraction < 1 && down.contact.normal.z >= kMinWalkNormalZ;
+      if (onGround) {
+        vel.x = wish.x;
+        vel.y = wish.y;
+        vel.z = (c.rng() % 97 == 0) ? kJumpSpeed : std::max<Real>(vel.z, 0);
+      } else {
+        vel.z -= kGravity * kFrameTime;
+      }
+      Vec3 slidPos = pos, slidVel = vel;
+      if (!slideMove(c, slidPos, slidVel, kFrameTime, lastLine)) return;
+      // Step up: over kStepHeight, move, back down; kept when it got further.
+      if (onGround) {
+        Vec3 up = pos + Vec3{0, 0, kStepHeight};
+        const TraceResult ru = move(c, walker_, pos, up);
+        if (!checkResult(c, walker_, pos, up, ru)) return;
+        Vec3 stepPos = ru.endPos, stepVel = vel;
+        stepVel.z = 0;
+        std::string stepLine;
+        if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine)) return;
+        const Vec3 downTo = stepPos - Vec3{0, 0, kStepHeight + 1};
+        const TraceResult rd = move(c, walker_, stepPos, downTo);
+        if (!checkResult(c, walker_, stepPos, downTo, rd)) return;
+        const auto flat = [&](const Vec3& p) { return Vec3{p.x - pos.x, p.y - pos.y, 0}.lengthSquared(); };
+        if (rd.fraction < 1 && rd.contact.normal.z >= kMinWalkNormalZ &&
+            flat(rd.endPos) > flat(slidPos) + 0.01f) {
+          slidPos = rd.endPos;
+          slidVel = stepVel;
+          lastLine = translationLine(walker_, stepPos, downTo);
+        }
+      }
+      pos = slidPos;
+      vel = slidVel;
+      // Embedded, fallen out of the map or stuck: count it and start again
+      // from a new free position.
+      std::optional<Finding> finding;
+      bool restart = false;
+      if (!isFree(c, walker_, pos)) {
+        finding = Finding::WalkerEmbedded;
+      } else if (pos.z < world_.bounds.min.z - 64) {
+        restart = true;
+      } else if ((pos - progressFrom).length() >= kStuckDistance) {
+        progressFrom = pos;
+        sinceProgress = 0;
+      } else if (++sinceProgress >= kStuckSteps) {
+        finding = Finding::WalkerStuck;
+      }
+      if (finding) record(c, *finding, lastLine + contentsLine(walker_, pos));
+      if (finding || restart) {
+        if (!(start = freeStart(c, walker_))) return;
+        c.tally.respawns++;
+        pos = progressFrom = *start;
+        vel = {};
+        sinceProgress = 0;
+      }
+    }
+  }
+
+  const CollisionModel& world_;
+  std::vector<Shape> shapes_;
+  Shape walker_;
+  const SoakOptions& o_;
+  WorldFacts facts_;
+  Bounds inner_;
+};
+
+Soak::Soak(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
+    : impl_(std::make_unique<Impl>(world, std::move(shapes), std::move(walker), o)) {}
+Soak::~Soak() = default;
+std::size_t Soak::numClosedBrushes() const { return impl_->numClosedBrushes(); }
+std::uint64_t Soak::numItems() const { return impl_->numItems(); }
+void Soak::runItem(std::uint64_t item, QueryWork& work, ItemTally& tally, std::vector<Case>& cases) const {
+  impl_->runItem(item, work, tally, cases);
+}
+std::string Soak::replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const {
+  return impl_->replay(s, from, to, work);
+}
+
+}  // namespace cmkit::cli

@@ -1,0 +1,120 @@
+// soak.h: the engine of `cmkit soak` (random sweeps of every trace-model
+// kind and a player-like walker through the world model, every end checked
+// with a position test and every embedded end classified; docs/reliability.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cmkit/query.h"
+
+namespace cmkit::cli {
+
+/// Example cases printed per class unless --examples says otherwise.
+inline constexpr std::size_t kExamplesDefault = 3;
+
+inline const char* const kDefaultTrms[] = {
+    "point",
+    "box:-16,-16,0,16,16,72",
+    "cylinder:8:-16,-16,0,16,16,72",
+    "cone:6:-12,-12,0,12,12,40",
+    "octahedron:-16,-16,-16,16,16,16",
+    "dodecahedron:-16,-16,-16,16,16,16",
+    "bone:48,12",
+    "polygon:-16,-16,0;16,-16,0;16,16,0;-16,16,0",
+    "polygonvolume:8:-16,-16,8;16,-16,8;16,16,8;-16,16,8",
+};
+inline constexpr const char* kWalkerTrm = "box:-16,-16,0,16,16,72";
+
+/// What a check found. The first two must never happen (exit 1).
+enum class Finding : std::uint8_t {
+  NonFinite,       // a result with a nan or inf
+  FractionRange,   // fraction outside [0, 1]
+  BrushFace,       // (a) end in a brush with a face that has no polygon
+  PatchBehind,     // (b) end overlaps only polygons, one crossed from behind
+  Grazing,         // (c) the move is edge-on to the plane it must leave by
+  Precision,       // (d) penetration <= kPrecisionDepth
+  ClosedBrush,     // (e) end in a closed brush the move started outside of
+  OtherPolygon,    // end overlaps only polygons, none crossed from behind
+  WalkerEmbedded,  // a walker step ended in solid
+  WalkerStuck,     // a walker made no progress for kStuckSteps steps
+  Count
+};
+inline constexpr std::size_t kNumFindings = std::size_t(Finding::Count);
+inline const char* const kFindingNames[kNumFindings] = {
+    "non-finite", "fraction-range", "brush-face",    "patch-behind",    "grazing",
+    "precision",  "closed-brush",   "other-polygon", "walker-embedded", "walker-stuck"};
+inline const char* const kFindingMeaning[kNumFindings] = {
+    "a result with nan or inf (must not happen)",
+    "fraction outside [0,1] (must not happen)",
+    "(a) end in a brush; a face the move crossed has no polygon",
+    "(b) end overlaps only polygons; the move crossed one from behind (one-sided)",
+    "(c) the move is edge-on to the plane it must leave the brush by",
+    "(d) penetration <= 0.01 units",
+    "(e) end in a brush whose faces the move crossed all have polygons",
+    "end overlaps only polygons, none crossed from behind",
+    "walker step ended in solid",
+    "walker made no progress",
+};
+
+struct SoakOptions {
+  std::string map;
+  std::string materials;
+  std::vector<std::string> trms;
+  std::vector<std::string> failOn;
+  std::uint64_t sweeps = 100000;
+  std::uint64_t walkerSteps = 10000;
+  std::uint64_t seed = 1;
+  int threads = 1;
+  std::uint32_t mask = contents::kMaskPlayerSolid;
+  std::size_t examples = kExamplesDefault;
+  std::string replay;
+};
+
+struct Shape {
+  std::string spec;
+  TraceModel trm;
+  const TraceModel* query() const { return trm.isPoint() ? nullptr : &trm; }
+};
+
+/// A finding of one item, with the query lines that show it.
+struct Case {
+  std::uint64_t item = 0;
+  Finding finding = Finding::NonFinite;
+  std::string lines;
+};
+
+/// What one item (a sweep or a walker) did.
+struct ItemTally {
+  std::uint64_t sweeps = 0, noStart = 0, hits = 0, walkerSteps = 0, respawns = 0;
+  std::array<std::uint64_t, kNumFindings> counts{};
+};
+
+/// Runs the items of a soak (sweeps, then walkers); const after set-up, so
+/// any number of threads may run items at once, each with its own QueryWork.
+class Soak {
+ public:
+  Soak(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o);
+  ~Soak();
+  Soak(const Soak&) = delete;
+  Soak& operator=(const Soak&) = delete;
+
+  /// Brushes every face of which has a polygon.
+  std::size_t numClosedBrushes() const;
+  /// Item i < sweeps is sweep i; after them come the walkers.
+  std::uint64_t numItems() const;
+  /// Runs item `item` with its own seeded random generator.
+  void runItem(std::uint64_t item, QueryWork& work, ItemTally& tally, std::vector<Case>& cases) const;
+  /// Runs one translation and names what its end is: "free", or the class
+  /// of the finding (the --replay of a pasted query line).
+  std::string replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cmkit::cli
