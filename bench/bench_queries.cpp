@@ -113,10 +113,9 @@ void runKind(benchmark::State& state, Lt4Scene& scene, Kind kind) {
     return;
   }
   cmkit::QueryWork work;
-  std::vector<cmkit::ContactInfo> out;
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(cmkit::runParsedQueryUnformatted(scene.models, *queries[i], work, out));
+    benchmark::DoNotOptimize(cmkit::runParsedQueryUnformatted(scene.models, *queries[i], work));
     if (++i == queries.size()) i = 0;
   }
   state.SetItemsProcessed(state.iterations());

@@ -282,8 +282,7 @@ ContactsQuery contactsQuery(const ParsedQuery& q) {
 
 }  // namespace
 
-double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work,
-                                 std::vector<ContactInfo>& contactsOut) {
+double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work) {
   const CollisionModel& m = *models[q.model];
   const TraceModel* trm = q.trm ? &*q.trm : nullptr;
   switch (q.op) {
@@ -295,8 +294,7 @@ double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQ
     case QueryOp::Contents:
       return contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work).contents;
     case QueryOp::Contacts:
-      contactsOut = contacts(m, contactsQuery(q), work).contacts;
-      return double(contactsOut.size());
+      return double(contacts(m, contactsQuery(q), work).contacts.size());
     case QueryOp::Rotation:
       return rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work)
           .fraction;

@@ -93,15 +93,17 @@ std::string_view CmCursor::expectWord(std::string_view what) {
   return text_.substr(start, pos_ - start);
 }
 
+bool CmCursor::readMinus() {
+  if (pos_ >= text_.size() || text_[pos_] != '-') return false;
+  ++pos_;
+  while (pos_ < text_.size() && isBlank(text_[pos_])) ++pos_;  // "- 5" is -5 to the original
+  return true;
+}
+
 std::int64_t CmCursor::expectInt(std::string_view what, std::int64_t lo, std::int64_t hi) {
   skipSpace();
   const std::size_t start = pos_;
-  bool negative = false;
-  if (pos_ < text_.size() && text_[pos_] == '-') {
-    negative = true;
-    ++pos_;
-    while (pos_ < text_.size() && isBlank(text_[pos_])) ++pos_;  // "- 5" is -5 to the original
-  }
+  const bool negative = readMinus();
   const std::size_t digits = pos_;
   std::int64_t value = 0;
   bool overflow = false;
@@ -128,12 +130,7 @@ std::int64_t CmCursor::expectInt(std::string_view what, std::int64_t lo, std::in
 float CmCursor::expectFloat(std::string_view what) {
   skipSpace();
   const std::size_t start = pos_;
-  bool negative = false;
-  if (pos_ < text_.size() && text_[pos_] == '-') {
-    negative = true;
-    ++pos_;
-    while (pos_ < text_.size() && isBlank(text_[pos_])) ++pos_;
-  }
+  const bool negative = readMinus();
   const std::size_t numStart = pos_;
   const std::size_t n = text_.size();
   while (pos_ < n && isDigit(text_[pos_])) ++pos_;

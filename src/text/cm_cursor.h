@@ -49,6 +49,8 @@ class CmCursor : public TextCursor {
   [[noreturn]] void fail(std::string message);
 
  private:
+  /// Consumes a leading '-' and the blanks after it; true when there was one.
+  bool readMinus();
   std::string describeNext();
 };
 

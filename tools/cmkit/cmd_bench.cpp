@@ -12,6 +12,7 @@
 
 #include "bench_report.h"
 #include "cmkit/tools/query_format.h"
+#include "cmkit/tools/text_file.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "option_checks.h"
@@ -34,6 +35,7 @@ struct BenchOptions {
   std::string origin;
   std::string suite;
   int repeat = 1;
+  bool json = false;
   bool noRotation = false;
   SpeedTestOptions test;
 };
@@ -94,26 +96,104 @@ bool runAndPrintSpeedTest(const CollisionModel& model, const TraceModel& trm, co
 
 namespace {
 
-/// The model source of NAME.queries.txt in DIR: DIR/../maps/*/NAME.map, else
-/// DIR/../maps/rbdoom-unittests/NAME.cm; empty when there is none.
+/// The model source of NAME.queries.txt in DIR, as the reference results
+/// were made: DIR/../maps/rbdoom-unittests/NAME.cm when it exists (those
+/// queries ran on the .cm files), else DIR/../maps/*/NAME.map; empty when
+/// there is none.
 std::string suiteModelSource(const fs::path& dir, const std::string& name) {
   const fs::path maps = dir / ".." / "maps";
+  const fs::path cm = maps / "rbdoom-unittests" / (name + ".cm");
   std::error_code ec;
+  if (fs::is_regular_file(cm, ec)) return cm.lexically_normal().string();
   std::vector<fs::path> candidates;
   for (const auto& entry : fs::directory_iterator(maps, ec))
-    if (entry.is_directory() && fs::exists(entry.path() / (name + ".map")))
+    if (entry.is_directory() && fs::exists(entry.path() / (name + ".map"), ec))
       candidates.push_back(entry.path());
   std::sort(candidates.begin(), candidates.end());
   if (!candidates.empty()) return (candidates.front() / (name + ".map")).lexically_normal().string();
-  const fs::path cm = maps / "rbdoom-unittests" / (name + ".cm");
-  if (fs::exists(cm)) return cm.lexically_normal().string();
   return {};
 }
 
 struct KindTime {
   double ns = 0;
-  std::size_t count = 0;
+  std::size_t count = 0;  ///< queries timed (lines x passes)
+  std::size_t lines = 0;  ///< query lines of this kind
 };
+
+/// One row of the suite: a reference file's times per kind, or why it was skipped.
+struct SuiteRow {
+  std::string name;
+  std::string skipped;
+  std::map<QueryOp, KindTime> kinds;
+};
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\')
+      out += {'\\', c};
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out += fmt::format("\\u{:04x}", int(c));
+    else
+      out += c;
+  }
+  return out + "\"";
+}
+
+std::string jsonKinds(const std::map<QueryOp, KindTime>& kinds) {
+  std::string out = "{";
+  for (QueryOp op : kSuiteOps) {
+    const auto it = kinds.find(op);
+    if (it == kinds.end() || !it->second.count) continue;
+    if (out.size() > 1) out += ", ";
+    out += fmt::format("\"{}\": {{\"ns\": {:.1f}, \"queries\": {}}}", toString(op),
+                       it->second.ns / double(it->second.count), it->second.lines);
+  }
+  return out + "}";
+}
+
+void printSuiteText(const std::vector<SuiteRow>& rows, const SuiteRow& all, int repeat) {
+  fmt::print("ns/query per kind (parsed once, results not formatted; {} pass{}, 1 thread; (n) = queries)\n",
+             repeat, repeat == 1 ? "" : "es");
+  fmt::print("{:<36}", "file");
+  for (QueryOp op : kSuiteOps) fmt::print(" {:>20}", toString(op));
+  fmt::print("\n");
+  for (const SuiteRow* row : [&] {
+         std::vector<const SuiteRow*> r;
+         for (const SuiteRow& x : rows) r.push_back(&x);
+         r.push_back(&all);
+         return r;
+       }()) {
+    if (!row->skipped.empty()) {
+      fmt::print("{:<36} (skipped: {})\n", row->name, row->skipped);
+      continue;
+    }
+    fmt::print("{:<36}", row->name);
+    for (QueryOp op : kSuiteOps) {
+      const auto it = row->kinds.find(op);
+      const bool has = it != row->kinds.end() && it->second.count;
+      fmt::print(
+          " {:>20}",
+          has ? fmt::format("{:.0f} ({})", it->second.ns / double(it->second.count), it->second.lines) : "-");
+    }
+    fmt::print("\n");
+  }
+}
+
+void printSuiteJson(const std::vector<SuiteRow>& rows, const SuiteRow& all, int repeat) {
+  fmt::print("{{\n  \"unit\": \"ns per query\",\n  \"passes\": {},\n  \"threads\": 1,\n  \"files\": [\n",
+             repeat);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const SuiteRow& r = rows[i];
+    fmt::print("    {{\"name\": {}, ", jsonString(r.name));
+    if (!r.skipped.empty())
+      fmt::print("\"skipped\": {}}}", jsonString(r.skipped));
+    else
+      fmt::print("\"kinds\": {}}}", jsonKinds(r.kinds));
+    fmt::print("{}\n", i + 1 < rows.size() ? "," : "");
+  }
+  fmt::print("  ],\n  \"all\": {}\n}}\n", jsonKinds(all.kinds));
+}
 
 int runSuite(const BenchOptions& o) {
   const fs::path dir(o.suite);
@@ -130,59 +210,57 @@ int runSuite(const BenchOptions& o) {
     return kExitBadInput;
   }
   std::sort(files.begin(), files.end());
-  fmt::print("ns/query per kind (parsed once, results not formatted; {} pass{}, 1 thread; (n) = queries)\n",
-             o.repeat, o.repeat == 1 ? "" : "es");
-  fmt::print("{:<36}", "file");
-  for (QueryOp op : kSuiteOps) fmt::print(" {:>20}", toString(op));
-  fmt::print("\n");
-  std::map<QueryOp, KindTime> total;
+  std::vector<SuiteRow> rows;
+  SuiteRow all{"all files", {}, {}};
   QueryWork work;
-  std::vector<ContactInfo> contactsOut;
   double sink = 0;
   for (const fs::path& file : files) {
     const std::string fname = file.filename().string();
-    const std::string name = fname.substr(0, fname.size() - suffix.size());
-    const std::string source = suiteModelSource(dir, name);
+    SuiteRow& row = rows.emplace_back();
+    row.name = fname.substr(0, fname.size() - suffix.size());
+    const std::string source = suiteModelSource(dir, row.name);
     if (source.empty()) {
-      fmt::print("{:<36} (skipped: no model source)\n", name);
+      row.skipped = "no model source";
       continue;
     }
     auto models = loadModelsForCli(source, o.materials);
     if (!models) {
-      fmt::print("{:<36} (skipped: {})\n", name, models.error().toString());
+      row.skipped = models.error().toString();
       continue;
     }
-    std::ifstream in(file, std::ios::binary);
+    const Result<std::string> text = readTextFile(file.string());
+    if (!text) {
+      row.skipped = text.error().toString();
+      continue;
+    }
     std::map<QueryOp, std::vector<ParsedQuery>> byKind;
-    for (std::string line; std::getline(in, line);) {
+    for (std::size_t pos = 0; pos < text->size();) {
+      const std::size_t nl = std::min(text->find('\n', pos), text->size());
+      const std::string_view line = std::string_view(*text).substr(pos, nl - pos);
+      pos = nl + 1;
       if (!isQueryLine(line)) continue;
       auto parsed = parseQueryLine(*models, line);
       if (parsed) byKind[parsed->op].push_back(std::move(*parsed));
     }
-    fmt::print("{:<36}", name);
     for (QueryOp op : kSuiteOps) {
       const auto& queries = byKind[op];
-      if (queries.empty()) {
-        fmt::print(" {:>20}", "-");
-        continue;
-      }
+      if (queries.empty()) continue;
       const auto t0 = Clock::now();
       for (int pass = 0; pass < o.repeat; ++pass)
-        for (const ParsedQuery& q : queries) sink += runParsedQueryUnformatted(*models, q, work, contactsOut);
+        for (const ParsedQuery& q : queries) sink += runParsedQueryUnformatted(*models, q, work);
       const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
       const std::size_t n = queries.size() * std::size_t(o.repeat);
-      total[op].ns += ns;
-      total[op].count += n;
-      fmt::print(" {:>20}", fmt::format("{:.0f} ({})", ns / double(n), queries.size()));
+      row.kinds[op] = {ns, n, queries.size()};
+      KindTime& t = all.kinds[op];
+      t.ns += ns;
+      t.count += n;
+      t.lines += queries.size() * std::size_t(o.repeat);
     }
-    fmt::print("\n");
   }
-  fmt::print("{:<36}", "all files");
-  for (QueryOp op : kSuiteOps) {
-    const KindTime& t = total[op];
-    fmt::print(" {:>20}", t.count ? fmt::format("{:.0f} ({})", t.ns / double(t.count), t.count) : "-");
-  }
-  fmt::print("\n");
+  if (o.json)
+    printSuiteJson(rows, all, o.repeat);
+  else
+    printSuiteText(rows, all, o.repeat);
   if (sink == -1) fmt::print("\n");  // keeps the results alive
   return 0;
 }
@@ -233,13 +311,16 @@ void registerBench(CLI::App& app) {
       "results, which is the same at any --threads. --rays also casts the moves as rays through\n"
       "a RayIndex (cmkit's fast ray casts: the first surface crossed, not the original's point\n"
       "trace).\n\n"
-      "--suite DIR times every NAME.queries.txt of DIR (e.g. shared/reference) against its map\n"
-      "(DIR/../maps/*/NAME.map or DIR/../maps/rbdoom-unittests/NAME.cm): ns/query per kind.\n\n"
+      "--suite DIR times every NAME.queries.txt of DIR (files of queries in the query format) against\n"
+      "its models (DIR/../maps/rbdoom-unittests/NAME.cm, else DIR/../maps/*/NAME.map): each file is\n"
+      "parsed once and run --repeat times on 1 thread; it prints ns/query per kind and file, or JSON\n"
+      "with --json. bench/compare.sh OLD_COMMIT compares these tables of two builds in one run.\n\n"
       "Examples:\n"
       "  cmkit bench data/maps/lt4/lt4.map\n"
       "  cmkit bench data/maps/lt4/lt4.map --threads 2 --walk\n"
       "  cmkit bench data/maps/lt4/lt4.map --rays --no-rotation\n"
-      "  cmkit bench --suite ../shared/reference");
+      "  cmkit bench --suite ../shared/reference --repeat 20\n"
+      "  cmkit bench --suite ../shared/reference --json");
   cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file; the first model is tested");
   cmd->add_option("--trm", o->trm, "trace model (query-format syntax)")->capture_default_str();
   cmd->add_option("--origin", o->origin, "start of the moves x,y,z (default: centre of the model's bounds)")
@@ -268,6 +349,7 @@ void registerBench(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat, "suite: passes over each file")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  cmd->add_flag("--json", o->json, "suite: print the times as JSON (for scripts) instead of the table");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   cmd->callback([o] {
     if (int rc = runBench(*o); rc != 0) std::exit(rc);

@@ -50,9 +50,8 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
 
 /// Runs a parsed query without formatting its result (what benchmarks time).
 /// Returns the fraction (translation, rotation), the contents (contents,
-/// pointcontents) or the number of contacts (found into `contactsOut`).
-double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work,
-                                 std::vector<ContactInfo>& contactsOut);
+/// pointcontents) or the number of contacts.
+double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work);
 
 /// True for lines that hold a query (not blank, not a # comment).
 bool isQueryLine(std::string_view line);
