@@ -1,4 +1,4 @@
-// build.h: building collision models from a parsed map (the original's
+// compile.h: building collision models from a parsed map (the original's
 // map -> collision model pipeline).
 #pragma once
 

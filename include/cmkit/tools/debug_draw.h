@@ -4,7 +4,7 @@
 // CONTRACT
 // - The library never depends on a renderer: drawModel() and drawTrace()
 //   walk the geometry and call a DebugDraw that the caller implements (a
-//   recorder, the software rasteriser of debug_picture.h, the glTF/OBJ
+//   recorder, the software rasteriser of picture.h, the glTF/OBJ
 //   writers of debug_export.h, an engine's debug renderer...).
 // - Everything handed to a DebugDraw is in WORLD space (the model's
 //   placement applied), in map units.

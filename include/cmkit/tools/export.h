@@ -1,4 +1,4 @@
-// debug_export.h: collision models and traces as glTF 2.0 (.gltf with an
+// export.h: collision models and traces as glTF 2.0 (.gltf with an
 // embedded base64 buffer, or binary .glb) and Wavefront OBJ (+ .mtl), for
 // looking at them in any 3D viewer (and cmkit's web viewer, viewer/).
 //

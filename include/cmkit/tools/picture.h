@@ -1,4 +1,4 @@
-// debug_picture.h: pictures of collision models and traces, rendered in
+// picture.h: pictures of collision models and traces, rendered in
 // software (a z-buffered rasteriser behind the DebugDraw interface) and
 // written as PNG.
 //
