@@ -137,8 +137,9 @@ int runDemo(const DemoOptions& o) {
       "contact point, orange contact normal).\n\n");
   fmt::print(
       "What the numbers mean: each line is {} queries of one kind. 'total' is the time spent in\n"
-      "the queries, min/avg/max the time of one query (the original engine took about 5.1 us per\n"
-      "box translation and 13.6 us per rotation on lt4-like maps; docs/performance.md compares).\n"
+      "the queries, min/avg/max the time of one query. Speed against the original or another\n"
+      "build is only meaningful when both ran on this machine in one run: docs/performance.md\n"
+      "says how (bench/compare.sh), with figures and the commands that produced them.\n"
       "'hits' counts the moves stopped by a surface (fraction < 1; the box stops 0.25 units\n"
       "short of it). 'hash' is a fingerprint of every result bit: the same on any thread count,\n"
       "so the threaded run computed exactly the same answers (its speed-up needs idle cores;\n"
