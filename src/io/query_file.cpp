@@ -222,6 +222,7 @@ ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
   else
     throw LineError{"unknown operation '" + std::string(op) + "'"};
   q.trm = parseTrm(f);
+  q.trmSpec = std::string(*f.get("trm"));
   q.position = parseVec(f.require("start"), "start");
   if (auto a = f.get("trmaxis")) q.trmAxis = parseAxis(*a, "trmaxis");
   q.contentMask = parseMask(f);

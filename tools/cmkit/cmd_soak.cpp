@@ -47,10 +47,7 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
       ++bad;
       continue;
     }
-    const std::size_t at = line.find("trm=");
-    const std::string spec(
-        at == std::string_view::npos ? "point" : line.substr(at + 4, line.find_first_of(" \t", at) - at - 4));
-    Shape shape{spec, q->trm ? *q->trm : TraceModel::point()};
+    Shape shape{q->trmSpec, q->trm ? *q->trm : TraceModel::point()};
     SoakOptions one = o;
     one.mask = q->contentMask;
     const Soak soak(*models.front(), {}, shape, one);

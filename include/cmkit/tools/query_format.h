@@ -30,6 +30,7 @@ const char* toString(QueryOp op);
 struct ParsedQuery {
   QueryOp op = QueryOp::Translation;
   std::optional<TraceModel> trm;  ///< empty: a point
+  std::string trmSpec;            ///< the trm= field as written (e.g. "box:-16,-16,0,16,16,72")
   Mat3 trmAxis;
   Vec3 position;         ///< start (pos for pointcontents)
   Vec3 end;              ///< translation
