@@ -9,6 +9,7 @@
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "cmkit/model.h"
+#include "cmkit/proc_file.h"
 #include "cmkit/result.h"
 
 namespace cmkit {
@@ -21,6 +22,12 @@ struct BuildOptions {
   /// Warnings (skipped degenerate brushes, truncated polygons, ...) are
   /// appended here when not null.
   std::vector<std::string>* warnings = nullptr;
+  /// The renderer's BSP of the map's .proc file (loadProcFileForMap), or
+  /// null. When set and usable, the world model (the first model built)
+  /// drops every solid polygon winding lying entirely in its opaque solid
+  /// leaves, as the original does (cm-algorithms.md section 3.7); the count
+  /// is ModelStats::procPolygonsRemoved. Must outlive the call.
+  const ProcBsp* procBsp = nullptr;
 };
 
 /// Builds one collision model per entity that owns primitives, in entity

@@ -15,8 +15,10 @@ CollisionModel ModelBuilder::build() {
   // The axial BSP tree over the brushes (more than 4 of them), before any polygon.
   createBSPTreeForBrushes();
   prepareVertexHash();
-  // Brush sides and patches -> polygons: chopped by the brushes, vertices
-  // welded, edges shared, each filtered into the tree.
+  // Brush sides and patches -> polygons: (world model with a .proc only)
+  // windings in solid leaves of the .proc BSP dropped (choppedAwayByProcBsp,
+  // proc_prune.cpp), chopped by the brushes, vertices welded, edges shared,
+  // each filtered into the tree.
   convertPrimitivesToPolygons(brushPrims);
   mergePolygons();
   markInternalEdges();
@@ -47,7 +49,10 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
       } else {
         name = models.empty() ? "worldMap" : "unnamed inline model";
       }
-      detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings);
+      // The .proc BSP prunes the world model only: the original frees it
+      // once the first model is built.
+      const ProcBsp* proc = models.empty() ? options.procBsp : nullptr;
+      detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings, proc);
       models.push_back(std::make_shared<const CollisionModel>(builder.build()));
     }
     if (options.progress) options.progress(i + 1, total);
