@@ -2,6 +2,7 @@
 // and the steps that build one (ModelBuilder::build).
 #include "cmkit/compile.h"
 
+#include "cmkit/cm_file.h"
 #include "compile/builder.h"
 
 namespace cmkit {
@@ -58,6 +59,30 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
     if (options.progress) options.progress(i + 1, total);
   }
   return models;
+}
+
+Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex, const std::string& path,
+                                       const MaterialTable& materials, const EntityModelOptions& options) {
+  if (entityIndex >= map.entities.size())
+    return Error("no entity #" + std::to_string(entityIndex) + ": the map has " +
+                     std::to_string(map.entities.size()) + " entities",
+                 map.fileName);
+  const MapEntity& entity = map.entities[entityIndex];
+  if (entity.primitives.empty()) {
+    const auto name = entity.value("name");
+    return Error("entity #" + std::to_string(entityIndex) + (name ? " \"" + std::string(*name) + "\"" : "") +
+                     " has no brushes or patches: it has no collision model",
+                 map.fileName, entity.line);
+  }
+  detail::MaterialCache cache(materials);
+  detail::ModelBuilder builder(entity, path, cache, options.warnings);
+  const ModelPtr model = std::make_shared<const CollisionModel>(builder.build());
+  if (options.report) {
+    options.report->model = model;
+    options.report->traceModel.reset();
+    if (options.testTraceModel) options.report->traceModel = traceModelFromCollisionModel(*model);
+  }
+  return saveCmFile(path, std::span<const ModelPtr>(&model, 1), 0);
 }
 
 }  // namespace cmkit

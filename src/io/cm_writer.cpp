@@ -1,8 +1,11 @@
 // Writing .cm files (the original's WriteCollisionModelsToFile): the exact
 // text the original writes, see cm_file.h.
+#include <atomic>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
@@ -243,11 +246,35 @@ std::string writeCmText(std::span<const ModelPtr> models, std::uint32_t crc, con
 Status saveCmFile(const std::string& path, std::span<const ModelPtr> models, std::uint32_t crc,
                   const CmWriteOptions& options) {
   const std::string text = writeCmText(models, crc, options);
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    // Not a file (/dev/null, a pipe): written in place, never replaced.
+    std::ofstream out(path, std::ios::binary);
+    if (!out) return Error("cannot open for writing", path);
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    return out ? Status(Ok{}) : Status(Error("cannot write", path));
+  }
+  // Written beside the target and renamed over it: a failed write leaves
+  // any earlier file as it was and no partial file behind.
+  static std::atomic<unsigned> serial{0};
+  const std::string tmp = path + ".tmp-" +
+                          std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000) +
+                          "-" + std::to_string(serial++);
+  std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
   if (!f) return Error("cannot create the file", path);
   f.write(text.data(), std::streamsize(text.size()));
   f.close();
-  if (!f) return Error("cannot write the file", path);
+  if (!f) {
+    std::filesystem::remove(tmp, ec);
+    return Error("cannot write the file", path);
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    return Error("cannot replace the file (" + ec.message() + ")", path);
+  }
   return Ok{};
 }
 
