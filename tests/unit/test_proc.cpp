@@ -232,4 +232,32 @@ TEST(ProcPruning, AMalformedProcBesideTheMapIsAnErrorOfTheLoad) {
   fs::remove_all(dir);
 }
 
+TEST(ProcPruning, CliSaysWhetherTheProcWasUsed) {
+  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
+  const std::string cli = CMKIT_CLI_PATH;
+  const std::string map = (procData() / "box_room_proc.map").string();
+  int status = 0;
+  std::string out = test::runCapture(cli + " info -q '" + map + "' 2>&1", status);
+  EXPECT_EQ(status, 0);
+  EXPECT_NE(out.find("proc BSP used for pruning: yes"), std::string::npos) << out;
+  EXPECT_NE(out.find("pruned with box_room_proc.proc: 43 polygons dropped"), std::string::npos) << out;
+  out = test::runCapture(cli + " info -q --no-proc '" + map + "' 2>&1", status);
+  EXPECT_EQ(status, 0);
+  EXPECT_NE(out.find("proc BSP used for pruning: no"), std::string::npos) << out;
+  EXPECT_NE(out.find("box_room_proc.proc ignored (--no-proc)"), std::string::npos) << out;
+  // query: the note on stderr only, stdout holds the result lines
+  const fs::path queries = fs::temp_directory_path() / "cmkit_proc_cli_queries.txt";
+  {
+    std::ofstream f(queries);
+    f << "pointcontents pos=0,0,-8\n";
+  }
+  out = test::runCapture(cli + " query '" + map + "' '" + queries.string() + "' 2>/dev/null", status);
+  EXPECT_EQ(status, 0);
+  EXPECT_EQ(out.find("pruned"), std::string::npos) << out;
+  EXPECT_EQ(out.rfind("contents=", 0), 0u) << out;
+  out = test::runCapture(cli + " query '" + map + "' '" + queries.string() + "' 2>&1 >/dev/null", status);
+  EXPECT_NE(out.find("pruned with box_room_proc.proc"), std::string::npos) << out;
+  fs::remove(queries);
+}
+
 }  // namespace
