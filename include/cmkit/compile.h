@@ -3,13 +3,16 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "cmkit/model.h"
+#include "cmkit/proc_file.h"
 #include "cmkit/result.h"
+#include "cmkit/trace_model.h"
 
 namespace cmkit {
 
@@ -21,6 +24,12 @@ struct BuildOptions {
   /// Warnings (skipped degenerate brushes, truncated polygons, ...) are
   /// appended here when not null.
   std::vector<std::string>* warnings = nullptr;
+  /// The renderer's BSP of the map's .proc file (loadProcFileForMap), or
+  /// null. When set and usable, the world model (the first model built)
+  /// drops every solid polygon winding lying entirely in its opaque solid
+  /// leaves, as the original does (cm-algorithms.md section 3.7); the count
+  /// is ModelStats::procPolygonsRemoved. Must outlive the call.
+  const ProcBsp* procBsp = nullptr;
 };
 
 /// Builds one collision model per entity that owns primitives, in entity
@@ -29,5 +38,38 @@ struct BuildOptions {
 /// others), each in its entity's local frame.
 Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
                                                    const BuildOptions& options = {});
+
+/// What writeCollisionModelForMapEntity made, for callers that want more
+/// than the file.
+struct EntityModelReport {
+  ModelPtr model;  ///< the model written
+  /// With EntityModelOptions::testTraceModel: the model as a trace model, or
+  /// the Error saying why it cannot be one (not convex, not closed, too many
+  /// vertices, edges or polygons; see traceModelFromCollisionModel). That is
+  /// a finding, not a failure of the write.
+  std::optional<Result<TraceModel>> traceModel;
+};
+
+/// Options of writeCollisionModelForMapEntity.
+struct EntityModelOptions {
+  /// Also convert the model to a trace model (the original's TrmFromModel).
+  bool testTraceModel = false;
+  /// Build warnings are appended here when not null.
+  std::vector<std::string>* warnings = nullptr;
+  /// Filled in when not null (also when the write fails after the build).
+  EntityModelReport* report = nullptr;
+};
+
+/// The original's WriteCollisionModelForMapEntity: builds the collision
+/// model of map.entities[entityIndex] alone (in its local frame; no .proc
+/// pruning, which the original only applies while loading a whole map),
+/// names it `path` exactly as given (the original names the model after the
+/// file it writes), and writes a .cm holding only that model with CRC 0.
+/// Errors: no such entity, an entity without brushes or patches, a file that
+/// cannot be written. Nothing is written on error (the text goes to a
+/// temporary file beside `path` that is then renamed).
+Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex, const std::string& path,
+                                       const MaterialTable& materials,
+                                       const EntityModelOptions& options = {});
 
 }  // namespace cmkit

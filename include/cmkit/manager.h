@@ -51,6 +51,10 @@ struct LoadMapOptions {
   /// After building, write NAME.cm next to the map, as the original does
   /// (off by default: a library should not write files unasked).
   bool writeCmFile = false;
+  /// Read NAME.proc beside the map when it exists and prune the world model
+  /// with its BSP, as the original does (ignored when build.procBsp is set).
+  /// A malformed .proc is an error.
+  bool useProcFile = true;
   /// Passed to buildCollisionModels.
   BuildOptions build;
 };
@@ -61,6 +65,8 @@ struct LoadMapResult {
   bool fromCmFile = false;           ///< true: NAME.cm was loaded instead of building
   std::string cmPath;                ///< the .cm file loaded or written, if any
   std::uint32_t geometryCrc = 0;     ///< the map's geometry CRC
+  std::string procPath;              ///< the .proc that pruned the world model; empty: none
+  int procPolygonsRemoved = 0;       ///< world windings it dropped
 };
 
 /// One line of ModelManager::list.
@@ -80,7 +86,8 @@ class ModelManager {
 
   /// Loads a map's models, replacing every model of the manager: NAME.cm
   /// next to the map when its CRC equals the map's geometry CRC (or is 0)
-  /// and options.forceRebuild is off, else built with buildCollisionModels.
+  /// and options.forceRebuild is off, else built with buildCollisionModels
+  /// (the world model pruned with NAME.proc when present, see useProcFile).
   /// On error the manager is unchanged.
   Result<LoadMapResult> loadMap(const std::string& mapPath, const MaterialTable& materials,
                                 const LoadMapOptions& options = {});

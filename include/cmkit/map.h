@@ -95,6 +95,11 @@ struct MapFile {
   std::vector<MapEntity> entities;
   /// The geometry CRC (line 3 of the .cm files written for this map).
   std::uint32_t geometryCrc = 0;
+
+  /// The index of an entity: "#N" for entity N (0 is the worldspawn), else
+  /// the first entity whose "name" key is exactly `nameOrIndex`. An Error
+  /// naming it when there is none.
+  Result<std::size_t> findEntity(std::string_view nameOrIndex) const;
 };
 
 /// Parses map text. `fileName` is used in error messages.

@@ -90,6 +90,9 @@ struct ModelStats {
   int sharpEdges = 0;
   int containedPolygonsRemoved = 0;
   int polygonsMerged = 0;
+  /// Of containedPolygonsRemoved: the windings dropped because they lie in
+  /// solid leaves of the .proc BSP (BuildOptions::procBsp; world model only).
+  int procPolygonsRemoved = 0;
 };
 
 /// A collision model. Build it with buildCollisionModels (compile.h) or read it with loadCmFile (cm_file.h);

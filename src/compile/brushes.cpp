@@ -40,8 +40,12 @@ Winding sideWinding(const std::vector<Plane>& planes, std::size_t side) {
 }  // namespace
 
 ModelBuilder::ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
-                           std::vector<std::string>* warnings)
-    : entity_(entity), name_(std::move(name)), materials_(materials), warnings_(warnings) {}
+                           std::vector<std::string>* warnings, const ProcBsp* proc)
+    : entity_(entity),
+      name_(std::move(name)),
+      materials_(materials),
+      warnings_(warnings),
+      proc_(proc && proc->usable() ? proc : nullptr) {}
 
 void ModelBuilder::warn(const std::string& message) {
   if (!warnings_) return;

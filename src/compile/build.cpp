@@ -2,6 +2,7 @@
 // and the steps that build one (ModelBuilder::build).
 #include "cmkit/compile.h"
 
+#include "cmkit/cm_file.h"
 #include "compile/builder.h"
 
 namespace cmkit {
@@ -15,8 +16,10 @@ CollisionModel ModelBuilder::build() {
   // The axial BSP tree over the brushes (more than 4 of them), before any polygon.
   createBSPTreeForBrushes();
   prepareVertexHash();
-  // Brush sides and patches -> polygons: chopped by the brushes, vertices
-  // welded, edges shared, each filtered into the tree.
+  // Brush sides and patches -> polygons: (world model with a .proc only)
+  // windings in solid leaves of the .proc BSP dropped (choppedAwayByProcBsp,
+  // proc_prune.cpp), chopped by the brushes, vertices welded, edges shared,
+  // each filtered into the tree.
   convertPrimitivesToPolygons(brushPrims);
   mergePolygons();
   markInternalEdges();
@@ -47,12 +50,39 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
       } else {
         name = models.empty() ? "worldMap" : "unnamed inline model";
       }
-      detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings);
+      // The .proc BSP prunes the world model only: the original frees it
+      // once the first model is built.
+      const ProcBsp* proc = models.empty() ? options.procBsp : nullptr;
+      detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings, proc);
       models.push_back(std::make_shared<const CollisionModel>(builder.build()));
     }
     if (options.progress) options.progress(i + 1, total);
   }
   return models;
+}
+
+Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex, const std::string& path,
+                                       const MaterialTable& materials, const EntityModelOptions& options) {
+  if (entityIndex >= map.entities.size())
+    return Error("no entity #" + std::to_string(entityIndex) + ": the map has " +
+                     std::to_string(map.entities.size()) + " entities",
+                 map.fileName);
+  const MapEntity& entity = map.entities[entityIndex];
+  if (entity.primitives.empty()) {
+    const auto name = entity.value("name");
+    return Error("entity #" + std::to_string(entityIndex) + (name ? " \"" + std::string(*name) + "\"" : "") +
+                     " has no brushes or patches: it has no collision model",
+                 map.fileName, entity.line);
+  }
+  detail::MaterialCache cache(materials);
+  detail::ModelBuilder builder(entity, path, cache, options.warnings);
+  const ModelPtr model = std::make_shared<const CollisionModel>(builder.build());
+  if (options.report) {
+    options.report->model = model;
+    options.report->traceModel.reset();
+    if (options.testTraceModel) options.report->traceModel = traceModelFromCollisionModel(*model);
+  }
+  return saveCmFile(path, std::span<const ModelPtr>(&model, 1), 0);
 }
 
 }  // namespace cmkit

@@ -116,13 +116,16 @@ struct BuildCounters {
   int numInternalEdges = 0;
   int numRemovedPolys = 0;
   int numMergedPolys = 0;
+  int numProcRemovedPolys = 0;  ///< of numRemovedPolys: in solid leaves of the .proc BSP
 };
 
 /// Builds one collision model from one map entity.
 class ModelBuilder {
  public:
+  /// `proc`: the .proc BSP that prunes this model's windings (the world
+  /// model's only), or null.
   ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
-               std::vector<std::string>* warnings);
+               std::vector<std::string>* warnings, const ProcBsp* proc = nullptr);
   /// Runs the whole pipeline (the list of steps) and returns the flattened model.
   CollisionModel build();
 
@@ -158,6 +161,11 @@ class ModelBuilder {
                                        int primitiveNum);
   void chopWindingListWithTreeBrushes(int node);
   bool chopWindingListWithBrush(const BBrush& b);
+
+  // ---- proc_prune.cpp
+  /// True when a solid winding lies entirely in opaque solid leaves of the
+  /// .proc BSP (the original's ChoppedAwayByProcBSP); false without one.
+  bool choppedAwayByProcBsp(const Winding& w, const Plane& plane, std::uint32_t contents) const;
 
   // ---- bsp.cpp
   /// The axial BSP tree, only for models with more than a few brushes.
@@ -278,6 +286,7 @@ class ModelBuilder {
   std::string name_;
   MaterialCache& materials_;
   std::vector<std::string>* warnings_;
+  const ProcBsp* proc_ = nullptr;  ///< usable, or null
   struct WarningSlot {
     std::size_t index;  ///< of its line in *warnings_
     int count;          ///< how often this model gave it

@@ -27,9 +27,18 @@ const Winding* ModelBuilder::windingOutsideBrushes(const Winding& w, const Plane
 
   if (list.numWindings == 0) return nullptr;
   if (list.numWindings == 1) return &list.w[0];
-  // Several fragments: without a proc BSP to remove some of them the
-  // original keeps the whole winding.
-  return &w;
+  // Several fragments: the world model keeps the one fragment the .proc BSP
+  // does not chop away; otherwise (no .proc, not the world, or more than one
+  // left) the whole winding. When every fragment would be chopped away the
+  // whole winding stays too (the spec leaves that case open; the winding as
+  // a whole was not chopped away).
+  const Winding* left = nullptr;
+  for (std::size_t k = 0; k < list.numWindings; ++k) {
+    if (choppedAwayByProcBsp(list.w[k], plane, contents)) continue;
+    if (left) return &w;
+    left = &list.w[k];
+  }
+  return left ? left : &w;
 }
 
 void ModelBuilder::chopWindingListWithTreeBrushes(int nodeNum) {

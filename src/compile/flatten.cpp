@@ -145,6 +145,7 @@ void ModelBuilder::finishModel(CollisionModel& model) const {
   model.stats.sharpEdges = computeEdgeNormals(model);
   model.stats.internalEdges = counters_.numInternalEdges;
   model.stats.containedPolygonsRemoved = counters_.numRemovedPolys;
+  model.stats.procPolygonsRemoved = counters_.numProcRemovedPolys;
   model.stats.polygonsMerged = counters_.numMergedPolys;
 }
 

@@ -199,6 +199,11 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
 
 void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum) {
   const MaterialInfo& info = materials_[material].info;
+  if (choppedAwayByProcBsp(w, plane, info.contents)) {
+    counters_.numRemovedPolys++;  // in solid leaves of the .proc BSP (world model only)
+    counters_.numProcRemovedPolys++;
+    return;
+  }
   const Winding* out = windingOutsideBrushes(w, plane, info.contents, primitiveNum);
   if (!out) {
     counters_.numRemovedPolys++;  // fully inside brushes

@@ -1,10 +1,12 @@
 // Writing .cm files (the original's WriteCollisionModelsToFile): the exact
 // text the original writes, see cm_file.h.
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <new>
+#include <thread>
 
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
@@ -252,13 +254,34 @@ Status saveCmFile(const std::string& path, std::span<const ModelPtr> models, std
   }
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return Error("is a directory, not a file", path);
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    // Not a file (/dev/null, a pipe): written in place, never replaced.
+    std::ofstream out(path, std::ios::binary);
+    if (!out) return Error("cannot open for writing", path);
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    return out ? Status(Ok{}) : Status(Error("cannot write", path));
+  }
+  // Written beside the target and renamed over it: a failed write leaves
+  // any earlier file as it was and no partial file behind.
+  // The temporary name is unique among concurrent calls of this process (the
+  // thread and this call's stack frame), with no shared counter.
+  const std::string tmp = path + ".tmp-" +
+                          std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000) +
+                          "-" + std::to_string(reinterpret_cast<std::uintptr_t>(&text) % 1000000);
+  std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
   if (!f) return Error("cannot create the file", path);
   f.write(text.data(), std::streamsize(text.size()));
   f.close();
   if (!f) {
-    std::filesystem::remove(path, ec);  // no partial file left behind
+    std::filesystem::remove(tmp, ec);
     return Error("cannot write the file", path);
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    return Error("cannot replace the file (" + ec.message() + ")", path);
   }
   return Ok{};
 }

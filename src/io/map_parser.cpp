@@ -361,6 +361,26 @@ Mat3 MapEntity::axis() const {
   return yaw == 0 ? Mat3::identity() : Mat3::fromAngles(0, yaw, 0);
 }
 
+Result<std::size_t> MapFile::findEntity(std::string_view nameOrIndex) const {
+  if (nameOrIndex.starts_with('#')) {
+    const std::optional<long long> n = detail::parseInt(nameOrIndex.substr(1));
+    if (!n || *n < 0)
+      return Error("bad entity number \"" + std::string(nameOrIndex) + "\" (expected #N, N >= 0)", fileName);
+    if (std::size_t(*n) >= entities.size())
+      return Error("no entity " + std::string(nameOrIndex) + ": the map has " +
+                       std::to_string(entities.size()) + " entities, numbered from #0",
+                   fileName);
+    return std::size_t(*n);
+  }
+  for (std::size_t i = 0; i < entities.size(); ++i) {
+    const auto name = entities[i].value("name");
+    if (name && *name == nameOrIndex) return i;
+  }
+  return Error(
+      "no entity named \"" + std::string(nameOrIndex) + "\" (use a \"name\" value, or #N for entity N)",
+      fileName);
+}
+
 Result<MapFile> parseMapText(std::string_view text, std::string fileName) {
   try {
     Parser parser(text);

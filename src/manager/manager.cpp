@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <mutex>
 #include <new>
+#include <optional>
 
 #include "cmkit/cm_file.h"
 
@@ -66,8 +67,20 @@ Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const Ma
       }
     }
     if (!result.fromCmFile) {
-      Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, options.build);
+      // NAME.proc prunes the world model, as in the original (unless the
+      // caller gave a BSP or turned it off).
+      BuildOptions build = options.build;
+      std::optional<ProcBsp> proc;
+      if (!build.procBsp && options.useProcFile) {
+        Result<std::optional<ProcBsp>> loaded = loadProcFileForMap(mapPath, build.warnings);
+        if (!loaded) return loaded.error();
+        proc = std::move(*loaded);
+        if (proc && proc->usable()) build.procBsp = &*proc;
+      }
+      if (build.procBsp && build.procBsp->usable()) result.procPath = build.procBsp->fileName;
+      Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, build);
       if (!built) return built.error();
+      if (!built->empty()) result.procPolygonsRemoved = built->front()->stats.procPolygonsRemoved;
       models = std::move(*built);
       if (options.writeCmFile) {
         Status saved = saveCmFile(cmPath, models, map->geometryCrc);

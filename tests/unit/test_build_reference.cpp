@@ -85,36 +85,46 @@ std::map<std::string, long long> counts(const CollisionModel& m) {
           {"polygons merged", m.stats.polygonsMerged}};
 }
 
-/// Maps that have a stats file, with the path of their .map.
-std::vector<std::pair<std::string, fs::path>> mapsWithStats() {
-  std::vector<std::pair<std::string, fs::path>> out;
+/// A map with a stats file: its reference folder ("reference", or
+/// "reference-proc" for maps built with the .proc beside them), name and .map.
+struct RefMap {
+  std::string dir;
+  std::string name;
+  fs::path path;
+};
+
+/// Maps that have a stats file in either reference folder.
+std::vector<RefMap> mapsWithStats() {
+  std::vector<RefMap> out;
   std::map<std::string, fs::path> maps;
   for (const auto& e : fs::recursive_directory_iterator(sharedDir() / "maps")) {
     if (e.is_regular_file() && e.path().extension() == ".map") maps[e.path().stem().string()] = e.path();
   }
-  for (const auto& e : fs::directory_iterator(sharedDir() / "reference")) {
-    const std::string f = e.path().filename().string();
-    const std::string suffix = ".stats.txt";
-    if (f.size() <= suffix.size() || f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    const std::string name = f.substr(0, f.size() - suffix.size());
-    if (maps.count(name)) out.emplace_back(name, maps[name]);
+  for (const std::string dir : {"reference", "reference-proc"}) {
+    for (const auto& e : fs::directory_iterator(sharedDir() / dir)) {
+      const std::string f = e.path().filename().string();
+      const std::string suffix = ".stats.txt";
+      if (f.size() <= suffix.size() || f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0)
+        continue;
+      const std::string name = f.substr(0, f.size() - suffix.size());
+      if (maps.count(name)) out.push_back({dir, name, maps[name]});
+    }
   }
-  std::sort(out.begin(), out.end());
+  std::sort(out.begin(), out.end(), [](const RefMap& a, const RefMap& b) { return a.name < b.name; });
   return out;
 }
 
 TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
   CMKIT_REQUIRE_SHARED();
   const auto maps = mapsWithStats();
-  ASSERT_GE(maps.size(), 15u);
-  for (const auto& [name, path] : maps) {
+  ASSERT_GE(maps.size(), 17u);
+  for (const auto& [dir, name, path] : maps) {
     SCOPED_TRACE(name);
     auto map = loadMapFile(path.string());
     ASSERT_TRUE(map.ok()) << map.error().toString();
-    auto models = buildCollisionModels(*map, MaterialTable{});
-    ASSERT_TRUE(models.ok());
-    const auto ref = parseStats(sharedDir() / "reference" / (name + ".stats.txt"));
+    auto models = test::buildAsLoaded(*map, path);  // with the .proc beside the map
+    ASSERT_TRUE(models.ok()) << models.error().toString();
+    const auto ref = parseStats(sharedDir() / dir / (name + ".stats.txt"));
     ASSERT_EQ(models->size(), ref.size());
     int mismatches = 0;
     for (std::size_t i = 0; i < ref.size() && mismatches < 10; ++i) {
@@ -139,14 +149,14 @@ TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
 TEST(BuildReference, WrittenCmFilesAreByteIdenticalToTheOriginals) {
   CMKIT_REQUIRE_SHARED();
   int compared = 0;
-  for (const auto& [name, path] : mapsWithStats()) {
-    const fs::path refCm = sharedDir() / "reference" / (name + ".cm");
+  for (const auto& [dir, name, path] : mapsWithStats()) {
+    const fs::path refCm = sharedDir() / dir / (name + ".cm");
     if (!fs::exists(refCm)) continue;
     SCOPED_TRACE(name);
     auto map = loadMapFile(path.string());
     ASSERT_TRUE(map.ok()) << map.error().toString();
-    auto models = buildCollisionModels(*map, MaterialTable{});
-    ASSERT_TRUE(models.ok());
+    auto models = test::buildAsLoaded(*map, path);
+    ASSERT_TRUE(models.ok()) << models.error().toString();
     const std::string mine = writeCmText(*models, map->geometryCrc);
     const std::string ref = cmkit::test::readFile(refCm);
     if (mine != ref) {
@@ -167,7 +177,7 @@ TEST(BuildReference, WrittenCmFilesAreByteIdenticalToTheOriginals) {
     }
     ++compared;
   }
-  EXPECT_GE(compared, 15);
+  EXPECT_GE(compared, 17);
 }
 
 /// The text without the timing line (msec differ).
@@ -188,19 +198,20 @@ std::string withoutTiming(const std::string& text) {
 TEST(BuildReference, CliReportEqualsTheOriginalsText) {
   CMKIT_REQUIRE_SHARED();
   CMKIT_REQUIRE_CLI();
-  for (const std::string name : {"test", "box_room", "altar", "inline_patch", "water_clip", "portalsky"}) {
+  for (const std::string name : {"test", "box_room", "altar", "inline_patch", "water_clip", "portalsky",
+                                 "box_room_proc", "inline_patch_proc"}) {
     SCOPED_TRACE(name);
-    fs::path mapPath;
-    for (const auto& [n, p] : mapsWithStats()) {
-      if (n == name) mapPath = p;
+    RefMap ref;
+    for (const RefMap& m : mapsWithStats()) {
+      if (m.name == name) ref = m;
     }
-    ASSERT_FALSE(mapPath.empty());
+    ASSERT_FALSE(ref.path.empty());
     int status = 0;
-    const std::string out =
-        test::runCapture(std::string(CMKIT_CLI_PATH) + " info '" + mapPath.string() + "'", status);
+    const std::string out = test::runCapture(
+        std::string(CMKIT_CLI_PATH) + " info '" + ref.path.string() + "' 2>/dev/null", status);
     EXPECT_EQ(status, 0);
     EXPECT_EQ(withoutTiming(out),
-              withoutTiming(cmkit::test::readFile(sharedDir() / "reference" / (name + ".stats.txt"))));
+              withoutTiming(cmkit::test::readFile(sharedDir() / ref.dir / (name + ".stats.txt"))));
   }
 }
 

@@ -121,7 +121,12 @@ std::vector<ModelPtr> referenceModels(const std::string& name) {
 TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
   CMKIT_REQUIRE_SHARED();
   std::map<std::string, Tally> total;
-  for (const auto& entry : fs::directory_iterator(test::sharedDir() / "reference")) {
+  // reference-proc: maps with a .proc beside them, built with it (referenceModels)
+  std::vector<std::pair<std::string, fs::directory_entry>> queryFiles;
+  for (const char* dir : {"reference", "reference-proc"})
+    for (const auto& entry : fs::directory_iterator(test::sharedDir() / dir))
+      queryFiles.emplace_back(dir, entry);
+  for (const auto& [refDir, entry] : queryFiles) {
     const std::string file = entry.path().filename().string();
     if (file.size() < 12 || file.substr(file.size() - 12) != ".queries.txt") continue;
     const std::string name = file.substr(0, file.size() - 12);
@@ -129,7 +134,7 @@ TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
     const std::vector<ModelPtr> models = referenceModels(name);
     ASSERT_FALSE(models.empty());
     std::istringstream queries(test::readFile(entry.path()));
-    std::istringstream results(test::readFile(test::sharedDir() / "reference" / (name + ".results.txt")));
+    std::istringstream results(test::readFile(test::sharedDir() / refDir / (name + ".results.txt")));
     QueryWork work;
     std::map<std::string, Tally> tally;
     for (std::string q; std::getline(queries, q);) {

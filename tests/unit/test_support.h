@@ -14,6 +14,7 @@
 
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
+#include "cmkit/proc_file.h"
 #include "io/fields.h"
 
 namespace cmkit::test {
@@ -58,13 +59,24 @@ inline std::string runCapture(const std::string& command, int& exitCode) {
   return out;
 }
 
-/// Loads a .map and builds its models (no materials: the built-in rules).
-/// A failure is a test failure and gives no models.
+/// Builds the models of a parsed map as the original's LoadMap does (no
+/// materials: the built-in rules): the world pruned with NAME.proc when it
+/// lies beside `path`.
+inline Result<std::vector<ModelPtr>> buildAsLoaded(const MapFile& map, const std::filesystem::path& path) {
+  auto proc = loadProcFileForMap(path.string());
+  if (!proc) return proc.error();
+  BuildOptions options;
+  if (proc->has_value()) options.procBsp = &**proc;
+  return buildCollisionModels(map, MaterialTable{}, options);
+}
+
+/// Loads a .map and builds its models (buildAsLoaded). A failure is a test
+/// failure and gives no models.
 inline std::vector<ModelPtr> buildMapModels(const std::filesystem::path& path) {
   auto map = loadMapFile(path.string());
   EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
   if (!map.ok()) return {};
-  auto models = buildCollisionModels(*map, MaterialTable{});
+  auto models = buildAsLoaded(*map, path);
   EXPECT_TRUE(models.ok()) << (models.ok() ? "" : models.error().toString());
   return models.ok() ? *models : std::vector<ModelPtr>{};
 }

@@ -31,6 +31,7 @@ constexpr std::array<QueryOp, 5> kSuiteOps = {QueryOp::Translation, QueryOp::Rot
 struct BenchOptions {
   std::string models;
   std::string materials;
+  bool noProc = false;  ///< --no-proc
   std::string trm = kSpeedTestDefaultTrm;
   std::string origin;
   std::string suite;
@@ -223,7 +224,7 @@ int runSuite(const BenchOptions& o) {
       row.skipped = "no model source";
       continue;
     }
-    auto models = loadModelsForCli(source, o.materials);
+    auto models = loadModelsForCli(source, o.materials, o.noProc);
     if (!models) {
       row.skipped = models.error().toString();
       continue;
@@ -271,7 +272,7 @@ int runBench(const BenchOptions& o) {
     fmt::print(stderr, "cmkit bench: give MODELS (a .map or .cm file) or --suite DIR\n");
     return kExitBadInput;
   }
-  auto models = loadModelsForCli(o.models, o.materials);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
   if (!models) {
     fmt::print(stderr, "cmkit bench: {}\n", models.error().toString());
     return kExitBadInput;
@@ -351,6 +352,7 @@ void registerBench(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--json", o->json, "suite: print the times as JSON (for scripts) instead of the table");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
+  addNoProcFlag(cmd, o->noProc);
   cmd->callback([o] {
     if (int rc = runBench(*o); rc != 0) std::exit(rc);
   });

@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "map_build.h"
+#include "model_loading.h"
 
 namespace cmkit::cli {
 
@@ -16,6 +17,15 @@ void registerCompile(CLI::App& app) {
       "references, internal and sharp edges, polygons removed inside brushes, polygons\n"
       "merged, memory. With -o the models are written as a .cm file (the original's\n"
       "CM \"1.00\" text format, with the map's geometry CRC).\n\n"
+      "With NAME.proc beside NAME.map (the renderer's BSP a map compiler writes), world\n"
+      "polygons lying entirely in its solid leaves are dropped, as the original does; a\n"
+      "line on stderr says so (\"pruned with NAME.proc: N polygons dropped\" or \"no .proc\n"
+      "beside NAME.map\"). --no-proc ignores it.\n\n"
+      "--entity NAME writes one entity's model alone (the original's\n"
+      "WriteCollisionModelForMapEntity): NAME is the entity's \"name\" value or #N for\n"
+      "entity N (#0 = worldspawn); the model is named after the -o file, written with CRC 0\n"
+      "and never pruned by a .proc. --test-trm also converts it to a trace model and prints\n"
+      "it, or why it cannot be one (not convex, too many vertices/edges/polygons, ...).\n\n"
       "Materials decide which brush sides and patches collide (and how): by default the\n"
       "rules of docs/materials (textures/common/clip is player/monster/moveable clip,\n"
       "names containing \"water\" are water, ...); --materials DIR reads the .mtr files\n"
@@ -23,8 +33,10 @@ void registerCompile(CLI::App& app) {
       "Examples:\n"
       "  cmkit compile maps/lt4.map                  statistics only\n"
       "  cmkit compile maps/lt4.map -o maps/lt4.cm   write the .cm as well\n"
-      "  cmkit compile level.map --materials base/materials --json > stats.json\n\n"
-      "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message).");
+      "  cmkit compile level.map --materials base/materials --json > stats.json\n"
+      "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n\n"
+      "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message), an\n"
+      "unknown --entity or one without brushes or patches.");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "compile";
   cmd->add_option("MAP", req->mapPath, "the .map file")->required();
@@ -33,6 +45,10 @@ void registerCompile(CLI::App& app) {
                   "directory of .mtr material files (searched recursively)");
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");
   cmd->add_flag("-q,--quiet", req->quiet, "print only the totals, not every model");
+  addNoProcFlag(cmd, req->noProc);
+  cmd->add_option("--entity", req->entity,
+                  "write only this entity's model to -o: its \"name\" value, or #N for entity N");
+  cmd->add_flag("--test-trm", req->testTrm, "with --entity: convert the model to a trace model and report");
   cmd->callback([req] {
     const int rc = runMapBuild(*req);
     if (rc != 0) std::exit(rc);

@@ -15,6 +15,7 @@ struct ExportCliOptions {
   std::string queries;
   std::string results;
   std::string materials;
+  bool noProc = false;  ///< --no-proc
   std::string mask;
   bool noEdges = false;
   bool noInternalEdges = false;
@@ -32,7 +33,7 @@ int runExport(const ExportCliOptions& o) {
     }
     e.contentMask = *mask;
   }
-  auto models = loadModelsForCli(o.models, o.materials);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
   if (!models) {
     fmt::print(stderr, "cmkit export: {}\n", models.error().toString());
     return kExitBadInput;
@@ -76,6 +77,7 @@ void registerExport(CLI::App& app) {
   cmd->add_flag("--no-edges", o->noEdges, "leave out polygon edges");
   cmd->add_flag("--no-internal-edges", o->noInternalEdges, "leave out internal edges");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
+  addNoProcFlag(cmd, o->noProc);
   cmd->callback([o] {
     if (int rc = runExport(*o); rc != 0) std::exit(rc);
   });

@@ -21,7 +21,8 @@ void registerInfo(CLI::App& app) {
                          "for a .map, the models are built as by 'cmkit compile' (per model: bounds,\n"
                          "contents, vertices, edges, polygons, brushes, nodes, references, internal and\n"
                          "sharp edges, contained polygons removed, polygons merged, memory); a .cm\n"
-                         "file is loaded instead.\n\n"
+                         "file is loaded instead. NAME.proc beside a .map prunes the world model as\n"
+                         "in the original (--no-proc: not).\n\n"
                          "Examples:\n"
                          "  cmkit info maps/lt4.map\n"
                          "  cmkit info maps/lt4.map --quiet          totals only\n"
@@ -35,6 +36,7 @@ void registerInfo(CLI::App& app) {
                   "directory of .mtr material files (searched recursively)");
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");
   cmd->add_flag("-q,--quiet", req->quiet, "print only the totals, not every model");
+  addNoProcFlag(cmd, req->noProc);
   cmd->callback([req] {
     if (req->mapPath.size() > 3 && req->mapPath.ends_with(".cm")) {  // a .cm file: load, no build
       const auto start = std::chrono::steady_clock::now();

@@ -25,6 +25,7 @@ struct RenderOptions {
   std::string queries;
   std::string results;
   std::string materials;
+  bool noProc = false;  ///< --no-proc
   std::string mask;
   bool noWireframe = false;
   bool internalEdges = false;
@@ -57,7 +58,7 @@ int runRender(const RenderOptions& o) {
     }
     p.contentMask = *mask;
   }
-  auto models = loadModelsForCli(o.models, o.materials);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
   if (!models) {
     fmt::print(stderr, "cmkit render: {}\n", models.error().toString());
     return kExitBadInput;
@@ -111,6 +112,7 @@ void registerRender(CLI::App& app) {
       ->check(finiteNumber())
       ->each([o](const std::string&) { o->haveCut = true; });
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
+  addNoProcFlag(cmd, o->noProc);
   cmd->callback([o] {
     if (int rc = runRender(*o); rc != 0) std::exit(rc);
   });

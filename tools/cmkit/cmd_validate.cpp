@@ -29,12 +29,14 @@ void registerValidate(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto materialsDir = std::make_shared<std::string>();
   auto maxPerModel = std::make_shared<std::size_t>(100);
+  auto noProc = std::make_shared<bool>(false);
   cmd->add_option("FILE", *path, "the .cm or .map file")->required();
   cmd->add_option("--materials", *materialsDir, "directory of .mtr material files (searched recursively)");
   cmd->add_option("--max", *maxPerModel, "report at most this many violations per model")
       ->capture_default_str();
-  cmd->callback([path, materialsDir, maxPerModel] {
-    Result<std::vector<ModelPtr>> models = loadModelsForCli(*path, *materialsDir);
+  addNoProcFlag(cmd, *noProc);
+  cmd->callback([path, materialsDir, maxPerModel, noProc] {
+    Result<std::vector<ModelPtr>> models = loadModelsForCli(*path, *materialsDir, *noProc);
     if (!models) {
       fmt::print(stderr, "cmkit validate: {}\n", models.error().toString());
       std::exit(kExitBadInput);

@@ -50,6 +50,7 @@ struct ViewOptions {
   std::string queries;
   std::string results;
   std::string materials;
+  bool noProc = false;  ///< --no-proc
   std::string viewerDir;
   int port = kDefaultPort;
   double exitAfter = 0;
@@ -187,7 +188,7 @@ int runView(const ViewOptions& o) {
                viewerDir.string());
     return kExitBadInput;
   }
-  auto models = loadModelsForCli(o.models, o.materials);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
   if (!models) {
     fmt::print(stderr, "cmkit view: {}\n", models.error().toString());
     return kExitBadInput;
@@ -289,6 +290,7 @@ void registerView(CLI::App& app) {
   cmd->add_option("--exit-after", o->exitAfter, "stop serving after this many seconds (0: never)")
       ->check(finiteAtLeast(0));
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
+  addNoProcFlag(cmd, o->noProc);
   cmd->callback([o] {
     if (int rc = runView(*o); rc != 0) std::exit(rc);
   });

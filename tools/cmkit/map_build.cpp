@@ -13,6 +13,7 @@
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "commands.h"
+#include "model_loading.h"
 #include "progress_bar.h"
 #include "stats_print.h"
 
@@ -22,6 +23,51 @@ namespace {
 
 /// Maps at least this large (bytes) get a progress bar on a terminal.
 constexpr std::uintmax_t kProgressMinFileSize = 1u << 20;
+
+}  // namespace
+
+namespace {
+
+/// `compile MAP --entity NAME -o FILE.cm [--test-trm]`.
+int runEntityWrite(const MapBuildRequest& request, const MapFile& map, const MaterialTable& materials) {
+  const std::string& cmd = request.command;
+  if (request.outPath.empty()) {
+    fmt::print(stderr, "cmkit {}: --entity needs -o FILE.cm (the file the model is written to)\n", cmd);
+    return kExitBadInput;
+  }
+  const Result<std::size_t> index = map.findEntity(request.entity);
+  if (!index) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, index.error().toString());
+    return kExitBadInput;
+  }
+  std::vector<std::string> warnings;
+  EntityModelReport report;
+  EntityModelOptions options;
+  options.testTraceModel = request.testTrm;
+  options.warnings = &warnings;
+  options.report = &report;
+  const Status written = writeCollisionModelForMapEntity(map, *index, request.outPath, materials, options);
+  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
+  if (!written) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, written.error().toString());
+    return kExitBadInput;
+  }
+  const CollisionModel& m = *report.model;
+  fmt::print("entity #{}: model \"{}\": {} vertices, {} edges, {} polygons, {} brushes\n", *index, m.name,
+             m.vertices.size(), m.numEdges(), m.polygons.size(), m.brushes.size());
+  fmt::print("wrote {} (1 model, CRC 0)\n", request.outPath);
+  if (report.traceModel) {
+    if (*report.traceModel) {
+      const TraceModel& trm = report.traceModel->value();
+      fmt::print("trace model: {} vertices, {} edges, {} polygons\n", trm.numVertices(), trm.numEdges(),
+                 trm.numPolygons());
+      fmt::print("{}", trm.describe());
+    } else {
+      fmt::print("not a trace model: {}\n", report.traceModel->error().message);
+    }
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -43,12 +89,21 @@ int runMapBuild(const MapBuildRequest& request) {
     return kExitBadInput;
   }
 
+  if (!request.entity.empty()) return runEntityWrite(request, *map, materials);
+
+  std::vector<std::string> warnings;
+  const Result<ProcForCli> proc = loadProcForCli(request.mapPath, request.noProc, &warnings);
+  if (!proc) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, proc.error().toString());
+    return kExitBadInput;
+  }
+
   std::error_code ec;
   const std::uintmax_t fileSize = std::filesystem::file_size(request.mapPath, ec);
   ProgressBar bar(!request.json && isatty(fileno(stderr)) && !ec && fileSize >= kProgressMinFileSize);
-  std::vector<std::string> warnings;
   BuildOptions options;
   options.warnings = &warnings;
+  if (proc->bsp) options.procBsp = &*proc->bsp;
   options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   auto models = buildCollisionModels(*map, materials, options);
   bar.finish();
@@ -58,6 +113,7 @@ int runMapBuild(const MapBuildRequest& request) {
   }
   const auto elapsed = std::chrono::steady_clock::now() - start;
   for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
+  fmt::print(stderr, "{}\n", procNote(*proc, request.mapPath, *models));
 
   if (!request.outPath.empty()) {
     if (const Status st = saveCmFile(request.outPath, *models, map->geometryCrc); !st) {
@@ -71,6 +127,7 @@ int runMapBuild(const MapBuildRequest& request) {
   context.milliseconds = std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count();
   context.entities = static_cast<long long>(map->entities.size());
   context.perModel = !request.quiet;
+  if (proc->bsp) context.procFile = proc->path;
   if (request.json) {
     fmt::print("{}", statsJson(*models, context));
   } else {

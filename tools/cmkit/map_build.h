@@ -14,11 +14,17 @@ struct MapBuildRequest {
   bool json = false;         ///< statistics as JSON instead of text
   bool quiet = false;        ///< no per-model statistics (totals only)
   std::string command;       ///< for messages ("compile", "info")
+  bool noProc = false;       ///< ignore NAME.proc beside the map
+  std::string entity;        ///< compile only this entity ("name" value or #N); needs outPath
+  bool testTrm = false;      ///< with `entity`: also convert the model to a trace model
 };
 
-/// Builds every model of the map, reports the statistics on stdout and
-/// warnings on stderr, writes the .cm when asked. Returns the exit code
-/// (0, or kExitBadInput for unreadable or malformed input).
+/// Builds every model of the map (the world pruned with NAME.proc unless
+/// noProc; one line on stderr says which), reports the statistics on stdout
+/// and warnings on stderr, writes the .cm when asked. With `entity`: only
+/// that entity's model, written to outPath (writeCollisionModelForMapEntity).
+/// Returns the exit code (0, or kExitBadInput for unreadable or malformed
+/// input, an unknown entity or one without primitives).
 int runMapBuild(const MapBuildRequest& request);
 
 }  // namespace cmkit::cli

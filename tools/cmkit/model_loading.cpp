@@ -1,12 +1,52 @@
 #include "model_loading.h"
 
+#include <fmt/core.h>
+
+#include <filesystem>
+
 #include "cmkit/cm_file.h"
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 
 namespace cmkit::cli {
 
-Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir) {
+void addNoProcFlag(CLI::App* cmd, bool& noProc) {
+  cmd->add_flag("--no-proc", noProc,
+                "ignore NAME.proc beside a .map (by default its BSP drops world polygons lying\n"
+                "entirely in solid space, as the original does)");
+}
+
+Result<ProcForCli> loadProcForCli(const std::string& mapPath, bool noProc,
+                                  std::vector<std::string>* warnings) {
+  ProcForCli out;
+  out.path = procPathForMap(mapPath);
+  std::error_code ec;
+  out.present = std::filesystem::is_regular_file(out.path, ec);
+  if (!out.present) return out;
+  if (noProc) {
+    out.ignored = true;
+    return out;
+  }
+  Result<ProcBsp> bsp = loadProcFile(out.path, warnings);
+  if (!bsp) return bsp.error();
+  if (bsp->usable()) out.bsp = std::move(*bsp);
+  return out;
+}
+
+std::string procNote(const ProcForCli& proc, const std::string& mapPath,
+                     const std::vector<ModelPtr>& models) {
+  const std::string procName = std::filesystem::path(proc.path).filename().string();
+  if (proc.bsp) {
+    const int dropped = models.empty() ? 0 : models.front()->stats.procPolygonsRemoved;
+    return fmt::format("pruned with {}: {} polygon{} dropped", procName, dropped, dropped == 1 ? "" : "s");
+  }
+  if (proc.ignored) return fmt::format("{} ignored (--no-proc)", procName);
+  if (proc.present) return fmt::format("{} not used (no BSP nodes in it)", procName);
+  return fmt::format("no .proc beside {}", std::filesystem::path(mapPath).filename().string());
+}
+
+Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
+                                               bool noProc) {
   MaterialTable materials;
   if (!materialsDir.empty()) {
     if (Status s = materials.addMtrDirectory(materialsDir); !s) return s.error();
@@ -23,7 +63,15 @@ Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const st
   if (endsWith(".map")) {
     auto map = loadMapFile(path);
     if (!map) return map.error();
-    return buildCollisionModels(*map, materials);
+    std::vector<std::string> warnings;
+    auto proc = loadProcForCli(path, noProc, &warnings);
+    for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+    if (!proc) return proc.error();
+    BuildOptions options;
+    if (proc->bsp) options.procBsp = &*proc->bsp;
+    auto models = buildCollisionModels(*map, materials, options);
+    if (models) fmt::print(stderr, "{}\n", procNote(*proc, path, *models));
+    return models;
   }
   return Error{"expected a .map or .cm file", path};
 }

@@ -149,7 +149,7 @@ void printStatsText(std::FILE* out, std::span<const ModelPtr> models, const Stat
   fmt::print(out, "{:6} models\n", models.size());
   printCounts(out, total);
   if (context.milliseconds >= 0) fmt::print(out, "{} msec to build collision data.\n", context.milliseconds);
-  fmt::print(out, "proc BSP used for pruning: no\n");
+  fmt::print(out, "proc BSP used for pruning: {}\n", context.procFile.empty() ? "no" : "yes");
   if (context.entities >= 0) fmt::print(out, "entities: {}\n", context.entities);
   if (!context.perModel) return;
   int index = 0;
@@ -179,6 +179,10 @@ std::string statsJson(std::span<const ModelPtr> models, const StatsContext& cont
   s += fmt::format("  \"source\": {},\n", jsonString(context.source));
   if (context.milliseconds >= 0) s += fmt::format("  \"milliseconds\": {},\n", context.milliseconds);
   if (context.entities >= 0) s += fmt::format("  \"entities\": {},\n", context.entities);
+  if (!context.procFile.empty()) {
+    s += fmt::format("  \"proc\": {{\"file\": {}, \"polygonsDropped\": {}}},\n", jsonString(context.procFile),
+                     models.empty() ? 0 : models.front()->stats.procPolygonsRemoved);
+  }
   s += fmt::format("  \"total\": {{\"models\": {}, {}}},\n", models.size(), countsJson(total));
   s += "  \"models\": [\n" + modelsJson + (modelsJson.empty() ? "" : "\n") + "  ]\n}\n";
   return s;
