@@ -51,7 +51,8 @@ struct RotVertex {
 /// the per-polygon culls test them all in one branch-free loop
 /// (boxesCrossing, boxesTouching).
 struct FeatureBoxes {
-  std::array<Real, 32> minX, minY, minZ, maxX, maxY, maxZ;
+  // Zeroed once: the SIMD test reads whole groups of four, past the features in use.
+  alignas(16) std::array<Real, 32> minX{}, minY{}, minZ{}, maxX{}, maxY{}, maxZ{};
   void set(std::size_t i, const Bounds& b) {
     minX[i] = b.min.x, minY[i] = b.min.y, minZ[i] = b.min.z;
     maxX[i] = b.max.x, maxY[i] = b.max.y, maxZ[i] = b.max.z;
@@ -62,8 +63,8 @@ struct FeatureBoxes {
 /// Bit i (i < n): box i touches `bounds` (Bounds::intersects) and straddles
 /// `plane` (Bounds::planeSide(plane) == Side::Cross, the same arithmetic).
 std::uint32_t boxesCrossing(const FeatureBoxes& boxes, int n, const Bounds& bounds, const Plane& plane);
-/// Bit i (i < n): box i touches `bounds`.
-std::uint32_t boxesTouching(const FeatureBoxes& boxes, int n, const Bounds& bounds);
+/// Of the boxes whose bits are set in `candidates`, those touching `bounds`.
+std::uint32_t boxesTouching(const FeatureBoxes& boxes, std::uint32_t candidates, const Bounds& bounds);
 
 /// Rotation data of a trace-model edge.
 struct RotEdge {
