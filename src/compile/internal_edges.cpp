@@ -46,6 +46,12 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
   const BPolygon& p1 = polygon(p1Num);
   const BPolygon& p2 = polygon(p2Num);
   if (!p2.bounds.intersects(p1.bounds)) return;
+  // Robust edges: a parallel polygon (an overlapping copy of a face, or a
+  // face touching it back to back) marks no edge of p1 that it does not
+  // share. The original marks them (the facing test below gives 0 there),
+  // so both copies of a corner edge where two brushes overlap with coplanar
+  // faces get hidden.
+  const bool parallel = std::fabs(p1.plane.normal.dot(p2.plane.normal)) > tol::kRobustEdgeParallelDot;
   for (const int edgeNum : p1.edges) {
     BEdge& e = edge(edgeNum);
     if (e.internal) continue;
@@ -69,6 +75,7 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
       if (e.numUsers > 2) continue;          // would need all users tested
       if (edgeNum == p2.edges[j]) continue;  // same direction: overlapping polygons
     } else {
+      if (robustEdges_ && parallel) continue;
       // both vertices on the other polygon's plane
       if (std::fabs(p2.plane.distance(v1)) > tol::kVertexEpsilon) continue;
       if (std::fabs(p2.plane.distance(v2)) > tol::kVertexEpsilon) continue;
