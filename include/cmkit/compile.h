@@ -44,7 +44,10 @@ struct BuildOptions {
   /// both copies get marked and a trace-model edge passes through the
   /// corner. With this set, an edge is marked internal only by a polygon
   /// that is not parallel to its own (a concave crease, or an edge lying on
-  /// a face that meets its polygon at an angle). See docs/reliability.md.
+  /// a face that meets its polygon at an angle), and an edge shared by
+  /// polygons of different contents (a solid face and a clip face) is never
+  /// marked: the rule decides within one contents group, but the flag hides
+  /// the edge from every user. See docs/reliability.md.
   bool robustEdges = false;
 };
 

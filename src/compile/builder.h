@@ -290,6 +290,9 @@ class ModelBuilder {
   std::vector<std::string>* warnings_;
   const ProcBsp* proc_ = nullptr;  ///< usable, or null
   bool robustEdges_ = false;       ///< see setRobustEdges
+  /// Robust edges: per edge, 1 when the live polygons using it differ in
+  /// contents (a solid face and a clip face sharing a corner).
+  std::vector<std::uint8_t> mixedContentsEdge_;
   struct WarningSlot {
     std::size_t index;  ///< of its line in *warnings_
     int count;          ///< how often this model gave it

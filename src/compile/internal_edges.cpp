@@ -9,6 +9,21 @@
 namespace cmkit::detail {
 
 void ModelBuilder::markInternalEdges() {
+  if (robustEdges_) {
+    // An edge is one object for all its users; the rule below decides it
+    // within one contents group, so an edge that a clip face marks internal
+    // would be hidden from the solid face sharing it as well.
+    std::vector<std::uint32_t> firstContents(edges_.size(), 0);
+    mixedContentsEdge_.assign(edges_.size(), 0);
+    for (const BPolygon& p : polygons_) {
+      if (p.freed) continue;
+      for (const int e : p.edges) {
+        std::uint32_t& first = firstContents[static_cast<std::size_t>(std::abs(e))];
+        if (first == 0) first = p.contents;
+        if (first != p.contents) mixedContentsEdge_[static_cast<std::size_t>(std::abs(e))] = 1;
+      }
+    }
+  }
   ++checkCount_;
   findInternalEdges(0);
 }
@@ -55,6 +70,7 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
   for (const int edgeNum : p1.edges) {
     BEdge& e = edge(edgeNum);
     if (e.internal) continue;
+    if (robustEdges_ && mixedContentsEdge_[static_cast<std::size_t>(std::abs(edgeNum))]) continue;
     const Vec3 v1 = edgeStart(edgeNum);
     const Vec3 v2 = edgeEnd(edgeNum);
     // both vertices within the other polygon's bounds (expanded)
