@@ -87,6 +87,24 @@ std::uint32_t contentsAt(const CollisionModel& m, const TraceModel& t, const Vec
   return contentsTest(m, {&t, Mat3::identity(), p, mask, {}}, work).contents;
 }
 
+/// A translation through lt4's world model built with or without robust
+/// edges: the result and what the trace model overlaps at its end.
+struct Lt4Sweep {
+  std::vector<ModelPtr> models;
+  TraceResult result;
+  std::uint32_t atEnd = 0;
+};
+Lt4Sweep sweepLt4(bool robustEdges, const TraceModel& t, const Vec3& start, const Vec3& end,
+                  std::uint32_t mask) {
+  Lt4Sweep s;
+  s.models = buildLt4(robustEdges);
+  if (s.models.empty()) return s;
+  QueryWork work;
+  s.result = translate(*s.models[0], {&t, Mat3::identity(), start, end, mask, {}}, work);
+  s.atEnd = contentsAt(*s.models[0], t, s.result.endPos, mask);
+  return s;
+}
+
 }  // namespace
 
 // ---- robust edges ----------------------------------------------------------
@@ -120,12 +138,11 @@ TEST(RobustEdges, Lt4ConeStopsAtTheCornerItPassedThrough) {
   const Vec3 end{2842.74463f, -1979.53711f, -202.30777f};
   for (const bool robust : {false, true}) {
     SCOPED_TRACE(robust ? "robust edges" : "the original's edges");
-    const auto models = buildLt4(robust);
-    ASSERT_FALSE(models.empty());
-    QueryWork work;
-    const TraceResult r = translate(*models[0], {&cone, Mat3::identity(), start, end, 1, {}}, work);
+    const Lt4Sweep sweep = sweepLt4(robust, cone, start, end, 1);
+    ASSERT_FALSE(sweep.models.empty());
+    const TraceResult& r = sweep.result;
+    const std::uint32_t atEnd = sweep.atEnd;
     ASSERT_EQ(r.status, QueryStatus::Ok);
-    const std::uint32_t atEnd = contentsAt(*models[0], cone, r.endPos, 1);
     if (robust) {
       EXPECT_EQ(atEnd, 0u) << "fraction " << r.fraction;
       EXPECT_EQ(r.contact.type, ContactType::Edge);
@@ -147,16 +164,15 @@ TEST(RobustEdges, Lt4SolidFaceSharingEdgesWithClipKeepsThem) {
   const Vec3 end{1513.0927f, -921.3557f, -421.1849f};
   for (const bool robust : {false, true}) {
     SCOPED_TRACE(robust ? "robust edges" : "the original's edges");
-    const auto models = buildLt4(robust);
-    ASSERT_FALSE(models.empty());
-    const CollisionModel& m = *models[0];
+    const Lt4Sweep sweep = sweepLt4(robust, dodeca, start, end, 265);
+    ASSERT_FALSE(sweep.models.empty());
+    const CollisionModel& m = *sweep.models[0];
     ASSERT_GT(m.polygons.size(), 2859u);
     int internal = 0;
     for (const std::int32_t e : m.edgesOf(m.polygons[2859]))
       internal += m.edges[std::size_t(std::abs(e))].internal;
-    QueryWork work;
-    const TraceResult r = translate(m, {&dodeca, Mat3::identity(), start, end, 265, {}}, work);
-    const std::uint32_t atEnd = contentsAt(m, dodeca, r.endPos, 265);
+    const TraceResult& r = sweep.result;
+    const std::uint32_t atEnd = sweep.atEnd;
     if (robust) {
       // The three edges shared with clip faces are kept; the bottom edge
       // (this polygon's alone) lies on a solid plank face and stays internal.
