@@ -16,6 +16,12 @@
 
 namespace cmkit {
 
+/// The most sides a brush may have. Building a brush clips each side's plane
+/// by every other side (sides^2 clips: 2000 sides take about a second, 20 000
+/// took 53 s with no progress), so a larger brush is refused with an Error
+/// naming its line. Real brushes have a few dozen sides.
+inline constexpr std::size_t kMaxBrushSides = 4096;
+
 /// Options of the map -> model build.
 struct BuildOptions {
   /// Called with (entities done, entities in all) as the build progresses;
@@ -30,12 +36,26 @@ struct BuildOptions {
   /// leaves, as the original does (cm-algorithms.md section 3.7); the count
   /// is ModelStats::procPolygonsRemoved. Must outlive the call.
   const ProcBsp* procBsp = nullptr;
+  /// Internal-edge marking that never hides an edge of a brush's shell (not
+  /// the original's; off by default, so that .cm output stays the
+  /// original's). The original also marks an edge internal when it lies in
+  /// a coplanar polygon facing the same way (or the opposite way), which
+  /// happens where brushes overlap with coplanar faces: the corner edges of
+  /// both copies get marked and a trace-model edge passes through the
+  /// corner. With this set, an edge is marked internal only by a polygon
+  /// that is not parallel to its own (a concave crease, or an edge lying on
+  /// a face that meets its polygon at an angle), and an edge shared by
+  /// polygons of different contents (a solid face and a clip face) is never
+  /// marked: the rule decides within one contents group, but the flag hides
+  /// the edge from every user. See docs/reliability.md.
+  bool robustEdges = false;
 };
 
 /// Builds one collision model per entity that owns primitives, in entity
 /// order, named as the original names them (the "model" key, else "name",
 /// else "worldMap" for the first model and "unnamed inline model" for the
-/// others), each in its entity's local frame.
+/// others), each in its entity's local frame. Error: a brush with more than
+/// kMaxBrushSides sides.
 Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
                                                    const BuildOptions& options = {});
 
@@ -58,6 +78,8 @@ struct EntityModelOptions {
   std::vector<std::string>* warnings = nullptr;
   /// Filled in when not null (also when the write fails after the build).
   EntityModelReport* report = nullptr;
+  /// As BuildOptions::robustEdges.
+  bool robustEdges = false;
 };
 
 /// The original's WriteCollisionModelForMapEntity: builds the collision

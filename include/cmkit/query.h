@@ -50,6 +50,29 @@
 
 namespace cmkit {
 
+/// Whether a query ran, or which of its inputs made it refuse. Every public
+/// query checks its input first (src/query/query_guards.cpp). A REFUSED
+/// query does nothing: fraction 0, endPos = start and endAxis = trmAxis as
+/// given, no contact, contents 0, no contacts, not stuck; only `status`
+/// says why. Accepted but normalised: an orientation (trmAxis,
+/// placement.axis) off orthonormal by at most tol::kAxisRejectTolerance is
+/// re-orthonormalised when off by more than tol::kAxisDriftEpsilon
+/// (validateAxis), a rotation axis within tol::kRotationAxisUnitTolerance of
+/// unit length is normalised (when off by more than kAxisDriftEpsilon).
+enum class QueryStatus : std::uint8_t {
+  Ok,               ///< the query ran
+  BadTrmAxis,       ///< trmAxis (of a trace model that is not a point) is not a rotation:
+                    ///< non-finite, scaled or sheared, or mirrored (determinant < 0)
+  BadModelAxis,     ///< placement.axis is not a rotation (as above)
+  NonFinite,        ///< a position, origin, direction, depth or angle is NaN or infinite
+  OutOfRange,       ///< a coordinate (or the end of the move) lies beyond tol::kMaxQueryCoordinate
+  BadRotationAxis,  ///< the rotation axis is zero or not of unit length
+};
+
+/// A short English description of a status ("ok", "trace-model axis is not a
+/// rotation", ...).
+const char* describe(QueryStatus status);
+
 /// Which features touched.
 enum class ContactType : std::uint8_t {
   None,         ///< no contact
@@ -84,6 +107,8 @@ struct TraceResult {
   /// True when the start position overlaps a brush or polygon matching the
   /// mask (only computed when the query asks for it).
   bool startSolid = false;
+  /// QueryStatus::Ok, or why the query was refused (see QueryStatus).
+  QueryStatus status = QueryStatus::Ok;
 };
 
 namespace detail {
@@ -163,8 +188,12 @@ struct ContentsQuery {
 };
 
 /// Result of contentsTest(): the contents of the first brush or polygon found
-/// overlapping (not the OR of all, not masked; 0 when free), and the trace
-/// describing that contact (fraction 0 when stuck, 1 when free).
+/// overlapping that matches the mask (that item's whole contents; 0 when
+/// free), and the trace describing that contact (fraction 0 when stuck, 1
+/// when free). For a point (no trace model, or a point shape): the OR of the
+/// contents of every brush containing the point that matches the mask (the
+/// original ignored the mask for a point and took the first brush found).
+/// A refused query (trace.status) has contents 0.
 struct ContentsResult {
   std::uint32_t contents = 0;
   TraceResult trace;
@@ -173,9 +202,12 @@ struct ContentsResult {
 /// The original's Contents: what the placed trace model overlaps.
 ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& query, QueryWork& work);
 
-/// The contents of the brushes containing a world point (no mask). Unlike the
-/// original, brushes stored at interior tree nodes are seen, and a rotated
-/// model is handled correctly.
+/// The contents of the brushes containing a world point (no mask): the OR of
+/// every brush the point is strictly inside. Unlike the original (which
+/// returns the first brush found in the leaf), all brushes are seen,
+/// including those stored at interior tree nodes, and a rotated model is
+/// handled correctly. A point or placement that is not finite (or beyond
+/// tol::kMaxQueryCoordinate) is inside nothing: 0.
 std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement = {});
 
 /// All contacts of a trace model moved up to `depth` along `dir`.
@@ -193,6 +225,7 @@ struct ContactsQuery {
 /// Result of contacts(): the contacts found, in the order the walk met them.
 struct ContactsResult {
   std::vector<ContactInfo> contacts;
+  QueryStatus status = QueryStatus::Ok;  ///< refused: no contacts (see QueryStatus)
 };
 
 /// The original's Contacts: every surface the trace model touches when moved
@@ -201,10 +234,11 @@ ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query,
 
 /// How a trace model overlapping solid can get out.
 struct Penetration {
-  bool stuck = false;          ///< the trace model overlaps a matching brush
-  Real depth = 0;              ///< distance to move along `direction` to be free of that brush
-  Vec3 direction;              ///< unit direction out (a brush plane normal, world space)
-  std::uint32_t contents = 0;  ///< contents of the deepest brush
+  bool stuck = false;                    ///< the trace model overlaps a matching brush
+  Real depth = 0;                        ///< distance to move along `direction` to be free of that brush
+  Vec3 direction;                        ///< unit direction out (a brush plane normal, world space)
+  std::uint32_t contents = 0;            ///< contents of the deepest brush
+  QueryStatus status = QueryStatus::Ok;  ///< refused: not stuck (see QueryStatus)
 };
 
 /// Estimates the way out of solid: for every matching brush the trace model

@@ -60,6 +60,12 @@ inline constexpr Real kVertexEpsilon = 0.1f;
 inline constexpr Real kChopEpsilon = 0.1f;
 /// original: two polygon edges this close to collinear are merged into one.
 inline constexpr Real kContinuousEpsilon = 0.005f;
+/// BuildOptions::robustEdges: two polygons count as parallel (coplanar when
+/// one's edge lies in the other) when |n1 . n2| exceeds this; such a polygon
+/// never marks the other's edges internal. 1 - cos(0.5 degrees): compiled
+/// brush planes of overlapping brushes are coplanar to float precision, and
+/// genuine creases are far steeper.
+inline constexpr Real kRobustEdgeParallelDot = 0.99996f;
 /// original: polygon planes this close (normal components and distance) are
 /// treated as coplanar when merging.
 inline constexpr Real kNormalEpsilon = 0.01f;
@@ -120,6 +126,18 @@ inline constexpr Real kAxisDriftEpsilon = 1e-5f;
 /// Orientation matrices that deviate by more than this are rejected: they are
 /// not rotations (scaled, sheared or garbage input).
 inline constexpr Real kAxisRejectTolerance = 0.05f;
+/// Queries refuse positions, origins and move ends with a coordinate beyond
+/// this (QueryStatus::OutOfRange). The original's world is +-131072
+/// (kMaxWorldCoord); at 1e9 a float's spacing is already 64 units, and the
+/// Plucker products of the tests (a coordinate times two coordinate
+/// differences, about 1e27 here) stay far from float overflow (3.4e38). A
+/// move of 3e38 would otherwise end at infinity.
+inline constexpr Real kMaxQueryCoordinate = 1e9f;
+/// A rotation axis whose length differs from 1 by at most this is accepted
+/// (normalised when off by more than kAxisDriftEpsilon); a longer, shorter
+/// or zero axis is refused (QueryStatus::BadRotationAxis). The query-file
+/// reader accepts |length^2 - 1| <= 0.01, which is this.
+inline constexpr Real kRotationAxisUnitTolerance = 0.005f;
 
 // ---- Trace models ----------------------------------------------------------
 

@@ -32,6 +32,19 @@ CollisionModel ModelBuilder::build() {
   return model;
 }
 
+/// Error for the first brush of `entity` with more than kMaxBrushSides sides.
+Status checkBrushSizes(const MapEntity& entity, const std::string& fileName) {
+  for (std::size_t i = 0; i < entity.primitives.size(); ++i) {
+    const auto* brush = std::get_if<MapBrush>(&entity.primitives[i]);
+    if (!brush || brush->sides.size() <= kMaxBrushSides) continue;
+    return Error("brush (primitive " + std::to_string(i) + ") has " + std::to_string(brush->sides.size()) +
+                     " sides; at most " + std::to_string(kMaxBrushSides) +
+                     " are supported (building a brush clips every side by every other)",
+                 fileName, brush->line);
+  }
+  return Ok{};
+}
+
 }  // namespace detail
 
 Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
@@ -41,6 +54,7 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
   const std::size_t total = map.entities.size();
   for (std::size_t i = 0; i < total; ++i) {
     const MapEntity& entity = map.entities[i];
+    if (Status st = detail::checkBrushSizes(entity, map.fileName); !st) return st.error();
     if (!entity.primitives.empty()) {
       std::string name;
       if (auto v = entity.value("model")) {
@@ -54,6 +68,7 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
       // once the first model is built.
       const ProcBsp* proc = models.empty() ? options.procBsp : nullptr;
       detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings, proc);
+      builder.setRobustEdges(options.robustEdges);
       models.push_back(std::make_shared<const CollisionModel>(builder.build()));
     }
     if (options.progress) options.progress(i + 1, total);
@@ -74,8 +89,10 @@ Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityInd
                      " has no brushes or patches: it has no collision model",
                  map.fileName, entity.line);
   }
+  if (Status st = detail::checkBrushSizes(entity, map.fileName); !st) return st;
   detail::MaterialCache cache(materials);
   detail::ModelBuilder builder(entity, path, cache, options.warnings);
+  builder.setRobustEdges(options.robustEdges);
   const ModelPtr model = std::make_shared<const CollisionModel>(builder.build());
   if (options.report) {
     options.report->model = model;

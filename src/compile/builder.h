@@ -126,6 +126,8 @@ class ModelBuilder {
   /// model's only), or null.
   ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
                std::vector<std::string>* warnings, const ProcBsp* proc = nullptr);
+  /// BuildOptions::robustEdges: internal edges only from non-parallel polygons.
+  void setRobustEdges(bool on) { robustEdges_ = on; }
   /// Runs the whole pipeline (the list of steps) and returns the flattened model.
   CollisionModel build();
 
@@ -287,6 +289,10 @@ class ModelBuilder {
   MaterialCache& materials_;
   std::vector<std::string>* warnings_;
   const ProcBsp* proc_ = nullptr;  ///< usable, or null
+  bool robustEdges_ = false;       ///< see setRobustEdges
+  /// Robust edges: per edge, 1 when the live polygons using it differ in
+  /// contents (a solid face and a clip face sharing a corner).
+  std::vector<std::uint8_t> mixedContentsEdge_;
   struct WarningSlot {
     std::size_t index;  ///< of its line in *warnings_
     int count;          ///< how often this model gave it

@@ -9,6 +9,21 @@
 namespace cmkit::detail {
 
 void ModelBuilder::markInternalEdges() {
+  if (robustEdges_) {
+    // An edge is one object for all its users; the rule below decides it
+    // within one contents group, so an edge that a clip face marks internal
+    // would be hidden from the solid face sharing it as well.
+    std::vector<std::uint32_t> firstContents(edges_.size(), 0);
+    mixedContentsEdge_.assign(edges_.size(), 0);
+    for (const BPolygon& p : polygons_) {
+      if (p.freed) continue;
+      for (const int e : p.edges) {
+        std::uint32_t& first = firstContents[static_cast<std::size_t>(std::abs(e))];
+        if (first == 0) first = p.contents;
+        if (first != p.contents) mixedContentsEdge_[static_cast<std::size_t>(std::abs(e))] = 1;
+      }
+    }
+  }
   ++checkCount_;
   findInternalEdges(0);
 }
@@ -46,9 +61,16 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
   const BPolygon& p1 = polygon(p1Num);
   const BPolygon& p2 = polygon(p2Num);
   if (!p2.bounds.intersects(p1.bounds)) return;
+  // Robust edges: a parallel polygon (an overlapping copy of a face, or a
+  // face touching it back to back) marks no edge of p1 that it does not
+  // share. The original marks them (the facing test below gives 0 there),
+  // so both copies of a corner edge where two brushes overlap with coplanar
+  // faces get hidden.
+  const bool parallel = std::fabs(p1.plane.normal.dot(p2.plane.normal)) > tol::kRobustEdgeParallelDot;
   for (const int edgeNum : p1.edges) {
     BEdge& e = edge(edgeNum);
     if (e.internal) continue;
+    if (robustEdges_ && mixedContentsEdge_[static_cast<std::size_t>(std::abs(edgeNum))]) continue;
     const Vec3 v1 = edgeStart(edgeNum);
     const Vec3 v2 = edgeEnd(edgeNum);
     // both vertices within the other polygon's bounds (expanded)
@@ -69,6 +91,7 @@ void ModelBuilder::findInternalEdgesOnPolygon(int p1Num, int p2Num) {
       if (e.numUsers > 2) continue;          // would need all users tested
       if (edgeNum == p2.edges[j]) continue;  // same direction: overlapping polygons
     } else {
+      if (robustEdges_ && parallel) continue;
       // both vertices on the other polygon's plane
       if (std::fabs(p2.plane.distance(v1)) > tol::kVertexEpsilon) continue;
       if (std::fabs(p2.plane.distance(v2)) > tol::kVertexEpsilon) continue;

@@ -303,6 +303,13 @@ double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQ
   return 0;
 }
 
+namespace {
+
+// The line of a query the library refused (QueryStatus).
+std::string refusedLine(QueryStatus status) { return std::string("error=refused: ") + describe(status); }
+
+}  // namespace
+
 std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work) {
   const CollisionModel& m = *models[q.model];
   const TraceModel* trm = q.trm ? &*q.trm : nullptr;
@@ -310,19 +317,25 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
   switch (q.op) {
     case QueryOp::PointContents:
       return "contents=" + std::to_string(pointContents(m, q.position, q.placement));
-    case QueryOp::Translation:
-      appendTrace(out, m,
-                  translate(m, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement, false}, work));
+    case QueryOp::Translation: {
+      const TraceResult r =
+          translate(m, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement, false}, work);
+      if (r.status != QueryStatus::Ok) return refusedLine(r.status);
+      appendTrace(out, m, r);
       return out;
+    }
     case QueryOp::Contents: {
       const ContentsResult r =
           contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work);
+      if (r.trace.status != QueryStatus::Ok) return refusedLine(r.trace.status);
       out = "result=" + std::to_string(r.contents) + " ";
       appendTrace(out, m, r.trace);
       return out;
     }
     case QueryOp::Contacts: {
-      const std::vector<ContactInfo> found = contacts(m, contactsQuery(q), work).contacts;
+      const ContactsResult r = contacts(m, contactsQuery(q), work);
+      if (r.status != QueryStatus::Ok) return refusedLine(r.status);
+      const std::vector<ContactInfo>& found = r.contacts;
       const int n = int(found.size());
       out = "count=" + std::to_string(n);
       for (int i = 0; i < n; ++i) {
@@ -332,11 +345,13 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
       }
       return out;
     }
-    case QueryOp::Rotation:
-      appendTrace(
-          out, m,
-          rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work));
+    case QueryOp::Rotation: {
+      const TraceResult r =
+          rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work);
+      if (r.status != QueryStatus::Ok) return refusedLine(r.status);
+      appendTrace(out, m, r);
       return out;
+    }
   }
   return "error=unknown operation";
 }

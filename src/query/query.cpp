@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "query/query_guards.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
@@ -141,18 +142,51 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
 
 }  // namespace
 
+std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
+                                  std::uint32_t mask) {
+  if (model.nodes.empty() || !pointUsable(point, placement)) return 0;
+  Vec3 p = point - placement.origin;
+  if (isRotated(placement.axis)) p = placement.axis * p;  // world -> model frame
+  auto inside = [&](std::int32_t brushNum) {
+    const CmBrush& b = model.brushes[std::size_t(brushNum)];
+    if (!(b.contents & mask) || !b.bounds.containsPoint(p)) return false;
+    for (const Plane& plane : model.planesOf(b))
+      if (plane.distance(p) >= 0) return false;
+    return b.numPlanes > 0;
+  };
+  // Every brush on the path from the root to the point's leaf: brushes
+  // straddling a split are stored at interior nodes (the original looked at
+  // the leaf only, and stopped at the first brush containing the point).
+  std::uint32_t contents = 0;
+  std::int32_t n = 0;
+  while (true) {
+    const CmNode& node = model.nodes[std::size_t(n)];
+    for (std::int32_t b : model.brushesAt(node))
+      if (inside(b)) contents |= model.brushes[std::size_t(b)].contents;
+    if (node.isLeaf()) break;
+    n = p[node.planeType] > node.planeDist ? node.children[0] : node.children[1];
+  }
+  return contents;
+}
+
 }  // namespace cmkit::detail
 
 namespace cmkit {
 
 using namespace detail;  // the query internals (trace_work.h)
 
-ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
+ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& query, QueryWork& work) {
+  ContentsQuery q = query;
   ContentsResult r;
+  if (const QueryStatus st = guardContents(q); st != QueryStatus::Ok) {
+    r.trace = refusedTrace(query.position, query.trmAxis, st);
+    return r;
+  }
   r.trace.endPos = q.position;
   r.trace.endAxis = q.trmAxis;
   if (isPointTrm(q.trm)) {
-    r.contents = pointContents(model, q.position, q.placement);
+    // Unlike the original, a point honours the mask like any trace model.
+    r.contents = pointContentsMasked(model, q.position, q.placement, q.contentMask);
     r.trace.contact.contents = r.contents;
     r.trace.fraction = r.contents == 0 ? 1 : 0;
     return r;
@@ -170,7 +204,10 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
   return r;
 }
 
-TraceResult translate(const CollisionModel& model, const TranslationQuery& q, QueryWork& work) {
+TraceResult translate(const CollisionModel& model, const TranslationQuery& query, QueryWork& work) {
+  TranslationQuery q = query;
+  if (const QueryStatus st = guardTranslation(q); st != QueryStatus::Ok)
+    return refusedTrace(query.start, query.trmAxis, st);
   if (q.start == q.end) {
     ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     TraceResult r = contentsTest(model, cq, work).trace;
@@ -199,8 +236,11 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
   return r;
 }
 
-ContactsResult contacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work) {
+ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work) {
+  ContactsQuery q = query;
   ContactsResult result;
+  result.status = guardContacts(q);
+  if (result.status != QueryStatus::Ok) return result;
   std::vector<ContactInfo>& out = result.contacts;
   const Vec3 end = q.start + q.dir * q.depth;
   if (end == q.start || q.maxContacts <= 0) return result;  // a position test finds no contacts
@@ -216,50 +256,14 @@ ContactsResult contacts(const CollisionModel& model, const ContactsQuery& q, Que
 }
 
 std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement) {
-  if (model.nodes.empty()) return 0;
-  Vec3 p = point - placement.origin;
-  if (isRotated(placement.axis)) p = placement.axis * p;  // world -> model frame
-  auto inside = [&](std::int32_t brushNum) {
-    const CmBrush& b = model.brushes[std::size_t(brushNum)];
-    if (!b.bounds.containsPoint(p)) return false;
-    for (const Plane& plane : model.planesOf(b))
-      if (plane.distance(p) >= 0) return false;
-    return b.numPlanes > 0;
-  };
-  // Walk to the leaf, remembering the path: brushes straddling a split are
-  // stored at interior nodes and must be seen too (the original missed
-  // them). The leaf is searched first so that where the original finds a
-  // brush, the same brush is found. The path fits a small buffer on the
-  // stack in any practical tree; a deeper one (a .cm can hold any tree)
-  // continues on the heap.
-  constexpr std::size_t kInlinePath = 128;
-  std::int32_t path[kInlinePath];
-  std::vector<std::int32_t> deeper;  // the nodes below path's end, top down
-  std::size_t depth = 0;
-  std::int32_t n = 0;
-  while (true) {
-    if (depth < kInlinePath)
-      path[depth++] = n;
-    else
-      deeper.push_back(n);
-    const CmNode& node = model.nodes[std::size_t(n)];
-    if (node.isLeaf()) break;
-    n = p[node.planeType] > node.planeDist ? node.children[0] : node.children[1];
-  }
-  // The first brush at `node` containing the point, -1 when none.
-  const auto brushAt = [&](std::int32_t node) -> std::int32_t {
-    for (std::int32_t b : model.brushesAt(model.nodes[std::size_t(node)]))
-      if (inside(b)) return b;
-    return -1;
-  };
-  std::int32_t found = -1;
-  for (std::size_t i = deeper.size(); found < 0 && i-- > 0;) found = brushAt(deeper[i]);
-  for (std::size_t i = depth; found < 0 && i-- > 0;) found = brushAt(path[i]);
-  return found < 0 ? 0 : model.brushes[std::size_t(found)].contents;
+  return pointContentsMasked(model, point, placement, ~std::uint32_t(0));
 }
 
-Penetration penetration(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
+Penetration penetration(const CollisionModel& model, const ContentsQuery& query, QueryWork& work) {
+  ContentsQuery q = query;
   Penetration result;
+  result.status = guardContents(q);
+  if (result.status != QueryStatus::Ok) return result;
   // The trace model's vertices in the model frame.
   Vec3 verts[kMaxTrmVertices];
   int numVerts = 1;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "query/query_guards.h"
 #include "query/rotate_work.h"
 
 namespace cmkit::detail {
@@ -195,7 +196,10 @@ namespace cmkit {
 
 using namespace detail;  // the query internals (trace_work.h)
 
-TraceResult rotate(const CollisionModel& model, const RotationQuery& q, QueryWork& work) {
+TraceResult rotate(const CollisionModel& model, const RotationQuery& query, QueryWork& work) {
+  RotationQuery q = query;
+  if (const QueryStatus st = guardRotation(q); st != QueryStatus::Ok)
+    return refusedTrace(query.start, query.trmAxis, st);
   const Real angle = q.rotation.angle;
   const bool point = isPointTrm(q.trm);
   if (angle == 0) {  // a position test

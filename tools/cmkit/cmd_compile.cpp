@@ -26,6 +26,9 @@ void registerCompile(CLI::App& app) {
       "entity N (#0 = worldspawn); the model is named after the -o file, written with CRC 0\n"
       "and never pruned by a .proc. --test-trm also converts it to a trace model and prints\n"
       "it, or why it cannot be one (not convex, too many vertices/edges/polygons, ...).\n\n"
+      "--robust-edges marks fewer edges internal than the original, so that no edge of a\n"
+      "brush's shell is hidden where brushes overlap with coplanar faces (the .cm then\n"
+      "differs from the original's; see docs/reliability.md). Off by default.\n\n"
       "Materials decide which brush sides and patches collide (and how): by default the\n"
       "rules of docs/materials (textures/common/clip is player/monster/moveable clip,\n"
       "names containing \"water\" are water, ...); --materials DIR reads the .mtr files\n"
@@ -34,7 +37,8 @@ void registerCompile(CLI::App& app) {
       "  cmkit compile maps/lt4.map                  statistics only\n"
       "  cmkit compile maps/lt4.map -o maps/lt4.cm   write the .cm as well\n"
       "  cmkit compile level.map --materials base/materials --json > stats.json\n"
-      "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n\n"
+      "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n"
+      "  cmkit compile maps/lt4.map --robust-edges -o lt4-robust.cm\n\n"
       "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message), an\n"
       "unknown --entity or one without brushes or patches.");
   auto req = std::make_shared<MapBuildRequest>();
@@ -46,6 +50,7 @@ void registerCompile(CLI::App& app) {
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");
   cmd->add_flag("-q,--quiet", req->quiet, "print only the totals, not every model");
   addNoProcFlag(cmd, req->noProc);
+  addRobustEdgesFlag(cmd, req->robustEdges);
   cmd->add_option("--entity", req->entity,
                   "write only this entity's model to -o: its \"name\" value, or #N for entity N");
   cmd->add_flag("--test-trm", req->testTrm, "with --entity: convert the model to a trace model and report");

@@ -22,12 +22,13 @@ struct QueryOptions {
   std::string queries;
   std::string output;
   std::string materials;
-  bool noProc = false;  ///< --no-proc
+  bool noProc = false;       ///< --no-proc
+  bool robustEdges = false;  ///< --robust-edges
   int threads = 1;
 };
 
 int runQueryCommand(const QueryOptions& o) {
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit query: {}\n", models.error().toString());
     return kExitBadInput;
@@ -103,6 +104,7 @@ void registerQuery(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "write results here instead of standard output");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
+  addRobustEdgesFlag(cmd, o->robustEdges);
   cmd->add_option("-j,--threads", o->threads, "worker threads (results are the same for any count)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

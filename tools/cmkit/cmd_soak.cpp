@@ -57,7 +57,7 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
 }
 
 int runSoak(const SoakOptions& o) {
-  auto models = loadModelsForCli(o.map, o.materials);
+  auto models = loadModelsForCli(o.map, o.materials, o.noProc, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit soak: {}\n", models.error().toString());
     return kExitBadInput;
@@ -125,7 +125,8 @@ int runSoak(const SoakOptions& o) {
   std::sort(cases.begin(), cases.end(), [](const Case& a, const Case& b) { return a.item < b.item; });
 
   fmt::print(
-      "soak of \"{}\" in {}: {} polygons, {} brushes ({} with a polygon on every face), mask {}, seed {}\n",
+      "soak of \"{}\" in {}: {} polygons, {} brushes ({} with every face covered by polygons), mask {}, seed "
+      "{}\n",
       world.name, o.map, world.polygons.size(), world.brushes.size(), soak.numClosedBrushes(), o.mask,
       o.seed);
   fmt::print("trace models:");
@@ -177,10 +178,11 @@ void registerSoak(CLI::App& app) {
       "  closed-brush   the end overlaps (by the brush planes, deeper than 0.01) a brush the start\n"
       "                 did not, and every face the trace model had to cross to get in (each\n"
       "                 brush plane it was wholly in front of at the start; all planes if none)\n"
-      "                 has a polygon of the mask in it (same normal, |dist difference| < 0.01,\n"
-      "                 overlapping the face by > 0.1 in two directions): the move should have\n"
+      "                 is covered by polygons of the mask (every sample point of the face, a grid of\n"
+      "                 at most 32 x 32 points 1 unit or more apart, lies in a polygon in its plane:\n"
+      "                 same normal, |dist difference| < 0.01): the move should have\n"
       "                 hit that polygon\n"
-      "  brush-face     as closed-brush, but one of those faces has no collision polygon\n"
+      "  brush-face     as closed-brush, but one of those faces is not (wholly) covered\n"
       "  patch-behind   the end overlaps polygons only; one was crossed from behind\n"
       "  other-polygon  the end overlaps polygons only, none crossed from behind\n"
       "Walker steps that end in solid (walker-embedded) or make less than 1 unit of progress in\n"
@@ -193,7 +195,7 @@ void registerSoak(CLI::App& app) {
       "Examples:\n"
       "  cmkit soak data/maps/lt4/lt4.map --sweeps 20000 --walker-steps 2000\n"
       "  cmkit soak data/maps/lt4/lt4.map --trm cone:6:-12,-12,0,12,12,40 --threads 2\n"
-      "  cmkit soak data/maps/lt4/lt4.map --fail-on closed-brush\n"
+      "  cmkit soak data/maps/lt4/lt4.map --robust-edges --fail-on closed-brush\n"
       "  cmkit soak data/maps/lt4/lt4.map --replay cases.txt   (classify pasted translation lines)");
   cmd->add_option("MAP", o->map, "a .map (built on the fly) or .cm file; the first model is soaked")
       ->required();
@@ -217,6 +219,8 @@ void registerSoak(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(std::size_t(0), std::size_t(1000)));
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
+  addNoProcFlag(cmd, o->noProc);
+  addRobustEdgesFlag(cmd, o->robustEdges);
   cmd->add_option("--replay", o->replay,
                   "instead: run the translation lines of this query file (e.g. the soak's output) and "
                   "print the class of each end");

@@ -44,6 +44,7 @@ int runEntityWrite(const MapBuildRequest& request, const MapFile& map, const Mat
   EntityModelReport report;
   EntityModelOptions options;
   options.testTraceModel = request.testTrm;
+  options.robustEdges = request.robustEdges;
   options.warnings = &warnings;
   options.report = &report;
   const Status written = writeCollisionModelForMapEntity(map, *index, request.outPath, materials, options);
@@ -104,6 +105,7 @@ int runMapBuild(const MapBuildRequest& request) {
   BuildOptions options;
   options.warnings = &warnings;
   if (proc->bsp) options.procBsp = &*proc->bsp;
+  options.robustEdges = request.robustEdges;
   options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   auto models = buildCollisionModels(*map, materials, options);
   bar.finish();

@@ -17,6 +17,7 @@ struct MapBuildRequest {
   bool noProc = false;       ///< ignore NAME.proc beside the map
   std::string entity;        ///< compile only this entity ("name" value or #N); needs outPath
   bool testTrm = false;      ///< with `entity`: also convert the model to a trace model
+  bool robustEdges = false;  ///< BuildOptions::robustEdges
 };
 
 /// Builds every model of the map (the world pruned with NAME.proc unless

@@ -16,6 +16,13 @@ void addNoProcFlag(CLI::App* cmd, bool& noProc) {
                 "entirely in solid space, as the original does)");
 }
 
+void addRobustEdgesFlag(CLI::App* cmd, bool& robustEdges) {
+  cmd->add_flag("--robust-edges", robustEdges,
+                "for a .map: internal-edge marking that never hides an edge of a brush's shell\n"
+                "(not the original's: where brushes overlap with coplanar faces the original\n"
+                "hides the corner edges of both, and trace-model edges pass through the corner)");
+}
+
 Result<ProcForCli> loadProcForCli(const std::string& mapPath, bool noProc,
                                   std::vector<std::string>* warnings) {
   ProcForCli out;
@@ -46,7 +53,7 @@ std::string procNote(const ProcForCli& proc, const std::string& mapPath,
 }
 
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
-                                               bool noProc) {
+                                               bool noProc, bool robustEdges) {
   MaterialTable materials;
   if (!materialsDir.empty()) {
     if (Status s = materials.addMtrDirectory(materialsDir); !s) return s.error();
@@ -69,6 +76,7 @@ Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const st
     if (!proc) return proc.error();
     BuildOptions options;
     if (proc->bsp) options.procBsp = &*proc->bsp;
+    options.robustEdges = robustEdges;
     auto models = buildCollisionModels(*map, materials, options);
     if (models) fmt::print(stderr, "{}\n", procNote(*proc, path, *models));
     return models;

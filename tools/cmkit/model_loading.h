@@ -19,11 +19,15 @@ namespace cmkit::cli {
 /// Reads FILE.cm or builds every model of FILE.map (materials from
 /// `materialsDir` when not empty, else the default rules). For a .map, one
 /// line on stderr says whether a .proc pruned the world (procNote).
+/// `robustEdges`: BuildOptions::robustEdges for a .map (ignored for a .cm).
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
-                                               bool noProc = false);
+                                               bool noProc = false, bool robustEdges = false);
 
 /// Adds the --no-proc flag (the same text in every command).
 void addNoProcFlag(CLI::App* cmd, bool& noProc);
+
+/// Adds the --robust-edges flag (the same text in every command).
+void addRobustEdgesFlag(CLI::App* cmd, bool& robustEdges);
 
 /// NAME.proc for a .map on the command line.
 struct ProcForCli {

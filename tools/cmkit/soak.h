@@ -33,7 +33,7 @@ inline constexpr const char* kWalkerTrm = "box:-16,-16,0,16,16,72";
 enum class Finding : std::uint8_t {
   NonFinite,       // a result with a nan or inf
   FractionRange,   // fraction outside [0, 1]
-  BrushFace,       // (a) end in a brush with a face that has no polygon
+  BrushFace,       // (a) end in a brush with a face not (wholly) covered by polygons
   PatchBehind,     // (b) end overlaps only polygons, one crossed from behind
   Grazing,         // (c) the move is edge-on to the plane it must leave by
   Precision,       // (d) penetration <= kPrecisionDepth
@@ -50,11 +50,11 @@ inline const char* const kFindingNames[kNumFindings] = {
 inline const char* const kFindingMeaning[kNumFindings] = {
     "a result with nan or inf (must not happen)",
     "fraction outside [0,1] (must not happen)",
-    "(a) end in a brush; a face the move crossed has no polygon",
+    "(a) end in a brush; a face the move crossed is not wholly covered by polygons",
     "(b) end overlaps only polygons; the move crossed one from behind (one-sided)",
     "(c) the move is edge-on to the plane it must leave the brush by",
     "(d) penetration <= 0.01 units",
-    "(e) end in a brush whose faces the move crossed all have polygons",
+    "(e) end in a brush whose faces the move crossed are all covered by polygons",
     "end overlaps only polygons, none crossed from behind",
     "walker step ended in solid",
     "walker made no progress",
@@ -72,6 +72,8 @@ struct SoakOptions {
   std::uint32_t mask = contents::kMaskPlayerSolid;
   std::size_t examples = kExamplesDefault;
   std::string replay;
+  bool robustEdges = false;  ///< build a .map with BuildOptions::robustEdges
+  bool noProc = false;       ///< ignore NAME.proc beside the map
 };
 
 struct Shape {

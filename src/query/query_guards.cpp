@@ -1,0 +1,113 @@
+// Input checks of the public queries (see query_guards.h and QueryStatus).
+#include "query/query_guards.h"
+
+#include <cmath>
+
+#include "cmkit/tolerances.h"
+
+namespace cmkit {
+
+const char* describe(QueryStatus status) {
+  switch (status) {
+    case QueryStatus::Ok:
+      return "ok";
+    case QueryStatus::BadTrmAxis:
+      return "trace-model axis is not a rotation (non-finite, scaled, sheared or mirrored)";
+    case QueryStatus::BadModelAxis:
+      return "model axis is not a rotation (non-finite, scaled, sheared or mirrored)";
+    case QueryStatus::NonFinite:
+      return "a position, origin, direction, depth or angle is not finite";
+    case QueryStatus::OutOfRange:
+      return "a coordinate or the end of the move is beyond 1e9 units";
+    case QueryStatus::BadRotationAxis:
+      return "rotation axis is zero or not of unit length";
+  }
+  return "unknown status";
+}
+
+}  // namespace cmkit
+
+namespace cmkit::detail {
+namespace {
+
+/// Ok when every coordinate is within tol::kMaxQueryCoordinate; else
+/// NonFinite or OutOfRange. (NaN fails the first comparison, so valid input
+/// pays three comparisons.)
+QueryStatus checkPoint(const Vec3& p) {
+  constexpr Real kMax = tol::kMaxQueryCoordinate;
+  if (std::fabs(p.x) <= kMax && std::fabs(p.y) <= kMax && std::fabs(p.z) <= kMax) return QueryStatus::Ok;
+  return p.isFinite() ? QueryStatus::OutOfRange : QueryStatus::NonFinite;
+}
+
+/// Checks an orientation in place: identity passes at once; otherwise
+/// validateAxis (finite, right-handed, orthonormal within
+/// tol::kAxisRejectTolerance; re-orthonormalised beyond
+/// tol::kAxisDriftEpsilon).
+bool checkAxis(Mat3& axis) {
+  if (axis.isIdentity()) return true;
+  Result<Mat3> checked = validateAxis(axis);
+  if (!checked) return false;
+  axis = *checked;
+  return true;
+}
+
+bool hasShape(const TraceModel* trm) { return trm && !trm->isPoint(); }
+
+QueryStatus checkPlacement(Placement& placement) {
+  if (const QueryStatus s = checkPoint(placement.origin); s != QueryStatus::Ok) return s;
+  return checkAxis(placement.axis) ? QueryStatus::Ok : QueryStatus::BadModelAxis;
+}
+
+/// The shared part: position(s), placement, trace-model axis.
+QueryStatus checkCommon(const Vec3& position, Placement& placement, const TraceModel* trm, Mat3& trmAxis) {
+  if (const QueryStatus s = checkPoint(position); s != QueryStatus::Ok) return s;
+  if (const QueryStatus s = checkPlacement(placement); s != QueryStatus::Ok) return s;
+  if (hasShape(trm) && !checkAxis(trmAxis)) return QueryStatus::BadTrmAxis;
+  return QueryStatus::Ok;
+}
+
+}  // namespace
+
+QueryStatus guardTranslation(TranslationQuery& q) {
+  if (const QueryStatus s = checkPoint(q.end); s != QueryStatus::Ok) return s;
+  return checkCommon(q.start, q.placement, q.trm, q.trmAxis);
+}
+
+QueryStatus guardContents(ContentsQuery& q) { return checkCommon(q.position, q.placement, q.trm, q.trmAxis); }
+
+QueryStatus guardContacts(ContactsQuery& q) {
+  if (!std::isfinite(q.depth) || !q.dir.isFinite()) return QueryStatus::NonFinite;
+  if (checkPoint(q.start + q.dir * q.depth) != QueryStatus::Ok && q.start.isFinite())
+    return QueryStatus::OutOfRange;  // the end (finite input) is too far or overflows
+  return checkCommon(q.start, q.placement, q.trm, q.trmAxis);
+}
+
+QueryStatus guardRotation(RotationQuery& q) {
+  if (!std::isfinite(q.rotation.angle)) return QueryStatus::NonFinite;
+  if (const QueryStatus s = checkPoint(q.rotation.origin); s != QueryStatus::Ok) return s;
+  if (!q.rotation.axis.isFinite()) return QueryStatus::NonFinite;
+  // The exact length (Vec3::length() uses the original's approximate
+  // reciprocal square root, off by up to ~1e-5 on unit vectors).
+  const Vec3& a = q.rotation.axis;
+  const double length = std::sqrt(double(a.x) * a.x + double(a.y) * a.y + double(a.z) * a.z);
+  if (!(std::fabs(length - 1) <= tol::kRotationAxisUnitTolerance)) return QueryStatus::BadRotationAxis;
+  if (std::fabs(length - 1) > tol::kAxisDriftEpsilon)
+    q.rotation.axis = {Real(a.x / length), Real(a.y / length), Real(a.z / length)};
+  return checkCommon(q.start, q.placement, q.trm, q.trmAxis);
+}
+
+bool pointUsable(const Vec3& point, const Placement& placement) {
+  if (checkPoint(point) != QueryStatus::Ok || checkPoint(placement.origin) != QueryStatus::Ok) return false;
+  return placement.axis.isIdentity() || validateAxis(placement.axis).ok();
+}
+
+TraceResult refusedTrace(const Vec3& start, const Mat3& trmAxis, QueryStatus status) {
+  TraceResult r;
+  r.fraction = 0;
+  r.endPos = start;
+  r.endAxis = trmAxis;
+  r.status = status;
+  return r;
+}
+
+}  // namespace cmkit::detail

@@ -1,0 +1,455 @@
+// Reliability (docs/reliability.md): the robust-edges compile option, the
+// out-of-plane edge that lets a corner through (the original's behaviour,
+// docs/fidelity.md), the input guards of every public query (QueryStatus),
+// points that honour the mask and pointContents as the OR of the brushes
+// containing the point.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "cmkit/compile.h"
+#include "cmkit/map.h"
+#include "cmkit/query.h"
+#include "cmkit/tools/query_format.h"
+#include "test_support.h"
+
+using namespace cmkit;
+
+namespace {
+
+constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
+
+/// One axial brush side per bound, all with `material`.
+std::string axialBrush(const Bounds& b, const char* material) {
+  std::string s = "{\n brushDef3\n {\n";
+  const double planes[6][4] = {{1, 0, 0, -b.max.x}, {-1, 0, 0, b.min.x}, {0, 1, 0, -b.max.y},
+                               {0, -1, 0, b.min.y}, {0, 0, 1, -b.max.z}, {0, 0, -1, b.min.z}};
+  for (const auto& p : planes) {
+    s += "  ( " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " " +
+         std::to_string(p[3]) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
+  }
+  return s + " }\n}\n";
+}
+
+std::vector<ModelPtr> buildText(const std::string& text, bool robustEdges = false) {
+  auto map = parseMapText(text);
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
+  if (!map) return {};
+  BuildOptions options;
+  options.robustEdges = robustEdges;
+  auto models = buildCollisionModels(*map, MaterialTable{}, options);
+  EXPECT_TRUE(models.ok());
+  return models ? *models : std::vector<ModelPtr>{};
+}
+
+/// The lt4 case in small: a 16x16 pillar inside a wall block, sharing the
+/// block's corner at x = 0, y = 0 (both brushes' -x and -y faces coplanar).
+std::string pillarInWallMap() {
+  return "Version 2\n{\n\"classname\" \"worldspawn\"\n" +
+         axialBrush({{0, 0, 0}, {240, 56, 64}}, "textures/base_wall/lfwall27d") +
+         axialBrush({{0, 0, 8}, {16, 16, 64}}, "textures/base_wall/lfwall27d") + "}\n";
+}
+
+/// Edges of the model lying on the vertical line x = 0, y = 0.
+std::vector<const CmEdge*> cornerEdges(const CollisionModel& m) {
+  std::vector<const CmEdge*> out;
+  for (std::size_t e = 1; e < m.edges.size(); ++e) {
+    const Vec3& a = m.vertices[std::size_t(m.edges[e].vertex[0])];
+    const Vec3& b = m.vertices[std::size_t(m.edges[e].vertex[1])];
+    if (a.x == 0 && a.y == 0 && b.x == 0 && b.y == 0) out.push_back(&m.edges[e]);
+  }
+  return out;
+}
+
+std::string lt4Path() { return std::string(CMKIT_SOURCE_DIR) + "/data/maps/lt4/lt4.map"; }
+
+std::vector<ModelPtr> buildLt4(bool robustEdges) {
+  auto map = loadMapFile(lt4Path());
+  EXPECT_TRUE(map.ok());
+  if (!map) return {};
+  BuildOptions options;
+  options.robustEdges = robustEdges;
+  auto models = buildCollisionModels(*map, MaterialTable{}, options);
+  EXPECT_TRUE(models.ok());
+  return models ? *models : std::vector<ModelPtr>{};
+}
+
+TraceModel trm(const char* spec) { return TraceModel::parse(spec).value(); }
+
+std::uint32_t contentsAt(const CollisionModel& m, const TraceModel& t, const Vec3& p, std::uint32_t mask) {
+  QueryWork work;
+  return contentsTest(m, {&t, Mat3::identity(), p, mask, {}}, work).contents;
+}
+
+/// A translation through lt4's world model built with or without robust
+/// edges: the result and what the trace model overlaps at its end.
+struct Lt4Sweep {
+  std::vector<ModelPtr> models;
+  TraceResult result;
+  std::uint32_t atEnd = 0;
+};
+Lt4Sweep sweepLt4(bool robustEdges, const TraceModel& t, const Vec3& start, const Vec3& end,
+                  std::uint32_t mask) {
+  Lt4Sweep s;
+  s.models = buildLt4(robustEdges);
+  if (s.models.empty()) return s;
+  QueryWork work;
+  s.result = translate(*s.models[0], {&t, Mat3::identity(), start, end, mask, {}}, work);
+  s.atEnd = contentsAt(*s.models[0], t, s.result.endPos, mask);
+  return s;
+}
+
+}  // namespace
+
+// ---- robust edges ----------------------------------------------------------
+
+TEST(RobustEdges, OverlappingCoplanarFacesNoLongerHideTheCorner) {
+  const auto original = buildText(pillarInWallMap(), false);
+  const auto robust = buildText(pillarInWallMap(), true);
+  ASSERT_EQ(original.size(), 1u);
+  ASSERT_EQ(robust.size(), 1u);
+  // The original's rule: every copy of the corner edge that a front face
+  // (-x or -y) uses is internal, hidden by the coplanar face of the other brush.
+  const auto before = cornerEdges(*original[0]);
+  const auto after = cornerEdges(*robust[0]);
+  ASSERT_FALSE(before.empty());
+  ASSERT_FALSE(after.empty());
+  int visibleBefore = 0, visibleAfter = 0;
+  for (const CmEdge* e : before) visibleBefore += !e->internal;
+  for (const CmEdge* e : after) visibleAfter += !e->internal;
+  EXPECT_GT(visibleAfter, visibleBefore);
+  EXPECT_LT(robust[0]->stats.internalEdges, original[0]->stats.internalEdges);
+  // Same polygons and brushes either way: only the edge flags differ.
+  EXPECT_EQ(robust[0]->polygons.size(), original[0]->polygons.size());
+  EXPECT_EQ(robust[0]->brushes.size(), original[0]->brushes.size());
+}
+
+TEST(RobustEdges, Lt4ConeStopsAtTheCornerItPassedThrough) {
+  // The case: a cone whose base edge passes through the vertical
+  // corner (2432, -1720) of a pillar standing in a wall block.
+  const TraceModel cone = trm("cone:6:-12,-12,0,12,12,40");
+  const Vec3 start{2415.85986f, -1718.55566f, -531.321777f};
+  const Vec3 end{2842.74463f, -1979.53711f, -202.30777f};
+  for (const bool robust : {false, true}) {
+    SCOPED_TRACE(robust ? "robust edges" : "the original's edges");
+    const Lt4Sweep sweep = sweepLt4(robust, cone, start, end, 1);
+    ASSERT_FALSE(sweep.models.empty());
+    const TraceResult& r = sweep.result;
+    const std::uint32_t atEnd = sweep.atEnd;
+    ASSERT_EQ(r.status, QueryStatus::Ok);
+    if (robust) {
+      EXPECT_EQ(atEnd, 0u) << "fraction " << r.fraction;
+      EXPECT_EQ(r.contact.type, ContactType::Edge);
+      EXPECT_LT(r.fraction, 0.02f);
+    } else {
+      EXPECT_EQ(atEnd, 3u) << "the original's rule hides the corner: the cone ends in the brush";
+      EXPECT_NEAR(r.fraction, 0.023168165f, 1e-6f);
+    }
+  }
+}
+
+TEST(RobustEdges, Lt4SolidFaceSharingEdgesWithClipKeepsThem) {
+  // lt4 polygon 2859: a solid post face 8 units wide (y = -830) whose four
+  // edges it shares with the faces of a monster-clip brush. The clip faces
+  // mark them internal among themselves, which hides them from the solid
+  // face too; a dodecahedron's edge then goes 3.5 units through the post.
+  const TraceModel dodeca = trm("dodecahedron:-16,-16,-16,16,16,16");
+  const Vec3 start{1543.2588f, -793.9263f, -350.1645f};
+  const Vec3 end{1513.0927f, -921.3557f, -421.1849f};
+  for (const bool robust : {false, true}) {
+    SCOPED_TRACE(robust ? "robust edges" : "the original's edges");
+    const Lt4Sweep sweep = sweepLt4(robust, dodeca, start, end, 265);
+    ASSERT_FALSE(sweep.models.empty());
+    const CollisionModel& m = *sweep.models[0];
+    ASSERT_GT(m.polygons.size(), 2859u);
+    int internal = 0;
+    for (const std::int32_t e : m.edgesOf(m.polygons[2859]))
+      internal += m.edges[std::size_t(std::abs(e))].internal;
+    const TraceResult& r = sweep.result;
+    const std::uint32_t atEnd = sweep.atEnd;
+    if (robust) {
+      // The three edges shared with clip faces are kept; the bottom edge
+      // (this polygon's alone) lies on a solid plank face and stays internal.
+      EXPECT_EQ(internal, 1);
+      EXPECT_EQ(atEnd, 0u) << "fraction " << r.fraction;
+    } else {
+      EXPECT_EQ(internal, 4);
+      EXPECT_NE(atEnd, 0u) << "the original's edges: the end is inside the post";
+    }
+  }
+}
+
+// ---- the clip-epsilon case (the original's behaviour) ------------------------
+
+TEST(OutOfPlaneEdge, LetsABoxCornerThroughAsTheOriginalDoes) {
+  // docs/fidelity.md: polygon 10222 of lt4 (the diagonal face x + y = -575)
+  // has a 16-unit edge whose upper vertex (577.03125, -1152, -328) lies
+  // 0.022 units behind the polygon's plane. The edge's line, extended, runs
+  // 0.67 units in front of the face at the box's height, and a trace-model
+  // vertex whose path passes it on the outside is "outside the polygon"
+  // for the Plucker test, so the corner goes through. Pinned here as the
+  // original's behaviour (lt4's .cm is byte-identical to the original's).
+  const auto models = buildLt4(false);
+  ASSERT_FALSE(models.empty());
+  const CollisionModel& m = *models[0];
+  ASSERT_GT(m.polygons.size(), 10222u);
+  const CmPolygon& poly = m.polygons[10222];
+  EXPECT_NEAR(poly.plane.normal.x, -0.70710677f, 1e-6f);
+  Real worst = 0;
+  for (const std::int32_t e : m.edgesOf(poly))
+    worst = std::min(worst, poly.plane.distance(m.vertices[std::size_t(m.edgeStart(e))]));
+  EXPECT_NEAR(worst, -0.0221f, 0.001f);
+
+  const TraceModel box = trm("box:-16,-16,0,16,16,72");
+  const Vec3 start{560.897461f, -1168.25f, -903.75f};
+  QueryWork work;
+  EXPECT_EQ(contentsAt(m, box, start, 265), 0u);
+  const TraceResult oblique =
+      translate(m, {&box, Mat3::identity(), start, {565.717773f, -1170.53235f, -903.75f}, 265, {}}, work);
+  EXPECT_EQ(oblique.fraction, 1);
+  EXPECT_NE(contentsAt(m, box, oblique.endPos, 265), 0u) << "the end is 1.5 units inside the brush";
+  const TraceResult straight =
+      translate(m, {&box, Mat3::identity(), start, {565.717773f, -1168.25f, -903.75f}, 265, {}}, work);
+  EXPECT_EQ(straight.fraction, 0);
+  EXPECT_EQ(straight.contact.modelFeature, 10222);
+}
+
+// ---- query guards ------------------------------------------------------------
+
+class QueryGuards : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    models_ =
+        buildText("Version 2\n{\n\"classname\" \"worldspawn\"\n" +
+                  axialBrush({{-256, -256, -16}, {256, 256, 0}}, "textures/base_wall/lfwall27d") + "}\n");
+    ASSERT_EQ(models_.size(), 1u);
+  }
+  const CollisionModel& floor() const { return *models_[0]; }
+  TraceResult drop(const Mat3& trmAxis, const Vec3& start, const Vec3& end, const Placement& placement = {}) {
+    return translate(floor(), {&box_, trmAxis, start, end, contents::kMaskSolid, placement, false}, work_);
+  }
+  std::vector<ModelPtr> models_;
+  TraceModel box_ = trm("box:-16,-16,0,16,16,72");
+  QueryWork work_;
+};
+
+void expectRefused(const TraceResult& r, QueryStatus status, const Vec3& start) {
+  EXPECT_EQ(r.status, status) << describe(r.status);
+  EXPECT_EQ(r.fraction, 0);
+  if (start.isFinite()) {
+    EXPECT_EQ(r.endPos, start);
+  }
+  EXPECT_EQ(r.contact.type, ContactType::None);
+  EXPECT_EQ(r.contact.contents, 0u);
+}
+
+TEST_F(QueryGuards, ValidInputRunsWithStatusOk) {
+  const TraceResult r = drop(Mat3::identity(), {0, 0, 64}, {0, 0, -64});
+  EXPECT_EQ(r.status, QueryStatus::Ok);
+  EXPECT_FLOAT_EQ(r.endPos.z, 0.25f);  // the clip epsilon above the floor
+  EXPECT_STREQ(describe(QueryStatus::Ok), "ok");
+}
+
+TEST_F(QueryGuards, TraceModelAxisMustBeARotation) {
+  const Vec3 start{0, 0, 64}, end{0, 0, -64};
+  const Mat3 mirrored{{1, 0, 0}, {0, -1, 0}, {0, 0, 1}};
+  expectRefused(drop(mirrored, start, end), QueryStatus::BadTrmAxis, start);
+  const Mat3 scaled{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+  expectRefused(drop(scaled, start, end), QueryStatus::BadTrmAxis, start);
+  const Mat3 sheared{{1, 0.3f, 0}, {0, 1, 0}, {0, 0, 1}};
+  expectRefused(drop(sheared, start, end), QueryStatus::BadTrmAxis, start);
+  const Mat3 nan{{kNaN, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  expectRefused(drop(nan, start, end), QueryStatus::BadTrmAxis, start);
+  // A point ignores its axis.
+  const TraceResult point =
+      translate(floor(), {nullptr, scaled, start, end, contents::kMaskSolid, {}, false}, work_);
+  EXPECT_EQ(point.status, QueryStatus::Ok);
+}
+
+TEST_F(QueryGuards, SlightlyDriftedAxisIsReorthonormalised) {
+  // 45 degrees about z, rows scaled by 1.001: accepted (drift 2e-3 is below
+  // tol::kAxisRejectTolerance) and used as the orthonormalised rotation.
+  const Real c = std::sqrt(Real(0.5));
+  const Mat3 exact{{c, c, 0}, {-c, c, 0}, {0, 0, 1}};
+  const Mat3 drifted{exact.rows[0] * 1.001f, exact.rows[1] * 1.001f, exact.rows[2]};
+  const TraceResult a = drop(exact, {0, 0, 64}, {0, 0, -64});
+  const TraceResult b = drop(drifted, {0, 0, 64}, {0, 0, -64});
+  EXPECT_EQ(b.status, QueryStatus::Ok);
+  EXPECT_NEAR(b.fraction, a.fraction, 1e-6f);
+  EXPECT_NEAR(b.contact.normal.length(), 1, 1e-6f);
+}
+
+TEST_F(QueryGuards, ModelAxisMustBeARotation) {
+  const Vec3 start{0, 0, 64}, end{0, 0, -64};
+  Placement scaled;
+  scaled.axis = Mat3{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+  expectRefused(drop(Mat3::identity(), start, end, scaled), QueryStatus::BadModelAxis, start);
+  Placement nan;
+  nan.axis = Mat3{{1, 0, 0}, {0, kNaN, 0}, {0, 0, 1}};
+  expectRefused(drop(Mat3::identity(), start, end, nan), QueryStatus::BadModelAxis, start);
+  Placement nanOrigin;
+  nanOrigin.origin = {kNaN, 0, 0};
+  expectRefused(drop(Mat3::identity(), start, end, nanOrigin), QueryStatus::NonFinite, start);
+  EXPECT_EQ(pointContents(floor(), {0, 0, -8}, nan), 0u);
+  EXPECT_EQ(pointContents(floor(), {0, 0, -8}, nanOrigin), 0u);
+  EXPECT_EQ(pointContents(floor(), {0, 0, -8}), contents::kSolid | contents::kOpaque);
+}
+
+TEST_F(QueryGuards, PositionsMustBeFiniteAndInRange) {
+  expectRefused(drop(Mat3::identity(), {kNaN, 0, 64}, {0, 0, -64}), QueryStatus::NonFinite, {kNaN, 0, 64});
+  expectRefused(drop(Mat3::identity(), {0, 0, 64}, {0, kInf, -64}), QueryStatus::NonFinite, {0, 0, 64});
+  // A move of 3e38 used to end at infinity.
+  expectRefused(drop(Mat3::identity(), {0, 0, 64}, {3e38f, 0, 64}), QueryStatus::OutOfRange, {0, 0, 64});
+  const TraceResult far = drop(Mat3::identity(), {0, 0, 64}, {1e9f, 0, 64});  // the limit itself runs
+  EXPECT_EQ(far.status, QueryStatus::Ok);
+  EXPECT_EQ(far.fraction, 1);
+  // Position tests and point contents at NaN are not "inside".
+  const ContentsResult c = contentsTest(floor(), {&box_, Mat3::identity(), {kNaN, 0, 0}, 1, {}}, work_);
+  EXPECT_EQ(c.trace.status, QueryStatus::NonFinite);
+  EXPECT_EQ(c.contents, 0u);
+  const ContentsResult p = contentsTest(floor(), {nullptr, Mat3::identity(), {kNaN, 0, -8}, 1, {}}, work_);
+  EXPECT_EQ(p.trace.status, QueryStatus::NonFinite);
+  EXPECT_EQ(p.contents, 0u);
+  EXPECT_EQ(pointContents(floor(), {kNaN, kNaN, kNaN}), 0u);
+  EXPECT_EQ(pointContents(floor(), {0, 0, -8}), contents::kSolid | contents::kOpaque);
+  const Penetration pen = penetration(floor(), {&box_, Mat3::identity(), {0, kNaN, -8}, 1, {}}, work_);
+  EXPECT_EQ(pen.status, QueryStatus::NonFinite);
+  EXPECT_FALSE(pen.stuck);
+}
+
+TEST_F(QueryGuards, ContactsNeedAFiniteMove) {
+  ContactsQuery q{&box_, Mat3::identity(), {0, 0, 8}, {0, 0, -1}, 16, 1, {}, 8};
+  const ContactsResult ok = contacts(floor(), q, work_);
+  EXPECT_EQ(ok.status, QueryStatus::Ok);
+  EXPECT_FALSE(ok.contacts.empty());
+  q.depth = kNaN;
+  const ContactsResult nan = contacts(floor(), q, work_);
+  EXPECT_EQ(nan.status, QueryStatus::NonFinite);
+  EXPECT_TRUE(nan.contacts.empty());
+  q.depth = 3e38f;
+  q.dir = {0, 0, -10};
+  EXPECT_EQ(contacts(floor(), q, work_).status, QueryStatus::OutOfRange);
+}
+
+TEST_F(QueryGuards, RotationAxisMustBeUnitAndAngleFinite) {
+  auto turn = [&](const Vec3& axis, Real angle) {
+    return rotate(floor(),
+                  {&box_, Mat3::identity(), {0, 0, 64}, Rotation({0, 0, 64}, axis, angle), 1, {}, false},
+                  work_);
+  };
+  EXPECT_EQ(turn({0, 0, 1}, 90).status, QueryStatus::Ok);
+  expectRefused(turn({0, 0, 10}, 90), QueryStatus::BadRotationAxis, {0, 0, 64});
+  expectRefused(turn({0, 0, 0}, 90), QueryStatus::BadRotationAxis, {0, 0, 64});
+  expectRefused(turn({0, kNaN, 1}, 90), QueryStatus::NonFinite, {0, 0, 64});
+  expectRefused(turn({0, 0, 1}, kNaN), QueryStatus::NonFinite, {0, 0, 64});
+  expectRefused(turn({0, 0, 1}, kInf), QueryStatus::NonFinite, {0, 0, 64});
+  // Nearly unit (1.002): normalised, the same turn as the unit axis.
+  const TraceResult near = turn({0, 0, 1.002f}, 90);
+  const TraceResult unit = turn({0, 0, 1}, 90);
+  EXPECT_EQ(near.status, QueryStatus::Ok);
+  EXPECT_EQ(near.endAxis, unit.endAxis);
+  EXPECT_EQ(near.fraction, unit.fraction);
+}
+
+TEST(QueryGuardsCli, QueryShowsTheRefusal) {
+  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cmkit_guards_cli";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream map(dir / "floor.map");
+    map << "Version 2\n{\n\"classname\" \"worldspawn\"\n"
+        << axialBrush({{-256, -256, -16}, {256, 256, 0}}, "textures/base_wall/lfwall27d") << "}\n";
+    std::ofstream q(dir / "q.txt");
+    q << "translation trm=box:-16,-16,0,16,16,72 start=0,0,64 end=3e38,0,64\n"
+         "translation trm=box:-16,-16,0,16,16,72 start=0,0,64 end=0,0,-64\n";
+  }
+  int rc = 0;
+  const std::string out =
+      test::runCapture(std::string(CMKIT_CLI_PATH) + " query " + (dir / "floor.map").string() + " " +
+                           (dir / "q.txt").string() + " 2>/dev/null",
+                       rc);
+  EXPECT_EQ(rc, 0);
+  EXPECT_NE(out.find("error=refused: a coordinate or the end of the move is beyond 1e9 units"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("fraction="), std::string::npos) << out;
+}
+
+// ---- points honour the mask; pointContents is the OR ------------------------
+
+TEST(PointContents, IsTheOrOfEveryBrushAndPointsHonourTheMask) {
+  // A solid block with a clip brush overlapping its upper half.
+  const auto models = buildText("Version 2\n{\n\"classname\" \"worldspawn\"\n" +
+                                axialBrush({{0, 0, 0}, {64, 64, 64}}, "textures/base_wall/lfwall27d") +
+                                axialBrush({{0, 0, 32}, {64, 64, 96}}, "textures/common/clip") + "}\n");
+  ASSERT_EQ(models.size(), 1u);
+  const CollisionModel& m = *models[0];
+  const std::uint32_t clip = pointContents(m, {32, 32, 80});
+  ASSERT_NE(clip, 0u);
+  EXPECT_EQ(clip & contents::kSolid, 0u);
+  // In both brushes: both brushes' contents.
+  const std::uint32_t solid = pointContents(m, {32, 32, 16});
+  EXPECT_EQ(solid, contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(pointContents(m, {32, 32, 48}), clip | solid);
+  // A point position test reports only what matches the mask, like a box.
+  const TraceModel tiny = trm("box:-1,-1,-1,1,1,1");
+  QueryWork work;
+  for (const std::uint32_t mask : {contents::kSolid, contents::kPlayerClip, contents::kMaskAll}) {
+    SCOPED_TRACE(mask);
+    const ContentsResult p = contentsTest(m, {nullptr, Mat3::identity(), {32, 32, 80}, mask, {}}, work);
+    const ContentsResult b = contentsTest(m, {&tiny, Mat3::identity(), {32, 32, 80}, mask, {}}, work);
+    EXPECT_EQ(p.contents != 0, b.contents != 0);
+    EXPECT_EQ(p.contents, (clip & mask) ? clip : 0u);
+    const TraceResult t =
+        translate(m, {nullptr, Mat3::identity(), {32, 32, 80}, {32, 32, 80}, mask, {}}, work);
+    EXPECT_EQ(t.fraction, (clip & mask) ? 0 : 1);
+  }
+}
+
+TEST(PointContents, Lt4PointInsideSolidReportsSolid) {
+  // The point: the original returns 16 (monsterclip, the first brush
+  // found) although the point is 21.8 units inside a solid brush.
+  const auto models = buildLt4(false);
+  ASSERT_FALSE(models.empty());
+  const std::uint32_t c = pointContents(*models[0], {2373.79028f, -987.413635f, -463.604645f});
+  EXPECT_NE(c & contents::kSolid, 0u);
+  EXPECT_NE(c & contents::kMonsterClip, 0u);
+}
+
+// ---- brush size cap ----------------------------------------------------------
+
+TEST(BrushSides, MoreThanTheCapIsAClearError) {
+  // Building a brush clips every side by every other (sides^2): 20 000 sides
+  // took 53 s with no progress. Above kMaxBrushSides the build refuses at once.
+  std::string sides;
+  const std::size_t n = kMaxBrushSides + 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = 1 - 2 * (double(i) + 0.5) / double(n), r = std::sqrt(1 - z * z);
+    const double t = 2.399963229728653 * double(i);  // golden angle: normals spread over the sphere
+    sides += "  ( " + std::to_string(r * std::cos(t)) + " " + std::to_string(r * std::sin(t)) + " " +
+             std::to_string(z) +
+             " -256 ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/base_wall/lfwall27d\" 0 0 0\n";
+  }
+  const std::string text =
+      "Version 2\n{\n\"classname\" \"worldspawn\"\n{\n brushDef3\n {\n" + sides + " }\n}\n}\n";
+  auto map = parseMapText(text, "big.map");
+  ASSERT_TRUE(map.ok());
+  const auto start = std::chrono::steady_clock::now();
+  auto models = buildCollisionModels(*map, MaterialTable{});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_FALSE(models.ok());
+  EXPECT_EQ(models.error().file, "big.map");
+  EXPECT_EQ(models.error().line, 4);
+  EXPECT_NE(models.error().message.find("has 4097 sides; at most 4096 are supported"), std::string::npos)
+      << models.error().message;
+  EXPECT_LT(seconds, 1.0);
+  const Status entity = writeCollisionModelForMapEntity(*map, 0, "/nonexistent-dir/x.cm", MaterialTable{});
+  ASSERT_FALSE(entity.ok());
+  EXPECT_NE(entity.error().message.find("4097 sides"), std::string::npos) << entity.error().message;
+}
