@@ -115,6 +115,22 @@ cmkit::Bounds boundsOf(const py::object& mins, const py::object& maxs) {
   return {vector3(mins, "mins"), vector3(maxs, "maxs")};
 }
 
+// The class method making a bounds-based shape (box, octahedron, ...), and
+// one with a number of sides (cylinder, cone); the recipe is its name and
+// arguments.
+auto boundsFactory(const char* name, cmkit::Result<cmkit::TraceModel> (*make)(const cmkit::Bounds&)) {
+  return [name, make](py::object mins, py::object maxs) {
+    return makeTrm(make(boundsOf(mins, maxs)), py::make_tuple(name, py::make_tuple(mins, maxs)));
+  };
+}
+
+auto sidedFactory(const char* name, cmkit::Result<cmkit::TraceModel> (*make)(const cmkit::Bounds&, int)) {
+  return [name, make](py::object mins, py::object maxs, int sides) {
+    return makeTrm(make(boundsOf(mins, maxs), sides),
+                   py::make_tuple(name, py::make_tuple(mins, maxs, sides)));
+  };
+}
+
 // A query's trace model argument: None (a point), a TraceModel or a spec string.
 struct TrmArg {
   std::optional<cmkit::TraceModel> parsed;
@@ -596,44 +612,18 @@ Coordinates are relative to the trace model's position in a query.)")
             return PyTraceModel{cmkit::TraceModel::point(), py::make_tuple("point", py::tuple())};
           },
           "A single point (queries with it are point traces).")
-      .def_static(
-          "box",
-          [](py::object mins, py::object maxs) {
-            return makeTrm(cmkit::TraceModel::box(boundsOf(mins, maxs)),
-                           py::make_tuple("box", py::make_tuple(mins, maxs)));
-          },
-          py::arg("mins"), py::arg("maxs"), "An axis-aligned box from corner `mins` to corner `maxs`.")
-      .def_static(
-          "octahedron",
-          [](py::object mins, py::object maxs) {
-            return makeTrm(cmkit::TraceModel::octahedron(boundsOf(mins, maxs)),
-                           py::make_tuple("octahedron", py::make_tuple(mins, maxs)));
-          },
-          py::arg("mins"), py::arg("maxs"),
-          "An octahedron with its vertices at the face centres of the bounds.")
-      .def_static(
-          "dodecahedron",
-          [](py::object mins, py::object maxs) {
-            return makeTrm(cmkit::TraceModel::dodecahedron(boundsOf(mins, maxs)),
-                           py::make_tuple("dodecahedron", py::make_tuple(mins, maxs)));
-          },
-          py::arg("mins"), py::arg("maxs"), "A dodecahedron scaled per axis to the bounds.")
-      .def_static(
-          "cylinder",
-          [](py::object mins, py::object maxs, int sides) {
-            return makeTrm(cmkit::TraceModel::cylinder(boundsOf(mins, maxs), sides),
-                           py::make_tuple("cylinder", py::make_tuple(mins, maxs, sides)));
-          },
-          py::arg("mins"), py::arg("maxs"), py::arg("sides") = 8,
-          "A prism with `sides` (3..10) vertical faces on the ellipse inscribed in the bounds.")
-      .def_static(
-          "cone",
-          [](py::object mins, py::object maxs, int sides) {
-            return makeTrm(cmkit::TraceModel::cone(boundsOf(mins, maxs), sides),
-                           py::make_tuple("cone", py::make_tuple(mins, maxs, sides)));
-          },
-          py::arg("mins"), py::arg("maxs"), py::arg("sides") = 8,
-          "A cone with `sides` (3..15) faces: base at mins.z, apex above the centre at maxs.z.")
+      .def_static("box", boundsFactory("box", &cmkit::TraceModel::box), py::arg("mins"), py::arg("maxs"),
+                  "An axis-aligned box from corner `mins` to corner `maxs`.")
+      .def_static("octahedron", boundsFactory("octahedron", &cmkit::TraceModel::octahedron), py::arg("mins"),
+                  py::arg("maxs"), "An octahedron with its vertices at the face centres of the bounds.")
+      .def_static("dodecahedron", boundsFactory("dodecahedron", &cmkit::TraceModel::dodecahedron),
+                  py::arg("mins"), py::arg("maxs"), "A dodecahedron scaled per axis to the bounds.")
+      .def_static("cylinder", sidedFactory("cylinder", &cmkit::TraceModel::cylinder), py::arg("mins"),
+                  py::arg("maxs"), py::arg("sides") = 8,
+                  "A prism with `sides` (3..10) vertical faces on the ellipse inscribed in the bounds.")
+      .def_static("cone", sidedFactory("cone", &cmkit::TraceModel::cone), py::arg("mins"), py::arg("maxs"),
+                  py::arg("sides") = 8,
+                  "A cone with `sides` (3..15) faces: base at mins.z, apex above the centre at maxs.z.")
       .def_static(
           "bone",
           [](double length, double width) {

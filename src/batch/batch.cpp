@@ -167,17 +167,35 @@ Result<std::size_t> batchSize(std::size_t a, std::size_t b, const char* what) {
                " and " + std::to_string(b) + "; each must be 1 or the batch size)");
 }
 
+namespace {
+
+// The batch size of two "1 or N" inputs, checked against the output's length.
+Result<std::size_t> pairedSize(std::size_t a, std::size_t b, const char* what, std::size_t outSize) {
+  auto n = batchSize(a, b, what);
+  if (!n) return n;
+  if (auto s = checkOut(outSize, *n); !s) return s.error();
+  return n;
+}
+
+// A single query with the fields every query of a batch shares.
+template <class Query, class Batch>
+Query sharedFields(const Batch& batch) {
+  Query q;
+  q.trm = batch.trm;
+  q.trmAxis = batch.trmAxis;
+  q.contentMask = batch.contentMask;
+  q.placement = batch.placement;
+  return q;
+}
+
+}  // namespace
+
 Status translateBatch(const CollisionModel& model, const TranslationBatch& batch, std::span<TraceResult> out,
                       const BatchOptions& options) {
-  const auto n = batchSize(batch.starts.size(), batch.ends.size(), "starts and ends");
+  const auto n = pairedSize(batch.starts.size(), batch.ends.size(), "starts and ends", out.size());
   if (!n) return n.error();
-  if (auto s = checkOut(out.size(), *n); !s) return s;
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    TranslationQuery q;
-    q.trm = batch.trm;
-    q.trmAxis = batch.trmAxis;
-    q.contentMask = batch.contentMask;
-    q.placement = batch.placement;
+    auto q = sharedFields<TranslationQuery>(batch);
     q.detectStartSolid = batch.detectStartSolid;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
@@ -189,15 +207,10 @@ Status translateBatch(const CollisionModel& model, const TranslationBatch& batch
 
 Status rotateBatch(const CollisionModel& model, const RotationBatch& batch, std::span<TraceResult> out,
                    const BatchOptions& options) {
-  const auto n = batchSize(batch.starts.size(), batch.rotations.size(), "starts and rotations");
+  const auto n = pairedSize(batch.starts.size(), batch.rotations.size(), "starts and rotations", out.size());
   if (!n) return n.error();
-  if (auto s = checkOut(out.size(), *n); !s) return s;
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    RotationQuery q;
-    q.trm = batch.trm;
-    q.trmAxis = batch.trmAxis;
-    q.contentMask = batch.contentMask;
-    q.placement = batch.placement;
+    auto q = sharedFields<RotationQuery>(batch);
     q.detectStartSolid = batch.detectStartSolid;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
@@ -211,11 +224,7 @@ Status contentsBatch(const CollisionModel& model, const ContentsBatch& batch, st
                      const BatchOptions& options) {
   if (auto s = checkOut(out.size(), batch.positions.size()); !s) return s;
   return runChunks(batch.positions.size(), options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    ContentsQuery q;
-    q.trm = batch.trm;
-    q.trmAxis = batch.trmAxis;
-    q.contentMask = batch.contentMask;
-    q.placement = batch.placement;
+    auto q = sharedFields<ContentsQuery>(batch);
     for (std::size_t i = begin; i < end; ++i) {
       q.position = batch.positions[i];
       out[i] = contentsTest(model, q, work);
@@ -225,16 +234,11 @@ Status contentsBatch(const CollisionModel& model, const ContentsBatch& batch, st
 
 Status contactsBatch(const CollisionModel& model, const ContactsBatch& batch, std::span<ContactsResult> out,
                      const BatchOptions& options) {
-  const auto n = batchSize(batch.starts.size(), batch.dirs.size(), "starts and dirs");
+  const auto n = pairedSize(batch.starts.size(), batch.dirs.size(), "starts and dirs", out.size());
   if (!n) return n.error();
-  if (auto s = checkOut(out.size(), *n); !s) return s;
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    ContactsQuery q;
-    q.trm = batch.trm;
-    q.trmAxis = batch.trmAxis;
+    auto q = sharedFields<ContactsQuery>(batch);
     q.depth = batch.depth;
-    q.contentMask = batch.contentMask;
-    q.placement = batch.placement;
     q.maxContacts = batch.maxContacts;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
@@ -255,9 +259,8 @@ Status pointContentsBatch(const CollisionModel& model, std::span<const Vec3> poi
 
 Status castRayBatch(const RayIndex& index, const RayBatch& batch, std::span<RayHit> out,
                     const BatchOptions& options) {
-  const auto n = batchSize(batch.starts.size(), batch.ends.size(), "starts and ends");
+  const auto n = pairedSize(batch.starts.size(), batch.ends.size(), "starts and ends", out.size());
   if (!n) return n.error();
-  if (auto s = checkOut(out.size(), *n); !s) return s;
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork&) {
     RayCastQuery q;
     q.contentMask = batch.contentMask;
