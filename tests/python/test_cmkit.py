@@ -324,3 +324,29 @@ def test_import_without_installing_documents_itself():
     assert cmkit.__doc__ and cmkit.load_map.__doc__ and cmkit.Model.translate.__doc__
     assert "threads=" in cmkit.Model.cast_rays.__doc__
     assert str(LT4).endswith("lt4.map")
+
+
+# ---- the example job ---------------------------------------------------------------------------------------
+
+
+def test_walkable_example_writes_its_picture_and_summary(tmp_path):
+    pytest.importorskip("matplotlib", reason="examples/python/walkable.py needs Debian's python3-matplotlib")
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from conftest import SOURCE_DIR
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    run = subprocess.run([sys.executable, str(SOURCE_DIR / "examples" / "python" / "walkable.py"), str(LT4),
+                          "--spacing", "32", "-o", str(tmp_path)], env=env, capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    summary = json.loads((tmp_path / "lt4-walkable.json").read_text())
+    assert summary["walkable_cells"] > 1000 and summary["grid"] == [158, 127]
+    assert -1100 < summary["floor_height_min"] < summary["floor_height_max"] < 400
+    assert (tmp_path / "lt4-walkable.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    bad = subprocess.run([sys.executable, str(SOURCE_DIR / "examples" / "python" / "walkable.py"),
+                          str(tmp_path / "missing.map")], env=env, capture_output=True, text=True, timeout=60)
+    assert bad.returncode != 0 and "missing.map" in bad.stderr
