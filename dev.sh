@@ -3,7 +3,8 @@
 #
 #   ./dev.sh demo    install what is needed, build, run the main job
 #   ./dev.sh test    install what is needed, build, run the whole test suite
-#                    (format check, release tests, ASan+UBSan tests)
+#                    (format check, release tests, the Python package's
+#                    pytest suite, ASan+UBSan tests)
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
@@ -17,7 +18,8 @@ cd "$(dirname "$0")"
 PACKAGES=(build-essential cmake ninja-build ccache clang-format
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
           libbullet-dev libembree-dev pkg-config
-          python3)
+          python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+          python3-matplotlib)
 
 deps() {
   local missing=()
@@ -88,6 +90,9 @@ case "${1:-}" in
     echo "== release build and tests"
     build release
     ctest --preset release
+    echo "== Python package (library + module) and its pytest suite"
+    build python
+    ctest --preset python
     echo "== ASan + UBSan build and tests"
     build asan
     ctest --preset asan
