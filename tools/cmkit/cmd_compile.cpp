@@ -26,6 +26,13 @@ void registerCompile(CLI::App& app) {
       "entity N (#0 = worldspawn); the model is named after the -o file, written with CRC 0\n"
       "and never pruned by a .proc. --test-trm also converts it to a trace model and prints\n"
       "it, or why it cannot be one (not convex, too many vertices/edges/polygons, ...).\n\n"
+      "A mesh file instead of a map (.obj, .gltf, .glb, .ase, .lwo, .fbx, .ply, ..., read with\n"
+      "assimp) becomes one model named after the file, as the original converts a render\n"
+      "model: every triangle of every surface whose material has contents, or only the\n"
+      "collision surfaces (material keyword \"collision\", textures/common/collision) when\n"
+      "there are any; triangles counter-clockwise seen from the front. -o writes it with\n"
+      "CRC 0. --up says which axis is up in the file (glTF is y up), --scale resizes it,\n"
+      "--contents replaces the materials' contents (meshes without Doom 3 materials).\n\n"
       "Materials decide which brush sides and patches collide (and how): by default the\n"
       "rules of docs/materials (textures/common/clip is player/monster/moveable clip,\n"
       "names containing \"water\" are water, ...); --materials DIR reads the .mtr files\n"
@@ -34,12 +41,14 @@ void registerCompile(CLI::App& app) {
       "  cmkit compile maps/lt4.map                  statistics only\n"
       "  cmkit compile maps/lt4.map -o maps/lt4.cm   write the .cm as well\n"
       "  cmkit compile level.map --materials base/materials --json > stats.json\n"
-      "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n\n"
+      "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n"
+      "  cmkit compile crate.obj -o crate.cm --contents solid,playerclip\n"
+      "  cmkit compile level.glb --scale 39.37 -o level.cm      metres to Doom units\n\n"
       "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message), an\n"
       "unknown --entity or one without brushes or patches.");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "compile";
-  cmd->add_option("MAP", req->mapPath, "the .map file")->required();
+  cmd->add_option("MAP", req->mapPath, "the .map file, or a mesh file")->required();
   cmd->add_option("-o,--output", req->outPath, "write the models to this .cm file");
   cmd->add_option("--materials", req->materialsDir,
                   "directory of .mtr material files (searched recursively)");
@@ -49,6 +58,7 @@ void registerCompile(CLI::App& app) {
   cmd->add_option("--entity", req->entity,
                   "write only this entity's model to -o: its \"name\" value, or #N for entity N");
   cmd->add_flag("--test-trm", req->testTrm, "with --entity: convert the model to a trace model and report");
+  addMeshOptions(cmd, req->mesh);
   cmd->callback([req] {
     const int rc = runMapBuild(*req);
     if (rc != 0) std::exit(rc);
