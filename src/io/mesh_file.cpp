@@ -136,8 +136,9 @@ Result<TriangleMesh> loadMeshFile(const std::string& path, const MeshLoadOptions
     return Error("the mesh scale must be a positive finite number", path);
 #ifdef CMKIT_HAVE_ASSIMP
   std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return Error("cannot open the mesh file: no such file", path);
   if (!std::filesystem::is_regular_file(path, ec))
-    return Error("cannot open the mesh file (no such file)", path);
+    return Error("cannot read the mesh file: not a regular file", path);
   try {
     return readWithAssimp(path, options);
   } catch (const std::bad_alloc&) {

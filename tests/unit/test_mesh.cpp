@@ -489,5 +489,44 @@ TEST(MeshShared, CcMeshesBuildValidModels) {
   }
 }
 
+TEST(MeshCli, CompileInfoValidateAndQueryTakeMeshFiles) {
+  CMKIT_REQUIRE_ASSIMP();
+  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
+  const std::string cli = CMKIT_CLI_PATH;
+  const std::string cube = meshData("cube.obj").string();
+  const fs::path dir = fs::temp_directory_path() / "cmkit_test_mesh_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  int rc = -1;
+  std::string out =
+      test::runCapture(cli + " compile '" + cube + "' -o '" + (dir / "cube.cm").string() + "'", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("     6 polygons"), std::string::npos) << out;
+  EXPECT_NE(out.find("wrote " + (dir / "cube.cm").string() + " (1 model, CRC 0)"), std::string::npos) << out;
+  auto cm = loadCmFile((dir / "cube.cm").string(), MaterialTable{});
+  ASSERT_TRUE(cm.ok()) << cm.error().toString();
+  EXPECT_EQ(cm->models.size(), 1u);
+  EXPECT_EQ(cm->models[0]->name, cube);
+  // --contents replaces the materials' contents
+  out = test::runCapture(cli + " info '" + cube + "' --contents playerclip", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("contents 8"), std::string::npos) << out;
+  out = test::runCapture(cli + " validate '" + meshData("cube.gltf").string() + "'", rc);
+  EXPECT_EQ(rc, 0) << out;
+  std::ofstream(dir / "q.txt") << "translation trm=point start=32,32,100 end=32,32,-100\n";
+  out = test::runCapture(cli + " query '" + cube + "' '" + (dir / "q.txt").string() + "'", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("fraction=0.178749993 endpos=32,32,64.25"), std::string::npos) << out;
+  out = test::runCapture(cli + " compile '" + meshData("malformed.obj").string() + "' 2>&1", rc);
+  EXPECT_EQ(rc, 2) << out;
+  EXPECT_NE(out.find("malformed.obj: "), std::string::npos) << out;
+  out = test::runCapture(cli + " compile '" + cube + "' --entity x -o '" + (dir / "x.cm").string() + "' 2>&1",
+                         rc);
+  EXPECT_EQ(rc, 2) << out;
+  out = test::runCapture(cli + " compile '" + cube + "' --up sideways 2>&1", rc);
+  EXPECT_EQ(rc, 2) << out;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cmkit

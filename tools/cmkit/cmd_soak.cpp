@@ -195,7 +195,8 @@ void registerSoak(CLI::App& app) {
       "  cmkit soak data/maps/lt4/lt4.map --trm cone:6:-12,-12,0,12,12,40 --threads 2\n"
       "  cmkit soak data/maps/lt4/lt4.map --fail-on closed-brush\n"
       "  cmkit soak data/maps/lt4/lt4.map --replay cases.txt   (classify pasted translation lines)");
-  cmd->add_option("MAP", o->map, "a .map (built on the fly) or .cm file; the first model is soaked")
+  cmd->add_option("MAP", o->map,
+                  "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...); the first model is soaked")
       ->required();
   cmd->add_option("--sweeps", o->sweeps, "random translations")
       ->capture_default_str()
