@@ -16,6 +16,7 @@
 #include "cmkit/mesh.h"
 #include "cmkit/query.h"
 #include "cmkit/tolerances.h"
+#include "cmkit/tools/export.h"
 #include "cmkit/validate.h"
 #include "test_support.h"
 
@@ -400,6 +401,51 @@ TEST(MeshFile, CubeGltfIsYUpAndGivesTheSameCube) {
   auto half = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{}, scaled);
   ASSERT_TRUE(half.ok());
   EXPECT_EQ((*half)->bounds.max, (Vec3{32, 32, 32}));
+}
+
+TEST(MeshFile, GltfExportImportExportIsStable) {
+  CMKIT_REQUIRE_ASSIMP();
+  // cmkit's glTF export (z up turned y up by its root node) read back as a
+  // mesh gives the same model, round after round.
+  const ModelPtr m0 = build(sphereMesh({0, 0, 0}, 64, 12, 8));
+  ASSERT_TRUE(m0);
+  ExportOptions options;
+  options.edges = false;
+  options.internalEdges = false;
+  const fs::path path = fs::temp_directory_path() / "cmkit_test_export_import.glb";
+  auto roundTrip = [&](const ModelPtr& m) -> ModelPtr {
+    std::vector<std::uint8_t> glb = exportGlb(std::span<const ModelPtr>(&m, 1), {}, options);
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+    auto back = loadMeshModel(path.string(), MaterialTable{});
+    EXPECT_TRUE(back.ok()) << (back.ok() ? "" : back.error().toString());
+    return back.ok() ? *back : nullptr;
+  };
+  const ModelPtr m1 = roundTrip(m0);
+  ASSERT_TRUE(m1);
+  EXPECT_EQ(m1->vertices.size(), m0->vertices.size());
+  EXPECT_EQ(m1->numEdges(), m0->numEdges());
+  EXPECT_EQ(m1->polygons.size(), m0->polygons.size());
+  EXPECT_TRUE(isClosed(*m1));
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(m1->bounds.min[a], m0->bounds.min[a], 1e-3f);
+    EXPECT_NEAR(m1->bounds.max[a], m0->bounds.max[a], 1e-3f);
+  }
+  const ModelPtr m2 = roundTrip(m1);
+  ASSERT_TRUE(m2);
+  // The vertices are numbered in the order the export lists the polygons,
+  // so each round can number them differently: each must be one of m0's.
+  for (const ModelPtr& m : {m1, m2}) {
+    EXPECT_EQ(m->polygons.size(), m0->polygons.size());
+    EXPECT_EQ(m->numEdges(), m0->numEdges());
+    ASSERT_EQ(m->vertices.size(), m0->vertices.size());
+    for (std::size_t v = 0; v < m->vertices.size(); ++v) {
+      float nearest = 1e30f;
+      for (const Vec3& w : m0->vertices) nearest = std::min(nearest, (m->vertices[v] - w).length());
+      EXPECT_LT(nearest, 1e-3f) << "vertex " << v;
+    }
+  }
+  fs::remove(path);
 }
 
 TEST(MeshFile, CollisionSurfaceObj) {
