@@ -91,9 +91,28 @@ struct QueryScratch;
 struct QueryWorkAccess;
 }  // namespace detail
 
+/// Work counters of the queries run with one QueryWork, summed since it was
+/// made or last reset: where a query's time goes, independent of the
+/// machine. They are counted only by a library built with
+/// -DCMKIT_QUERY_STATS=ON (queryStatsEnabled()); in other builds the
+/// counting code is not compiled in and every counter stays 0.
+struct QueryStats {
+  std::uint64_t queries = 0;         ///< translations, rotations, contents tests and contacts queries
+  std::uint64_t nodesVisited = 0;    ///< tree nodes entered by the walks
+  std::uint64_t polygonsMet = 0;     ///< polygons met at those nodes for the first time in a query
+  std::uint64_t polygonsTested = 0;  ///< of those, polygons past every polygon cull (features tested)
+  std::uint64_t brushesMet = 0;      ///< brushes met for the first time by position tests
+  std::uint64_t vertexTests =
+      0;                        ///< trace-model vertex / polygon and model vertex / trace-model polygon tests
+  std::uint64_t edgePairs = 0;  ///< trace-model edge / model edge tests
+};
+
+/// True when the library counts QueryStats (built with -DCMKIT_QUERY_STATS=ON).
+bool queryStatsEnabled();
+
 /// Caller-owned scratch memory for queries (one per thread; reusable). Its
 /// contents are the library's own business: a QueryWork is only created,
-/// moved and handed to queries.
+/// moved and handed to queries (and asked for its work counters).
 class QueryWork {
  public:
   QueryWork();
@@ -102,6 +121,11 @@ class QueryWork {
   QueryWork& operator=(QueryWork&&) noexcept;
   QueryWork(const QueryWork&) = delete;
   QueryWork& operator=(const QueryWork&) = delete;
+
+  /// The work counters of the queries run with this QueryWork (all 0 unless
+  /// queryStatsEnabled()).
+  const QueryStats& stats() const;
+  void resetStats();
 
  private:
   friend struct detail::QueryWorkAccess;

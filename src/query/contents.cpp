@@ -6,9 +6,26 @@
 
 namespace cmkit::detail {
 
+namespace {
+
+/// The trace model's edge lines and polygon planes for a position test, once.
+void placePositionTestFeatures(TraceWork& tw) {
+  if (tw.featuresPlaced) return;
+  tw.featuresPlaced = true;
+  for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, i);
+  for (int i = 0; i < tw.numPolys; ++i) {
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    wp.used = true;
+    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+  }
+}
+
+}  // namespace
+
 bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
   QueryScratch& s = tw.scratch;
   if (s.testAndMark(s.brushChecked, std::size_t(brushNum))) return false;
+  count(s, &QueryStats::brushesMet);
   const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
   if (!(b.contents & tw.contentMask)) return false;
   if (!b.bounds.intersects(tw.bounds)) return false;
@@ -47,11 +64,14 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
+  count(s, &QueryStats::polygonsMet);
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
   if (!(poly.contents & tw.contentMask)) return false;
   if (!poly.bounds.intersects(tw.bounds)) return false;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
+  count(s, &QueryStats::polygonsTested);
+  placePositionTestFeatures(tw);
   const auto edges = m.edgesOf(poly);
   auto stuck = [&](ContactType type, const Vec3& normal, Real dist, const Vec3& point,
                    std::int32_t modelFeature, int trmFeature) {
@@ -157,40 +177,17 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis
   tw.c = ContactInfo{};
   tw.contentMask = mask;
   tw.isConvex = trm.isConvex();
-  tw.positionTest = true;
   tw.pointTrace = false;
   tw.quickExit = false;
-  tw.start = position - placement.origin;
+  placeTrm(tw, trm, trmAxis, position, placement);
   tw.end = tw.start;
-  const bool modelRotated = isRotated(placement.axis);
-  const bool trmRotated = isRotated(trmAxis);
-
-  placeTrmVertices(tw, trm, trmAxis, modelRotated, placement.axis, true);
-  const Vec3 offset = trmRotated ? trm.offset() * trmAxis : trm.offset();
-  tw.start += offset;
-  tw.end += offset;
-  if (modelRotated) {
-    tw.start = placement.axis * tw.start;
-    tw.end = placement.axis * tw.end;
-  }
   tw.size.clear();
-  for (int i = 0; i < tw.numVerts; ++i) tw.size.addPoint(tw.vertices[std::size_t(i)].p - tw.start);
-  for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, trm, i);
-  const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * placement.axis.transposed() : trmAxis;
-  for (int i = 0; i < tw.numPolys; ++i) {
-    const TrmPolygon& tp = trm.polygon(i);
-    WorkPolygon& wp = tw.polys[std::size_t(i)];
-    wp.numEdges = tp.numEdges;
-    wp.edges = tp.edges.data();
-    wp.used = true;
-    Vec3 n = tp.normal;
-    if (trmRotated)
-      n = n * planeAxis;
-    else if (modelRotated)
-      n = placement.axis * n;
-    wp.plane.normal = n;
-    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(tp.edges[0]))].start);
+  for (int i = 0; i < tw.numVerts; ++i) {
+    WorkVertex& v = tw.vertices[std::size_t(i)];
+    v.used = true;
+    tw.size.addPoint(v.p - tw.start);
   }
+  tw.featuresPlaced = false;
   for (int i = 0; i < 3; ++i) {
     tw.extents[i] = (std::fabs(tw.size.min[i]) > std::fabs(tw.size.max[i]) ? std::fabs(tw.size.min[i])
                                                                            : std::fabs(tw.size.max[i])) +

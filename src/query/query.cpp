@@ -21,16 +21,6 @@ void setupTranslationHeartPlanes(TraceWork& tw) {
   tw.heartPlane2 = Plane{n2, n2.dot(tw.start)};
 }
 
-// Moves a contact from the model's frame to the world.
-void contactToWorld(ContactInfo& c, const Placement& placement, bool modelRotated) {
-  if (modelRotated) {
-    c.normal = c.normal * placement.axis;
-    c.point = c.point * placement.axis;
-  }
-  c.point += placement.origin;
-  c.dist += placement.origin.dot(c.normal);
-}
-
 // Point trace set-up (no trace model).
 void setupPointTrace(TraceWork& tw) {
   for (int i = 0; i < 3; ++i) {
@@ -53,42 +43,23 @@ void setupPointTrace(TraceWork& tw) {
 
 // Trace-model translation set-up: the trace model at the start, only the
 // features facing the movement used.
-void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
-                         const Mat3& modelAxis) {
-  const bool trmRotated = isRotated(trmAxis);
-  placeTrmVertices(tw, trm, trmAxis, modelRotated, modelAxis, false);
-  const Vec3 offset = trmRotated ? trm.offset() * trmAxis : trm.offset();
-  tw.start += offset;
-  tw.end += offset;
-  if (modelRotated) {
-    tw.start = modelAxis * tw.start;
-    tw.end = modelAxis * tw.end;
-    tw.dir = modelAxis * tw.dir;
-  }
-  for (int i = 1; i <= tw.numEdges; ++i) {
-    WorkEdge& e = tw.edges[std::size_t(i)];
-    e.vertexNum[0] = trm.edge(i).v[0];
-    e.vertexNum[1] = trm.edge(i).v[1];
-    e.used = false;
-  }
-  const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * modelAxis.transposed() : trmAxis;
+void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
+  const TraceModel& trm = *q.trm;
+  placeTrm(tw, trm, q.trmAxis, q.start, q.placement);
+  tw.end = trmCentreInModel(trm, q.trmAxis, q.end, q.placement);
+  tw.dir = q.end - q.start;
+  if (isRotated(q.placement.axis)) tw.dir = q.placement.axis * tw.dir;
+  for (int i = 0; i < tw.numVerts; ++i) tw.vertices[std::size_t(i)].used = false;
+  for (int i = 1; i <= tw.numEdges; ++i) tw.edges[std::size_t(i)].used = false;
   for (int i = 0; i < tw.numPolys; ++i) {
-    const TrmPolygon& tp = trm.polygon(i);
     WorkPolygon& wp = tw.polys[std::size_t(i)];
-    wp.numEdges = tp.numEdges;
-    wp.edges = tp.edges.data();
-    Vec3 n = tp.normal;
-    if (trmRotated)
-      n = n * planeAxis;
-    else if (modelRotated)
-      n = modelAxis * n;
-    wp.plane.normal = n;
+    const Vec3& n = wp.plane.normal;
     // Polygons facing the movement (or, for a flat trm, along it) collide.
     const Real d = n.dot(tw.dir);
     wp.used = d > 0 || (!trm.isConvex() && d == 0);
     if (!wp.used) continue;
-    for (int j = 0; j < tp.numEdges; ++j) {
-      WorkEdge& e = tw.edges[std::size_t(std::abs(tp.edges[std::size_t(j)]))];
+    for (int j = 0; j < wp.numEdges; ++j) {
+      WorkEdge& e = tw.edges[std::size_t(std::abs(wp.edges[std::size_t(j)]))];
       e.used = true;
       tw.vertices[std::size_t(e.vertexNum[0])].used = true;
       tw.vertices[std::size_t(e.vertexNum[1])].used = true;
@@ -102,27 +73,20 @@ void setupTrmTranslation(TraceWork& tw, const TraceModel& trm, const Mat3& trmAx
     tw.movingVertices |= std::uint32_t(1) << i;
     tw.size.addPoint(v.p - tw.start);
     v.endp = v.p + tw.dir;
-    v.pl = Pluecker::fromRay(v.p, tw.dir);
   }
   tw.movingEdges = 0;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     if (!e.used) continue;
     tw.movingEdges |= std::uint64_t(1) << i;
-    e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-    e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-    e.pl = Pluecker::fromLine(e.start, e.end);
-    const Vec3 a = e.start - e.end;
-    e.cross = {a[0] * tw.dir[1] - a[1] * tw.dir[0], a[0] * tw.dir[2] - a[2] * tw.dir[0],
-               a[1] * tw.dir[2] - a[2] * tw.dir[1]};
   }
   tw.movingPolygons = 0;
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     if (!wp.used) continue;
     tw.movingPolygons |= std::uint32_t(1) << i;
-    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
   }
+  tw.featuresPlaced = false;  // the paths, edge lines and planes: placeTranslationFeatures
   for (int i = 0; i < 3; ++i) {
     if (tw.start[i] < tw.end[i]) {
       tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
@@ -154,16 +118,14 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
   tw.c = ContactInfo{};
   tw.contentMask = q.contentMask;
   tw.isConvex = true;
-  tw.positionTest = false;
   tw.quickExit = false;
   tw.contacts = out;
   tw.maxContacts = maxContacts;
-  tw.start = q.start - q.placement.origin;
-  tw.end = q.end - q.placement.origin;
-  tw.dir = q.end - q.start;
-  const bool modelRotated = isRotated(q.placement.axis);
   if (isPointTrm(q.trm)) {
-    if (modelRotated) {
+    tw.start = q.start - q.placement.origin;
+    tw.end = q.end - q.placement.origin;
+    tw.dir = q.end - q.start;
+    if (isRotated(q.placement.axis)) {
       tw.start = q.placement.axis * tw.start;
       tw.end = q.placement.axis * tw.end;
       tw.dir = q.placement.axis * tw.dir;
@@ -172,9 +134,9 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
   } else {
     tw.pointTrace = false;
     tw.isConvex = q.trm->isConvex();
-    setupTrmTranslation(tw, *q.trm, q.trmAxis, modelRotated, q.placement.axis);
+    setupTrmTranslation(tw, q);
   }
-  traceThroughModel(tw);
+  translateThroughModel(tw);
 }
 
 }  // namespace
@@ -197,9 +159,10 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& q,
   }
   detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
+  count(s, &QueryStats::queries);
   TraceWork tw(model, s);
   setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.placement);
-  traceThroughModel(tw);
+  positionTestThroughModel(tw);
   r.contents = tw.c.contents;
   r.trace.contact = tw.c;
   r.trace.fraction = r.contents == 0 ? 1 : 0;
@@ -221,6 +184,7 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
   }
   detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
+  count(s, &QueryStats::queries);
   TraceWork tw(model, s);
   runTranslation(tw, q, nullptr, 0);
   r.fraction = tw.fraction;
@@ -230,7 +194,7 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& q, Qu
   if (r.fraction < 1) {
     // A tiny fraction whose movement rounds to nothing is no movement.
     if (r.fraction > 0 && r.endPos == q.start) r.fraction = 0;
-    contactToWorld(r.contact, q.placement, isRotated(q.placement.axis));
+    contactToWorld(r.contact, q.placement);
   }
   return r;
 }
@@ -242,12 +206,12 @@ ContactsResult contacts(const CollisionModel& model, const ContactsQuery& q, Que
   if (end == q.start || q.maxContacts <= 0) return result;  // a position test finds no contacts
   detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
+  count(s, &QueryStats::queries);
   TraceWork tw(model, s);
   const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.placement, false};
   runTranslation(tw, tq, &out, q.maxContacts);
   // Unlike the original, point contacts are moved to world space too.
-  const bool modelRotated = isRotated(q.placement.axis);
-  for (ContactInfo& c : out) contactToWorld(c, q.placement, modelRotated);
+  for (ContactInfo& c : out) contactToWorld(c, q.placement);
   return result;
 }
 

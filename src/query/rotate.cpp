@@ -8,6 +8,7 @@
 // run with the first polygon that reaches it through culls that are valid for
 // the edge itself, so the result does not depend on polygon order.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -15,20 +16,6 @@
 
 namespace cmkit::detail {
 namespace {
-
-/// A double-precision vector for the equations (inputs are Real).
-struct DVec {
-  double x = 0, y = 0, z = 0;
-  DVec() = default;
-  DVec(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
-  explicit DVec(const Vec3& v) : x(v.x), y(v.y), z(v.z) {}
-  DVec operator+(const DVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
-  DVec operator-(const DVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
-  DVec operator*(double s) const { return {x * s, y * s, z * s}; }
-  double dot(const DVec& o) const { return x * o.x + y * o.y + z * o.z; }
-  DVec cross(const DVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
-  Vec3 toVec3() const { return {Real(x), Real(y), Real(z)}; }
-};
 
 /// The positive root of -v1 u^2 - 2 v2 u + v1 = 0 for v1 > 0: where the
 /// sinusoid v2 cos t + v1 sin t + v0 has its first extremum ahead (the two
@@ -51,47 +38,29 @@ Sinusoid pointPlaneSinusoid(const Vec3& p, const Vec3& ro, const Vec3& axis, dou
   return s;
 }
 
-/// Relative position of the lines s1->e1 and s2->e2 as the triple product
-/// ((e1 - s1) x (e2 - s2)) . (s2 - s1): zero when they are coplanar, its sign
-/// telling which way one passes the other (the Pluecker permuted product).
-double lineProduct(const DVec& s1, const DVec& e1, const DVec& s2, const DVec& e2) {
-  return (e1 - s1).cross(e2 - s2).dot(s2 - s1);
-}
-
-/// The trace-model edge (s, e) turned by +90 and +180 degrees about the axis.
-struct TurnedEdge {
-  DVec s0, e0, s90, e90, s180, e180;
+/// The line product of the turning trace-model edge and the fixed model
+/// edge line c -> d, ((e - s) x (d - c)) . (c - s) with s, e the turned
+/// edge's ends (zero when the lines meet, its sign telling which way one
+/// passes the other: the Pluecker permuted product), as a sinusoid of the
+/// angle. With u = e - s, q = (s - o) x u (o on the axis), w = d - c and
+/// P = w x (c - o) it is P . R(t) u - w . R(t) q (turning both lines keeps
+/// their products), and R(t) x is linear in cos t and sin t (EdgeTurn).
+/// The model edge's ends are Real: an edge moved out by an epsilon is
+/// rounded as the original rounds it (a tiny turn's fraction shows it).
+struct ModelEdgeLine {
+  DVec w, p;
+  ModelEdgeLine(const RotationWork& rw, const Vec3& c, const Vec3& d)
+      : w(DVec(d) - DVec(c)), p(w.cross(DVec(c) - DVec(rw.origin))) {}
+  /// The product at the start of the part (t = 0).
+  double atStart(const EdgeTurn& t) const { return p.dot(t.u) - w.dot(t.q); }
+  Sinusoid sinusoid(const EdgeTurn& t, double sign) const {
+    Sinusoid s;
+    s.v0 = p.dot(t.uAxial) - w.dot(t.qAxial);
+    s.v2 = p.dot(t.uAcross) - w.dot(t.qAcross);
+    s.v1 = sign * (p.dot(t.uTurned) - w.dot(t.qTurned));
+    return s;
+  }
 };
-TurnedEdge turnEdge(const RotationWork& rw, const Vec3& s, const Vec3& e) {
-  const DVec o(rw.origin), a(rw.axis);
-  auto turn = [&](const DVec& p, DVec& p90, DVec& p180) {
-    const DVec v = p - o;
-    const DVec proj = a * a.dot(v);
-    const DVec perp = v - proj;
-    p90 = o + proj - a.cross(perp);  // cos 90 = 0, sin 90 = 1 (positive direction)
-    p180 = o + proj - perp;
-  };
-  TurnedEdge t;
-  t.s0 = DVec(s);
-  t.e0 = DVec(e);
-  turn(t.s0, t.s90, t.s180);
-  turn(t.e0, t.e90, t.e180);
-  return t;
-}
-
-/// The line product of the turning trace-model edge and the fixed model edge
-/// (c, d) as a sinusoid of the angle: the product is linear in (cos t,
-/// sin t, 1), so three samples (0, 90, 180 degrees) determine it.
-Sinusoid edgeEdgeSinusoid(const TurnedEdge& t, const DVec& c, const DVec& d, double sign) {
-  const double f0 = lineProduct(t.s0, t.e0, c, d);
-  const double f90 = lineProduct(t.s90, t.e90, c, d);
-  const double f180 = lineProduct(t.s180, t.e180, c, d);
-  Sinusoid s;
-  s.v0 = 0.5 * (f0 + f180);
-  s.v2 = 0.5 * (f0 - f180);
-  s.v1 = sign * (f90 - s.v0);
-  return s;
-}
 
 /// First u in [lo, maxTan) where the sinusoid is zero.
 bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u) {
@@ -164,8 +133,11 @@ void setContact(TraceWork& tw, const CmPolygon& poly, ContactType type, const Ve
   c.trmFeature = trmFeature;
 }
 
+/// `edgeLinesSet`: the polygon's edge lines are in the scratch already (they
+/// are made when a vertex first reaches the polygon's plane in time).
 void rotateTrmVertexThroughPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum,
-                                   const CmPolygon& poly, int vertexNum) {
+                                   const CmPolygon& poly, int vertexNum, bool& edgeLinesSet) {
+  count(tw.scratch, &QueryStats::vertexTests);
   const WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
   const RotVertex& rv = rw.vertices[std::size_t(vertexNum)];
   double u;
@@ -174,7 +146,11 @@ void rotateTrmVertexThroughPolygon(TraceWork& tw, RotationWork& rw, std::int32_t
     return;
   if (!(u < rw.maxTan)) return;
   const auto edges = tw.model.edgesOf(poly);
-  const QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
+  if (!edgeLinesSet) {
+    setPolygonEdgeLines(tw.model, edges, s);
+    edgeLinesSet = true;
+  }
   if (!rayInsideEdges(point, dir, int(edges.size()), [&](int k, bool& reversed) -> const Pluecker& {
         reversed = edges[std::size_t(k)] < 0;
         return s.polygonEdgeLines[std::size_t(k)];
@@ -220,42 +196,39 @@ bool collisionBetweenEdgeBounds(const RotationWork& rw, const Vec3& s, const Vec
 void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
                               int trmEdgeNum) {
   const CollisionModel& m = tw.model;
+  count(tw.scratch, &QueryStats::edgePairs);
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const Vec3& c0 = m.vertices[std::size_t(edge.vertex[0])];
   const Vec3& d0 = m.vertices[std::size_t(edge.vertex[1])];
-  const TurnedEdge turned = turnEdge(rw, te.start, te.end);
+  const EdgeTurn& turn = rw.edgeTurn(tw, trmEdgeNum);
   const double sign = rw.sign;
 
   // Is the trace-model edge line already between the model edge and the
   // edge moved out by the epsilon (plus the range epsilon)?
   const Vec3 shiftIn = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
-  const Vec3 c1 = c0 + shiftIn, d1 = d0 + shiftIn;
-  const double f1 = lineProduct(turned.s0, turned.e0, DVec(c0), DVec(d0));
-  const double f2 = lineProduct(turned.s0, turned.e0, DVec(c1), DVec(d1));
+  const ModelEdgeLine line(rw, c0, d0), lineIn(rw, c0 + shiftIn, d0 + shiftIn);
+  const double f1 = line.atStart(turn);
+  const double f2 = lineIn.atStart(turn);
   double u;
-  Vec3 c, d;
   if ((f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0)) {
     // Within the band (on the model edge line included): the side of the
     // epsilon line is the outside, so moving away from it is moving in.
     // away = d|f1|/dt, with sign(f1) = -sign(f2) in the band.
-    const Sinusoid real = edgeEdgeSinusoid(turned, DVec(c0), DVec(d0), sign);
+    const Sinusoid real = line.sinusoid(turn, sign);
     const double flip = f2 > 0 ? -1.0 : 1.0;
     const double away = flip * real.v1;
-    c = c1;
-    d = d1;
     if (away <= 0) {
       u = 0;
     } else {
       const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
-      if (!sinusoidRoot(edgeEdgeSinusoid(turned, DVec(c1), DVec(d1), sign), furthest, rw.maxTan, u)) return;
+      if (!sinusoidRoot(lineIn.sinusoid(turn, sign), furthest, rw.maxTan, u)) return;
     }
   } else {
     const Vec3 shift = edge.normal * tol::kClipEpsilon;
-    c = c0 + shift;
-    d = d0 + shift;
-    if (!sinusoidRoot(edgeEdgeSinusoid(turned, DVec(c), DVec(d), sign), 0, rw.maxTan, u)) return;
+    const ModelEdgeLine lineEps(rw, c0 + shift, d0 + shift);
+    if (!sinusoidRoot(lineEps.sinusoid(turn, sign), 0, rw.maxTan, u)) return;
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
@@ -278,6 +251,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
 
 void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, int trmPolyNum,
                                    std::size_t vertexNum, const Vec3& p, const Vec3& endp, const Vec3& ro) {
+  count(tw.scratch, &QueryStats::vertexTests);
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   double u;
   Vec3 point, dir;
@@ -363,11 +337,40 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
   return b;
 }
 
+std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, const Plane& plane) {
+  const Vec3& nm = plane.normal;
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const Real cx = (b.minX[i] + b.maxX[i]) * Real(0.5);
+    const Real cy = (b.minY[i] + b.maxY[i]) * Real(0.5);
+    const Real cz = (b.minZ[i] + b.maxZ[i]) * Real(0.5);
+    const Real d1 = nm.x * cx + nm.y * cy + nm.z * cz - plane.dist;
+    const Real d2 = std::fabs((b.maxX[i] - cx) * nm.x) + std::fabs((b.maxY[i] - cy) * nm.y) +
+                    std::fabs((b.maxZ[i] - cz) * nm.z);
+    const bool apart = (bounds.max.x < b.minX[i]) | (bounds.max.y < b.minY[i]) | (bounds.max.z < b.minZ[i]) |
+                       (bounds.min.x > b.maxX[i]) | (bounds.min.y > b.maxY[i]) | (bounds.min.z > b.maxZ[i]);
+    const bool oneSide = (d1 - d2 > tol::kOnEpsilon) | (d1 + d2 < -tol::kOnEpsilon);
+    bits |= std::uint32_t(!(apart | oneSide)) << i;
+  }
+  return bits;
+}
+
+std::uint32_t boxesTouching(const FeatureBoxes& b, int n, const Bounds& bounds) {
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const bool apart = (bounds.max.x < b.minX[i]) | (bounds.max.y < b.minY[i]) | (bounds.max.z < b.minZ[i]) |
+                       (bounds.min.x > b.maxX[i]) | (bounds.min.y > b.maxY[i]) | (bounds.min.z > b.maxZ[i]);
+    bits |= std::uint32_t(!apart) << i;
+  }
+  return bits;
+}
+
 bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   RotationWork& rw = *tw.rotation;
   if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
+  count(s, &QueryStats::polygonsMet);
   const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
 
   // Culls valid for the polygon and everything on it (its edges and vertices).
@@ -378,24 +381,25 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     return cull == PlaneCull::Stop;
 
   const auto edges = m.edgesOf(poly);
-  setPolygonEdgeLines(m, edges, s);
+  bool edgeLinesSet = false;
 
   // The original's back-face culls, for a convex trace model the axis passes
   // through: the whole polygon when the trace-model centre is behind it, a
   // feature when it is behind the polygon's plane.
   const bool backCull = tw.isConvex && rw.axisIntersectsTrm;
   if (backCull && poly.plane.distance(rw.centre) < 0) return false;
-  unsigned behind[kMaxTrmVertices];
-  for (int i = 0; i < tw.numVerts; ++i)
-    behind[i] = backCull && signBitSet(poly.plane.distance(tw.vertices[std::size_t(i)].p)) ? 1u : 0u;
+  count(s, &QueryStats::polygonsTested);
+  std::uint32_t behind = 0;  // bit i: vertex i behind the polygon's plane (back-face cull)
+  if (backCull)
+    for (int i = 0; i < tw.numVerts; ++i)
+      behind |= std::uint32_t(signBitSet(poly.plane.distance(tw.vertices[std::size_t(i)].p))) << i;
 
-  // Trace-model vertices through the polygon.
-  for (int i = 0; i < tw.numVerts; ++i) {
-    const RotVertex& rv = rw.vertices[std::size_t(i)];
-    if (!rv.used || behind[i]) continue;
-    if (!rv.bounds.intersects(poly.bounds) || rv.bounds.planeSide(poly.plane) != Side::Cross) continue;
-    rotateTrmVertexThroughPolygon(tw, rw, polyNum, poly, i);
-  }
+  // Trace-model vertices through the polygon: those whose arc box touches
+  // the polygon's box and straddles its plane.
+  for (std::uint32_t todo =
+           rw.usedVertices & ~behind & boxesCrossing(rw.vertexBoxes, tw.numVerts, poly.bounds, poly.plane);
+       todo; todo &= todo - 1)
+    rotateTrmVertexThroughPolygon(tw, rw, polyNum, poly, std::countr_zero(todo), edgeLinesSet);
   if (tw.pointTrace) return finishPolygon(tw, rw);
 
   // Trace-model edges through the polygon's edges. A (model edge, trm edge)
@@ -404,14 +408,16 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   // tested with the first polygon even when its culls had skipped trm
   // edges, so it depended on polygon order and missed collisions). The
   // tested pairs are bits of the edge's side cache, unused by rotations.
-  std::uint32_t trmEdgesHere = 0;  // bit trmEdgeBit(j): trm edge j passes this polygon's culls
-  for (int j = 1; j <= tw.numEdges; ++j) {
-    const RotEdge& re = rw.edges[std::size_t(j)];
-    const WorkEdge& te = tw.edges[std::size_t(j)];
-    if (!re.used || (behind[te.vertexNum[0]] && behind[te.vertexNum[1]])) continue;
-    if (!re.bounds.intersects(poly.bounds) || re.bounds.planeSide(poly.plane) != Side::Cross) continue;
-    trmEdgesHere |= std::uint32_t(1) << trmEdgeBit(j);
-  }
+  rw.makeEdgeBoxes(tw);
+  // bit trmEdgeBit(j): trm edge j passes this polygon's culls
+  std::uint32_t trmEdgesHere =
+      rw.usedEdges & boxesCrossing(rw.edgeBoxes, tw.numEdges, poly.bounds, poly.plane);
+  if (behind)
+    for (std::uint32_t bits = trmEdgesHere; bits; bits &= bits - 1) {
+      const WorkEdge& te = tw.edges[std::size_t(std::countr_zero(bits) + 1)];
+      if ((behind >> te.vertexNum[0]) & (behind >> te.vertexNum[1]) & 1u)
+        trmEdgesHere &= ~(std::uint32_t(1) << std::countr_zero(bits));
+    }
   for (std::size_t i = 0; i < edges.size() && trmEdgesHere; ++i) {
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
@@ -423,15 +429,14 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     cache.side |= todo;
     const Vec3& v0 = m.vertices[std::size_t(edge.vertex[0])];
     const Vec3& v1 = m.vertices[std::size_t(edge.vertex[1])];
-    Bounds edgeBounds = Bounds::ofPoint(v0);
-    edgeBounds.addPoint(v1);
+    Bounds modelEdgeBox = Bounds::ofPoint(v0);
+    modelEdgeBox.addPoint(v1);
     const Vec3 shift = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
-    edgeBounds.addPoint(v0 + shift);
-    edgeBounds.addPoint(v1 + shift);
-    for (int j = 1; j <= tw.numEdges; ++j) {
-      if (!(todo >> trmEdgeBit(j) & 1u) || !rw.edges[std::size_t(j)].bounds.intersects(edgeBounds)) continue;
-      rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, j);
-    }
+    modelEdgeBox.addPoint(v0 + shift);
+    modelEdgeBox.addPoint(v1 + shift);
+    for (std::uint32_t pairs = todo & boxesTouching(rw.edgeBoxes, tw.numEdges, modelEdgeBox); pairs;
+         pairs &= pairs - 1)
+      rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, std::countr_zero(pairs) + 1);
   }
 
   // Model vertices through the trace model's polygons (these culls do not
@@ -442,7 +447,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const Vec3 endp = rw.origin + (p - rw.origin) * rw.backMatrix;
     for (int j = 0; j < tw.numPolys; ++j) {
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
-      if (!tp.used || !rw.polygons[std::size_t(j)].bounds.containsPoint(p)) continue;
+      if (!tp.used || !rw.polygonBounds(tw, j).containsPoint(p)) continue;
       if (backCull && tp.plane.distance(p) < 0) continue;
       rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
     }

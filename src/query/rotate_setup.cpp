@@ -5,10 +5,10 @@
 //
 // The tree walk differs from the original on purpose: the original walks a
 // single chord of the arc (its step count rounds to 0), so long arcs can skip
-// leaves. Here the arc is cut into pieces of at most
-// tol::kCircleApproximationLength and the tree is walked with the exact box
-// of each piece (the union of every trace-model vertex's arc box), in order,
-// stopping once a hit lies before the next piece.
+// leaves. Here the tree is walked with boxes that hold the whole swept
+// volume: the union of every trace-model vertex's arc box, cut into pieces
+// along the centre's arc when the centre travels far (see the walk below),
+// in order, stopping once a hit lies before the next piece.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -19,16 +19,6 @@ namespace cmkit::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// Moves a contact from the model's frame to the world.
-void contactToWorld(ContactInfo& c, const Placement& placement) {
-  if (isRotated(placement.axis)) {
-    c.normal = c.normal * placement.axis;
-    c.point = c.point * placement.axis;
-  }
-  c.point += placement.origin;
-  c.dist += placement.origin.dot(c.normal);
-}
 
 // True when the line origin + s * axis passes through the convex trace model
 // (the intersection of its polygons' back half-spaces).
@@ -61,12 +51,16 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   QueryScratch& s = scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
-  RotationWork rw;
+  if (!s.rotation) s.rotation = std::make_unique<RotationWork>();
+  RotationWork& rw = *s.rotation;
+  rw.edgeBoxesSet = false;
+  rw.usedVertices = rw.usedEdges = 0;
+  rw.polygonBoundsSet = 0;
+  rw.edgeTurnSet = 0;
   tw.rotation = &rw;
   tw.fraction = 1;
   tw.c = ContactInfo{};
   tw.contentMask = q.contentMask;
-  tw.positionTest = false;
   tw.quickExit = false;
 
   const bool modelRotated = isRotated(q.placement.axis);
@@ -94,9 +88,8 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   const double initialTan = std::fabs(std::tan(double(endAngle - startAngle) * kPi / 360));
   rw.maxTan = initialTan;
 
-  // Trace-model vertices at the start of the rotation (the query's start),
-  // model frame; then at the start and end of this part.
-  std::array<Vec3, kMaxTrmVertices> base{};
+  // The trace model at the start of the rotation (the query's start), model
+  // frame; its vertices then turned to the start and end of this part.
   const bool point = isPointTrm(q.trm);
   Vec3 centre = start;
   if (point) {
@@ -104,70 +97,43 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
     tw.isConvex = false;
     tw.numVerts = 1;
     tw.numEdges = tw.numPolys = 0;
-    base[0] = start;
+    tw.vertices[0].p = start;
   } else {
-    const TraceModel& trm = *q.trm;
     tw.pointTrace = false;
-    tw.isConvex = trm.isConvex();
-    tw.numVerts = trm.numVertices();
-    tw.numEdges = trm.numEdges();
-    tw.numPolys = trm.numPolygons();
-    const bool trmRotated = isRotated(q.trmAxis);
-    const Vec3 worldStart = q.start - q.placement.origin;
-    for (int i = 0; i < tw.numVerts; ++i) {
-      Vec3 p = trm.vertex(i);
-      if (trmRotated) p = p * q.trmAxis;
-      p += worldStart;
-      if (modelRotated) p = modelAxis * p;
-      base[std::size_t(i)] = p;
-    }
-    centre = worldStart + (trmRotated ? trm.offset() * q.trmAxis : trm.offset());
-    if (modelRotated) centre = modelAxis * centre;
+    tw.isConvex = q.trm->isConvex();
+    placeTrm(tw, *q.trm, q.trmAxis, q.start, q.placement);
+    centre = tw.start;
   }
   rw.centre = turnStart(centre);
 
   tw.bounds.clear();
-  Real maxRadiusSq = 0;
   for (int i = 0; i < tw.numVerts; ++i) {
     WorkVertex& v = tw.vertices[std::size_t(i)];
     RotVertex& rv = rw.vertices[std::size_t(i)];
-    v.p = turnStart(base[std::size_t(i)]);
-    v.endp = turn(base[std::size_t(i)], endM);
+    const Vec3 placed = v.p;
+    v.p = turnStart(placed);
+    v.endp = turn(placed, endM);
     v.used = true;
     rv.rotationOrigin = origin + axis * axis.dot(v.p - origin);
     const Real radiusSq = (v.p - rv.rotationOrigin).lengthSquared();
-    maxRadiusSq = std::max(maxRadiusSq, radiusSq);
     rv.used = radiusSq > tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon;
-    rv.bounds = arcBounds(rv.rotationOrigin, axis, v.p, v.endp).expanded(tol::kBoxEpsilon);
-    tw.bounds.addBounds(rv.bounds);
+    rw.usedVertices |= std::uint32_t(rv.used) << i;
+    const Bounds box = arcBounds(rv.rotationOrigin, axis, v.p, v.endp).expanded(tol::kBoxEpsilon);
+    rw.vertexBoxes.set(std::size_t(i), box);
+    tw.bounds.addBounds(box);
   }
   if (!point) {
-    const TraceModel& trm = *q.trm;
     for (int i = 1; i <= tw.numEdges; ++i) {
-      const WorkEdge& e = placeTrmEdge(tw, trm, i);
-      RotEdge& re = rw.edges[std::size_t(i)];
-      re.used =
+      const WorkEdge& e = placeTrmEdge(tw, i);
+      const bool used =
           rw.vertices[std::size_t(e.vertexNum[0])].used || rw.vertices[std::size_t(e.vertexNum[1])].used;
-      re.bounds = rw.vertices[std::size_t(e.vertexNum[0])].bounds;
-      re.bounds.addBounds(rw.vertices[std::size_t(e.vertexNum[1])].bounds);
+      rw.usedEdges |= std::uint32_t(used) << (i - 1);
     }
-    const bool trmRotated = isRotated(q.trmAxis);
     for (int i = 0; i < tw.numPolys; ++i) {
-      const TrmPolygon& tp = trm.polygon(i);
       WorkPolygon& wp = tw.polys[std::size_t(i)];
-      RotPolygon& rp = rw.polygons[std::size_t(i)];
-      wp.numEdges = tp.numEdges;
-      wp.edges = tp.edges.data();
       wp.used = true;
-      Vec3 n = tp.normal;
-      if (trmRotated) n = n * q.trmAxis;
-      if (modelRotated) n = modelAxis * n;
-      if (!atZero) n = n * startM;
-      wp.plane.normal = n;
-      wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(tp.edges[0]))].start);
-      rp.bounds.clear();
-      for (int k = 0; k < tp.numEdges; ++k)
-        rp.bounds.addBounds(rw.edges[std::size_t(std::abs(tp.edges[std::size_t(k)]))].bounds);
+      if (!atZero) wp.plane.normal = wp.plane.normal * startM;
+      wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
     }
     rw.axisIntersectsTrm = tw.isConvex && axisThroughConvexTrm(tw, origin, axis);
   }
@@ -181,29 +147,36 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
                                          std::fabs(tw.heartPlane1.distance(tw.vertices[std::size_t(i)].p)));
   tw.maxDistFromHeartPlane1 += tol::kBoxEpsilon;
 
-  // The walk: pieces of the arc, each with the exact box of every vertex's arc.
+  // The walk: the part's arc in pieces, in order, stopping once a hit lies
+  // before the next piece. A piece's box holds every vertex's arc within it:
+  // the motion is rigid, so every vertex stays within `reach` of the centre,
+  // inside the box of the centre's arc grown by `reach`; cut to the part's
+  // box (tw.bounds: the union of the vertices' whole arcs). Pieces pay off
+  // only when the centre travels far compared with the trace model's size;
+  // a trace model turning about its own centre walks once.
+  Real reachSq = 0;
+  for (int i = 0; i < tw.numVerts; ++i)
+    reachSq = std::max(reachSq, (tw.vertices[std::size_t(i)].p - rw.centre).lengthSquared());
+  const Real reach = std::sqrt(reachSq);
+  const Vec3 centreRo = origin + axis * axis.dot(rw.centre - origin);
   const double partRadians = std::fabs(double(endAngle - startAngle)) * kPi / 180;
-  const double arcLength = std::sqrt(double(maxRadiusSq)) * partRadians;
-  const int pieces = int(std::clamp(std::ceil(arcLength / double(tol::kCircleApproximationLength)), 1.0,
-                                    double(tol::kMaxRotationWalkPieces)));
+  const double centreArc = double((rw.centre - centreRo).length()) * partRadians;
+  const double pieceLength = std::max(double(tol::kCircleApproximationLength), 2 * double(reach));
+  const int pieces =
+      int(std::clamp(std::ceil(centreArc / pieceLength), 1.0, double(tol::kMaxRotationWalkPieces)));
   if (pieces == 1) {
-    traceBoxThroughModel(tw, tw.bounds);
+    rotateThroughBox(tw, tw.bounds);
   } else {
-    std::array<Vec3, kMaxTrmVertices> from{};
-    for (int i = 0; i < tw.numVerts; ++i) from[std::size_t(i)] = tw.vertices[std::size_t(i)].p;
+    Vec3 from = rw.centre;
     for (int k = 0; k < pieces; ++k) {
       // A hit before this piece starts cannot be bettered by it.
       const double pieceStartTan = std::tan(partRadians * 0.5 * double(k) / double(pieces));
       if (rw.maxTan <= pieceStartTan || tw.fraction == 0 || tw.quickExit) break;
       const Real a1 = startAngle + (endAngle - startAngle) * Real(k + 1) / Real(pieces);
-      const Mat3 m1 = Rotation(origin, axis, a1).matrix();
-      Bounds box;
-      for (int i = 0; i < tw.numVerts; ++i) {
-        const Vec3 to = k + 1 == pieces ? tw.vertices[std::size_t(i)].endp : turn(base[std::size_t(i)], m1);
-        box.addBounds(arcBounds(rw.vertices[std::size_t(i)].rotationOrigin, axis, from[std::size_t(i)], to));
-        from[std::size_t(i)] = to;
-      }
-      traceBoxThroughModel(tw, box.expanded(tol::kBoxEpsilon));
+      const Vec3 to = turn(centre, Rotation(origin, axis, a1).matrix());
+      const Bounds box = arcBounds(centreRo, axis, from, to).expanded(reach + tol::kBoxEpsilon);
+      from = to;
+      rotateThroughBox(tw, box.intersection(tw.bounds));
     }
   }
 
@@ -250,6 +223,7 @@ TraceResult rotate(const CollisionModel& model, const RotationQuery& q, QueryWor
   } else if (std::fabs(angle) >= 180) {
     step = angle * Real(0.5);
   }
+  count(scratchOf(work), &QueryStats::queries);
   Real turned = angle;  // no hit: the whole angle
   r.fraction = 1;
   for (Real a = 0; std::fabs(a) < std::fabs(total); a += step) {

@@ -16,22 +16,63 @@
 
 namespace cmkit::detail {
 
+/// A double-precision vector for the equations (inputs are Real).
+struct DVec {
+  double x = 0, y = 0, z = 0;
+  DVec() = default;
+  DVec(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+  explicit DVec(const Vec3& v) : x(v.x), y(v.y), z(v.z) {}
+  DVec operator+(const DVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  DVec operator-(const DVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
+  DVec operator*(double s) const { return {x * s, y * s, z * s}; }
+  double dot(const DVec& o) const { return x * o.x + y * o.y + z * o.z; }
+  DVec cross(const DVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
+  Vec3 toVec3() const { return {Real(x), Real(y), Real(z)}; }
+};
+
+/// A trace-model edge s -> e turning about the axis (unit a through o), for
+/// its line products with model edges (rotate.cpp, ModelEdgeLine): the edge
+/// vector u = e - s and q = (s - o) x u, each split as R(t) x = axial +
+/// cos t across + sin t turned (axial = a (a . x), across = x - axial,
+/// turned = x x a: the library's direction of positive angles).
+struct EdgeTurn {
+  DVec u, q;
+  DVec uAxial, uAcross, uTurned;
+  DVec qAxial, qAcross, qTurned;
+};
+
 /// Rotation data of a trace-model vertex.
 struct RotVertex {
   Vec3 rotationOrigin;  ///< the axis point in the plane of the vertex's circle
-  Bounds bounds;        ///< box around the vertex's arc, padded by tol::kBoxEpsilon
   bool used = false;    ///< farther than tol::kRotationAxisEpsilon from the axis
 };
 
+/// Boxes of up to 32 trace-model features, one array per bound coordinate:
+/// the per-polygon culls test them all in one branch-free loop
+/// (boxesCrossing, boxesTouching).
+struct FeatureBoxes {
+  std::array<Real, 32> minX, minY, minZ, maxX, maxY, maxZ;
+  void set(std::size_t i, const Bounds& b) {
+    minX[i] = b.min.x, minY[i] = b.min.y, minZ[i] = b.min.z;
+    maxX[i] = b.max.x, maxY[i] = b.max.y, maxZ[i] = b.max.z;
+  }
+  Bounds get(std::size_t i) const { return {{minX[i], minY[i], minZ[i]}, {maxX[i], maxY[i], maxZ[i]}}; }
+};
+
+/// Bit i (i < n): box i touches `bounds` (Bounds::intersects) and straddles
+/// `plane` (Bounds::planeSide(plane) == Side::Cross, the same arithmetic).
+std::uint32_t boxesCrossing(const FeatureBoxes& boxes, int n, const Bounds& bounds, const Plane& plane);
+/// Bit i (i < n): box i touches `bounds`.
+std::uint32_t boxesTouching(const FeatureBoxes& boxes, int n, const Bounds& bounds);
+
 /// Rotation data of a trace-model edge.
 struct RotEdge {
-  Bounds bounds;  ///< union of its vertices' arc boxes
-  bool used = false;
+  EdgeTurn turn;  ///< RotationWork::edgeTurn
 };
 
 /// Rotation data of a trace-model polygon.
 struct RotPolygon {
-  Bounds bounds;  ///< union of its edges' arc boxes
+  Bounds bounds;  ///< union of its edges' boxes (RotationWork::polygonBounds)
 };
 
 /// One part of a rotation, in the model's frame.
@@ -50,6 +91,64 @@ struct RotationWork {
   std::array<RotVertex, kMaxTrmVertices> vertices{};
   std::array<RotEdge, kMaxTrmEdges + 1> edges{};
   std::array<RotPolygon, kMaxTrmPolygons> polygons{};
+  /// Box around each vertex's arc, padded by tol::kBoxEpsilon (index: vertex).
+  FeatureBoxes vertexBoxes;
+  /// Box around each edge's sweep: the union of its vertices' boxes (index:
+  /// edge number - 1; made by makeEdgeBoxes when a polygon first needs them).
+  FeatureBoxes edgeBoxes;
+  bool edgeBoxesSet = false;
+  std::uint32_t usedVertices = 0;  ///< bit i: vertices[i].used
+  std::uint32_t usedEdges = 0;     ///< bit j - 1: edge j has a used vertex
+  // The edge and polygon boxes are made when a polygon's culls first need
+  // them: most rotations meet few polygons, and making every box up front
+  // was a large part of a short rotation's cost.
+  std::uint32_t polygonBoundsSet = 0;  ///< bit j: polygons[j].bounds is made
+  std::uint64_t edgeTurnSet = 0;       ///< bit j: edges[j].turn is made
+
+  /// Trace-model edge j's turning parts (made on first use).
+  const EdgeTurn& edgeTurn(const TraceWork& tw, int j) {
+    EdgeTurn& t = edges[std::size_t(j)].turn;
+    if (!(edgeTurnSet >> j & 1u)) {
+      edgeTurnSet |= std::uint64_t(1) << j;
+      const WorkEdge& e = tw.edges[std::size_t(j)];
+      const DVec a(axis), s(e.start);
+      t.u = DVec(e.end) - s;
+      t.q = (s - DVec(origin)).cross(t.u);
+      auto split = [&](const DVec& x, DVec& axial, DVec& across, DVec& turned) {
+        axial = a * a.dot(x);
+        across = x - axial;
+        turned = x.cross(a);
+      };
+      split(t.u, t.uAxial, t.uAcross, t.uTurned);
+      split(t.q, t.qAxial, t.qAcross, t.qTurned);
+    }
+    return t;
+  }
+
+  /// Makes edgeBoxes (once per part).
+  void makeEdgeBoxes(const TraceWork& tw) {
+    if (edgeBoxesSet) return;
+    edgeBoxesSet = true;
+    for (int j = 1; j <= tw.numEdges; ++j) {
+      const WorkEdge& e = tw.edges[std::size_t(j)];
+      Bounds b = vertexBoxes.get(std::size_t(e.vertexNum[0]));
+      b.addBounds(vertexBoxes.get(std::size_t(e.vertexNum[1])));
+      edgeBoxes.set(std::size_t(j - 1), b);
+    }
+  }
+  /// Box around trace-model polygon j's sweep (the union of its edges' boxes;
+  /// after makeEdgeBoxes).
+  const Bounds& polygonBounds(const TraceWork& tw, int j) {
+    RotPolygon& rp = polygons[std::size_t(j)];
+    if (!(polygonBoundsSet >> j & 1u)) {
+      polygonBoundsSet |= std::uint32_t(1) << j;
+      const WorkPolygon& wp = tw.polys[std::size_t(j)];
+      rp.bounds.clear();
+      for (int k = 0; k < wp.numEdges; ++k)
+        rp.bounds.addBounds(edgeBoxes.get(std::size_t(std::abs(wp.edges[std::size_t(k)]) - 1)));
+    }
+    return rp.bounds;
+  }
 };
 
 /// v2 cos t + v1 sin t + v0, t >= 0 in the direction of the rotation.

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -41,6 +42,8 @@ struct WorkPolygon {
   const int* edges = nullptr;
   bool used = false;
 };
+
+struct RotationWork;
 
 /// The trace-model features of a query. They live in the caller's scratch
 /// (about 6 KB: constructing and zeroing them per query cost more than a
@@ -105,6 +108,10 @@ struct QueryScratch {
   std::vector<WalkSegment> walkStack;   ///< the far sides the tree walk has still to visit
   std::vector<std::int32_t> nodeStack;  ///< nodes a box walk has still to visit (penetration)
   TrmFeatures trm;                      ///< the trace model of the current query
+  QueryStats stats;                     ///< work counters (count(), CMKIT_QUERY_STATS builds)
+  /// A rotation part's per-feature data (rotate_work.h), made on the first
+  /// rotation: about 3 KB that a rotation part would otherwise construct.
+  std::unique_ptr<RotationWork> rotation;
 
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
@@ -153,6 +160,19 @@ struct QueryScratch {
   }
 };
 
+/// True in a library built with -DCMKIT_QUERY_STATS=ON: the queries count
+/// their work in QueryScratch::stats.
+#ifdef CMKIT_QUERY_STATS
+inline constexpr bool kQueryStats = true;
+#else
+inline constexpr bool kQueryStats = false;
+#endif
+
+/// Adds n to one work counter; compiled out unless kQueryStats.
+inline void count(QueryScratch& s, std::uint64_t QueryStats::*counter, std::uint64_t n = 1) {
+  if constexpr (kQueryStats) s.stats.*counter += n;
+}
+
 /// The library's way into a QueryWork (its scratch is private to users).
 struct QueryWorkAccess {
   static QueryScratch& scratch(QueryWork& work) { return *work.scratch_; }
@@ -170,8 +190,6 @@ inline void prefetch(const void* p) {
 
 /// The side-cache bit of trace-model edge n (signed or not; 1 <= |n| <= 32).
 inline unsigned trmEdgeBit(int n) { return unsigned(std::abs(n) - 1); }
-
-struct RotationWork;
 
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
@@ -192,9 +210,12 @@ struct TraceWork {
   Vec3 extents;          ///< per-axis half size for the tree walk
   std::uint32_t contentMask = 0;
   bool isConvex = true;
-  bool positionTest = false;
   bool pointTrace = false;
   bool quickExit = false;
+  /// The trace-model data that only a polygon past its culls needs (edge
+  /// lines, polygon planes; translations also the vertices' paths) is placed:
+  /// made on the first such polygon, since most queries meet few or none.
+  bool featuresPlaced = false;
   // Translation: the trace-model features used (facing the movement), as
   // bit masks set up once: bit v for vertex v (whose movement line
   // WorkVertex::pl is set), bit i for edge i, bit j for polygon j.
@@ -231,18 +252,21 @@ struct TraceWork {
 
 // ---- shared steps (tree_walk.cpp, translate.cpp, contents.cpp) -------------
 
-/// Walks the model's tree along tw.start -> tw.end and tests the items met.
-void traceThroughModel(TraceWork& tw);
+/// Walks the model's tree along tw.start -> tw.end testing the polygons met
+/// for a translation (a point's or a trace model's, by tw.pointTrace).
+void translateThroughModel(TraceWork& tw);
+/// Walks the model's tree around tw.start for a position test (brushes, then
+/// polygons), stopping once stuck.
+void positionTestThroughModel(TraceWork& tw);
+/// Walks the model's tree with a box (every node the box touches) testing
+/// the polygons met for a rotation part (the box of a piece of the arc).
+void rotateThroughBox(TraceWork& tw, const Bounds& box);
 
 /// Translation tests of a list of polygons (a node's) for a trace model;
 /// true when one blocks completely.
 bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 /// The same for a point trace and a list of polygons (a node's).
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
-
-/// Walks the model's tree with a box (every node the box touches) and tests
-/// the items met; used by rotations (the box of a part of the arc).
-void traceBoxThroughModel(TraceWork& tw, const Bounds& box);
 
 /// Rotation tests of one polygon (rotate.cpp); true when it blocks completely.
 bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
@@ -335,15 +359,25 @@ PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
 /// edges' stored direction).
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryScratch& s);
 
-/// Sets tw's feature counts from `trm` and its vertices at tw.start (turned by
-/// trmAxis, then into the model's frame when modelRotated), each with the
-/// given `used` flag.
-void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
-                      const Mat3& modelAxis, bool used);
+// ---- placing the trace model (placement.cpp) ------------------------------
 
-/// Sets trace-model edge i from the trace model and tw's placed vertices
-/// (vertex numbers, ends, line), marked used.
-WorkEdge& placeTrmEdge(TraceWork& tw, const TraceModel& trm, int i);
+/// The trace model's centre (position + its offset) in the model's frame.
+Vec3 trmCentreInModel(const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                      const Placement& placement);
+
+/// Places `trm` (turned by trmAxis) at `position` in the model's frame, the
+/// set-up every query kind starts from: tw's feature counts, tw.start (the
+/// centre), the vertices' positions, the edges' vertex numbers, the
+/// polygons' edges and normals. The kinds add what they use (used flags,
+/// edge lines, plane distances, motion).
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+              const Placement& placement);
+
+/// Sets trace-model edge i's ends and line from tw's placed vertices, marked used.
+WorkEdge& placeTrmEdge(TraceWork& tw, int i);
+
+/// Moves a contact from the model's frame to the world.
+void contactToWorld(ContactInfo& c, const Placement& placement);
 
 /// Sets up tw for a position test of `trm` (not a point) at `position`.
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,

@@ -166,7 +166,8 @@ void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, 
 // edges used backwards, the positive of the others) and reach the plane
 // before the nearest hit so far.
 void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
-  const QueryScratch& s = tw.scratch;
+  QueryScratch& s = tw.scratch;
+  count(s, &QueryStats::vertexTests, unsigned(std::popcount(tw.movingVertices)));
   const std::size_t groups = edgeGroups(poly.numEdges);
   std::uint32_t inside = 0;
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
@@ -191,6 +192,7 @@ void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, con
 void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum, std::size_t i) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
+  count(s, &QueryStats::edgePairs);
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::int32_t edgeNum = m.edgesOf(poly)[i];
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
@@ -261,6 +263,7 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
                                       std::size_t vertexNum, const Vec3& p, const Vec3& endp,
                                       const Pluecker& pl) {
   QueryScratch& s = tw.scratch;
+  count(s, &QueryStats::vertexTests);
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   const Real f = translationPlaneFraction(tp.plane, p, endp);
   if (!(f < tw.fraction)) return;
@@ -317,6 +320,31 @@ void shrinkTraceBounds(TraceWork& tw) {
   }
 }
 
+// The moving features' data that only a polygon past its culls needs, once
+// per query: the vertices' paths, the edges' lines and sweep directions, the
+// front polygons' planes.
+void placeTranslationFeatures(TraceWork& tw) {
+  if (tw.featuresPlaced) return;
+  tw.featuresPlaced = true;
+  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+    WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
+    v.pl = Pluecker::fromRay(v.p, tw.dir);
+  }
+  for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
+    WorkEdge& e = tw.edges[std::size_t(std::countr_zero(moving))];
+    e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
+    e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+    e.pl = Pluecker::fromLine(e.start, e.end);
+    const Vec3 a = e.start - e.end;
+    e.cross = {a[0] * tw.dir[1] - a[1] * tw.dir[0], a[0] * tw.dir[2] - a[2] * tw.dir[0],
+               a[1] * tw.dir[2] - a[2] * tw.dir[1]};
+  }
+  for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1) {
+    WorkPolygon& wp = tw.polys[std::size_t(std::countr_zero(moving))];
+    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+  }
+}
+
 // A polygon that passed the culls of translateTrmThroughPolygons: the plane
 // test, then the trace-model vertices, edges and the model vertices against
 // it. True when the trace model is blocked completely.
@@ -325,6 +353,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
+  count(s, &QueryStats::polygonsTested);
+  placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const auto edges = m.edgesOf(poly);
   sidesOfPolygonEdges(tw, edges);
@@ -366,8 +396,11 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
   QueryScratch& s = tw.scratch;
   for (const std::int32_t polyNum : polygons) {
     if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+    count(s, &QueryStats::polygonsMet);
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
     if (!pointMayTouch(tw, poly)) continue;
+    count(s, &QueryStats::polygonsTested);
+    count(s, &QueryStats::vertexTests);
     const Real before = tw.fraction;
     translatePointThroughPolygon(tw, polyNum, poly);
     if (tw.fraction != before) {
@@ -385,6 +418,7 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
   for (const std::int32_t polyNum : polygons) prefetch(&tw.model.polygons[std::size_t(polyNum)]);
   for (const std::int32_t polyNum : polygons) {
     if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+    count(s, &QueryStats::polygonsMet);
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
     if (mayTouch(tw, poly) && translateTrmThroughPolygon(tw, polyNum, poly)) return true;
   }

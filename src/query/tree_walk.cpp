@@ -1,8 +1,10 @@
 // Walking the axial BSP tree along a movement (the original's
-// TraceThroughAxialBSPTree_r and TraceTrmThroughNode), and the scratch set-up.
+// TraceThroughAxialBSPTree_r and TraceTrmThroughNode) or with a box (a
+// rotation's arc), with the node test of the query kind; the scratch set-up.
 #include <algorithm>
 #include <cmath>
 
+#include "query/rotate_work.h"  // QueryScratch owns a RotationWork
 #include "query/trace_work.h"
 
 namespace cmkit {
@@ -11,6 +13,9 @@ QueryWork::QueryWork() : scratch_(std::make_unique<detail::QueryScratch>()) {}
 QueryWork::~QueryWork() = default;
 QueryWork::QueryWork(QueryWork&&) noexcept = default;
 QueryWork& QueryWork::operator=(QueryWork&&) noexcept = default;
+const QueryStats& QueryWork::stats() const { return scratch_->stats; }
+void QueryWork::resetStats() { scratch_->stats = QueryStats{}; }
+bool queryStatsEnabled() { return detail::kQueryStats; }
 
 }  // namespace cmkit
 
@@ -37,42 +42,64 @@ void QueryScratch::begin(const CollisionModel& model) {
 
 namespace {
 
-// Tests the items referenced at one node.
-void traceTrmThroughNode(TraceWork& tw, const CmNode& node) {
-  const CollisionModel& m = tw.model;
-  if (tw.positionTest) {
+// What each query kind tests at a node (the node test is chosen once per
+// query kind: the walks below are instantiated per kind).
+
+/// A trace model's translation: the node's polygons.
+struct TranslateTrmItems {
+  static bool has(const CmNode& node) { return node.numPolygonRefs != 0; }
+  static void test(TraceWork& tw, const CmNode& node) {
+    translateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
+  }
+  static constexpr bool kStopWhenStuck = false;
+};
+
+/// A point's translation: the node's polygons.
+struct TranslatePointItems {
+  static bool has(const CmNode& node) { return node.numPolygonRefs != 0; }
+  static void test(TraceWork& tw, const CmNode& node) {
+    translatePointThroughPolygons(tw, tw.model.polygonsAt(node));
+  }
+  static constexpr bool kStopWhenStuck = false;
+};
+
+/// A position test: the node's brushes (every vertex inside one?), then its
+/// polygons (crossing the trace model?).
+struct PositionItems {
+  static bool has(const CmNode& node) { return node.numPolygonRefs != 0 || node.numBrushRefs != 0; }
+  static void test(TraceWork& tw, const CmNode& node) {
     if (tw.fraction == 0) return;  // already stuck
-    for (std::int32_t b : m.brushesAt(node))
+    for (std::int32_t b : tw.model.brushesAt(node))
       if (testTrmVertsInBrush(tw, b)) return;
-    if (tw.pointTrace) return;
-    for (std::int32_t p : m.polygonsAt(node))
+    for (std::int32_t p : tw.model.polygonsAt(node))
       if (testTrmInPolygon(tw, p)) return;
-    return;
   }
-  if (tw.rotation) {
-    for (std::int32_t p : m.polygonsAt(node))
+  static constexpr bool kStopWhenStuck = true;
+};
+
+/// A rotation part: the node's polygons.
+struct RotateItems {
+  static bool has(const CmNode& node) { return node.numPolygonRefs != 0; }
+  static void test(TraceWork& tw, const CmNode& node) {
+    for (std::int32_t p : tw.model.polygonsAt(node))
       if (rotateTrmThroughPolygon(tw, p)) return;
-    return;
   }
-  if (tw.pointTrace) {
-    translatePointThroughPolygons(tw, m.polygonsAt(node));
-    return;
-  }
-  translateTrmThroughPolygons(tw, m.polygonsAt(node));
-}
+};
 
 // Visits every node whose region the box touches (closed: a box touching a
 // split plane visits both sides), testing the items at each.
-void traceBoxThroughTree(TraceWork& tw, std::int32_t nodeNum, const Bounds& box) {
+template <class Items>
+void walkBox(TraceWork& tw, std::int32_t nodeNum, const Bounds& box) {
   while (nodeNum >= 0) {
     if (tw.quickExit || tw.fraction == 0) return;  // fraction 0: blocked completely
     const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
-    if (node.numPolygonRefs) traceTrmThroughNode(tw, node);
+    count(tw.scratch, &QueryStats::nodesVisited);
+    if (Items::has(node)) Items::test(tw, node);
     if (node.isLeaf() || tw.quickExit || tw.fraction == 0) return;
     const int axis = node.planeType;
     const bool front = box.max[axis] >= node.planeDist;
     const bool back = box.min[axis] <= node.planeDist;
-    if (front && back) traceBoxThroughTree(tw, node.children[0], box);
+    if (front && back) walkBox<Items>(tw, node.children[0], box);
     nodeNum = back ? node.children[1] : node.children[0];
   }
 }
@@ -81,7 +108,8 @@ void traceBoxThroughTree(TraceWork& tw, std::int32_t nodeNum, const Bounds& box)
 // the original's recursion does. The far sides wait on a stack in the
 // caller's scratch (no recursion: a degenerate deep tree cannot overflow the
 // thread's stack, and a point trace saves the calls).
-void traceThroughTree(TraceWork& tw) {
+template <class Items>
+void walkSegment(TraceWork& tw) {
   using Segment = detail::QueryScratch::WalkSegment;
   std::vector<Segment>& pending = tw.scratch.walkStack;
   pending.clear();
@@ -92,11 +120,12 @@ void traceThroughTree(TraceWork& tw) {
       if (tw.quickExit) return;
       if (tw.fraction <= cur.p1f) break;  // something nearer was hit already
       const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+      count(tw.scratch, &QueryStats::nodesVisited);
       // The walk goes on to one child or both: start loading the back one
       // (the front one follows in memory) while this node's items are tested.
       if (!node.isLeaf()) prefetch(&tw.model.nodes[std::size_t(node.children[1])]);
-      if (node.numPolygonRefs || (tw.positionTest && node.numBrushRefs)) traceTrmThroughNode(tw, node);
-      if (tw.positionTest && tw.fraction == 0) break;
+      if (Items::has(node)) Items::test(tw, node);
+      if (Items::kStopWhenStuck && tw.fraction == 0) break;
       if (node.isLeaf()) break;
 
       // Distances of the segment ends to the split plane, and the trace
@@ -177,42 +206,22 @@ void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> 
     s.polygonEdgeLines[i] = modelEdgeLine(m, std::size_t(std::abs(edges[i])));
 }
 
-void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, bool modelRotated,
-                      const Mat3& modelAxis, bool used) {
-  const bool trmRotated = isRotated(trmAxis);
-  tw.numVerts = trm.numVertices();
-  tw.numEdges = trm.numEdges();
-  tw.numPolys = trm.numPolygons();
-  for (int i = 0; i < tw.numVerts; ++i) {
-    Vec3 p = trm.vertex(i);
-    if (trmRotated) p = p * trmAxis;
-    p += tw.start;
-    if (modelRotated) p = modelAxis * p;  // into the model's frame
-    WorkVertex& v = tw.vertices[std::size_t(i)];
-    v.p = p;
-    v.used = used;  // endp and pl are set by the query kinds that use them
-  }
-}
-
-WorkEdge& placeTrmEdge(TraceWork& tw, const TraceModel& trm, int i) {
-  WorkEdge& e = tw.edges[std::size_t(i)];
-  e.vertexNum[0] = trm.edge(i).v[0];
-  e.vertexNum[1] = trm.edge(i).v[1];
-  e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-  e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-  e.pl = Pluecker::fromLine(e.start, e.end);
-  e.used = true;
-  return e;
-}
-
-void traceBoxThroughModel(TraceWork& tw, const Bounds& box) {
+void translateThroughModel(TraceWork& tw) {
   if (tw.model.nodes.empty()) return;
-  traceBoxThroughTree(tw, 0, box);
+  if (tw.pointTrace)
+    walkSegment<TranslatePointItems>(tw);
+  else
+    walkSegment<TranslateTrmItems>(tw);
 }
 
-void traceThroughModel(TraceWork& tw) {
+void positionTestThroughModel(TraceWork& tw) {
   if (tw.model.nodes.empty()) return;
-  traceThroughTree(tw);
+  walkSegment<PositionItems>(tw);
+}
+
+void rotateThroughBox(TraceWork& tw, const Bounds& box) {
+  if (tw.model.nodes.empty()) return;
+  walkBox<RotateItems>(tw, 0, box);
 }
 
 }  // namespace cmkit::detail

@@ -38,6 +38,7 @@ struct BenchOptions {
   std::string suite;
   int repeat = 1;
   bool json = false;
+  bool stats = false;  ///< --stats
   bool noRotation = false;
   SpeedTestOptions test;
 };
@@ -197,7 +198,31 @@ void printSuiteJson(const std::vector<SuiteRow>& rows, const SuiteRow& all, int 
   fmt::print("  ],\n  \"all\": {}\n}}\n", jsonKinds(all.kinds));
 }
 
+/// The work counters of one query kind over the suite (--stats).
+void printSuiteStats(const std::map<QueryOp, QueryStats>& stats) {
+  fmt::print(
+      "\nwork per query, all files (counted by a CMKIT_QUERY_STATS build; see QueryStats in "
+      "cmkit/query.h)\n");
+  fmt::print("{:<14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "kind", "queries", "nodes", "polys met",
+             "polys tst", "brushes", "vert tst", "edge prs");
+  for (QueryOp op : kSuiteOps) {
+    const auto it = stats.find(op);
+    if (it == stats.end() || it->second.queries == 0) continue;
+    const QueryStats& s = it->second;
+    const double n = double(s.queries);
+    fmt::print("{:<14} {:>9} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", toString(op),
+               s.queries, double(s.nodesVisited) / n, double(s.polygonsMet) / n, double(s.polygonsTested) / n,
+               double(s.brushesMet) / n, double(s.vertexTests) / n, double(s.edgePairs) / n);
+  }
+}
+
 int runSuite(const BenchOptions& o) {
+  if (o.stats && !queryStatsEnabled()) {
+    fmt::print(stderr,
+               "cmkit bench: --stats needs a library that counts the queries' work; build one with\n"
+               "  cmake --preset stats && cmake --build --preset stats   (then build/stats/bin/cmkit)\n");
+    return kExitBadInput;
+  }
   const fs::path dir(o.suite);
   std::error_code ec;
   std::vector<fs::path> files;
@@ -215,6 +240,7 @@ int runSuite(const BenchOptions& o) {
   std::vector<SuiteRow> rows;
   SuiteRow all{"all files", {}, {}};
   QueryWork work;
+  std::map<QueryOp, QueryStats> stats;  // --stats: per kind, all files
   double sink = 0;
   for (const fs::path& file : files) {
     const std::string fname = file.filename().string();
@@ -247,10 +273,17 @@ int runSuite(const BenchOptions& o) {
     for (QueryOp op : kSuiteOps) {
       const auto& queries = byKind[op];
       if (queries.empty()) continue;
+      work.resetStats();
       const auto t0 = Clock::now();
       for (int pass = 0; pass < o.repeat; ++pass)
         for (const ParsedQuery& q : queries) sink += runParsedQueryUnformatted(*models, q, work);
       const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+      QueryStats& st = stats[op];
+      const QueryStats& w = work.stats();
+      for (auto field : {&QueryStats::queries, &QueryStats::nodesVisited, &QueryStats::polygonsMet,
+                         &QueryStats::polygonsTested, &QueryStats::brushesMet, &QueryStats::vertexTests,
+                         &QueryStats::edgePairs})
+        st.*field += w.*field;
       const std::size_t n = queries.size() * std::size_t(o.repeat);
       row.kinds[op] = {ns, n, queries.size()};
       KindTime& t = all.kinds[op];
@@ -263,6 +296,7 @@ int runSuite(const BenchOptions& o) {
     printSuiteJson(rows, all, o.repeat);
   else
     printSuiteText(rows, all, o.repeat);
+  if (o.stats) printSuiteStats(stats);
   if (sink == -1) fmt::print("\n");  // keeps the results alive
   return 0;
 }
@@ -316,13 +350,16 @@ void registerBench(CLI::App& app) {
       "--suite DIR times every NAME.queries.txt of DIR (files of queries in the query format) against\n"
       "its models (DIR/../maps/rbdoom-unittests/NAME.cm, else DIR/../maps/*/NAME.map): each file is\n"
       "parsed once and run --repeat times on 1 thread; it prints ns/query per kind and file, or JSON\n"
-      "with --json. bench/compare.sh OLD_COMMIT compares these tables of two builds in one run.\n\n"
+      "with --json. bench/compare.sh OLD_COMMIT compares these tables of two builds in one run.\n"
+      "--stats adds the work per query of each kind (tree nodes, polygons met and tested, feature\n"
+      "tests), counted by a library built with -DCMKIT_QUERY_STATS=ON (cmake --preset stats).\n\n"
       "Examples:\n"
       "  cmkit bench data/maps/lt4/lt4.map\n"
       "  cmkit bench data/maps/lt4/lt4.map --threads 2 --walk\n"
       "  cmkit bench data/maps/lt4/lt4.map --rays --no-rotation\n"
       "  cmkit bench --suite ../shared/reference --repeat 20\n"
-      "  cmkit bench --suite ../shared/reference --json");
+      "  cmkit bench --suite ../shared/reference --json\n"
+      "  build/stats/bin/cmkit bench --suite ../shared/reference --stats");
   cmd->add_option("MODELS", o->models,
                   "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...); the first model is tested");
   cmd->add_option("--trm", o->trm, "trace model (query-format syntax)")->capture_default_str();
@@ -353,6 +390,9 @@ void registerBench(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--json", o->json, "suite: print the times as JSON (for scripts) instead of the table");
+  cmd->add_flag("--stats", o->stats,
+                "suite: also print the work per query (nodes, polygons, feature tests) of each kind; needs a "
+                "build with -DCMKIT_QUERY_STATS=ON (cmake --preset stats)");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
   addMeshOptions(cmd, o->mesh);

@@ -1,0 +1,71 @@
+// Placing the trace model in the model's frame, the one set-up every query
+// kind starts from (translation, position test, rotation), and moving a
+// contact back to the world.
+#include "query/trace_work.h"
+
+namespace cmkit::detail {
+
+Vec3 trmCentreInModel(const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                      const Placement& placement) {
+  Vec3 c = position - placement.origin;
+  c += isRotated(trmAxis) ? trm.offset() * trmAxis : trm.offset();
+  if (isRotated(placement.axis)) c = placement.axis * c;
+  return c;
+}
+
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+              const Placement& placement) {
+  const bool trmRotated = isRotated(trmAxis);
+  const bool modelRotated = isRotated(placement.axis);
+  tw.numVerts = trm.numVertices();
+  tw.numEdges = trm.numEdges();
+  tw.numPolys = trm.numPolygons();
+  const Vec3 relative = position - placement.origin;
+  for (int i = 0; i < tw.numVerts; ++i) {
+    Vec3 p = trm.vertex(i);
+    if (trmRotated) p = p * trmAxis;
+    p += relative;
+    if (modelRotated) p = placement.axis * p;  // into the model's frame
+    tw.vertices[std::size_t(i)].p = p;
+  }
+  tw.start = trmCentreInModel(trm, trmAxis, position, placement);
+  for (int i = 1; i <= tw.numEdges; ++i) {
+    WorkEdge& e = tw.edges[std::size_t(i)];
+    e.vertexNum[0] = trm.edge(i).v[0];
+    e.vertexNum[1] = trm.edge(i).v[1];
+  }
+  // Normals: local -> world (n * trmAxis) -> model frame (n * axis^T), as one matrix.
+  const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * placement.axis.transposed() : trmAxis;
+  for (int i = 0; i < tw.numPolys; ++i) {
+    const TrmPolygon& tp = trm.polygon(i);
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    wp.numEdges = tp.numEdges;
+    wp.edges = tp.edges.data();
+    Vec3 n = tp.normal;
+    if (trmRotated)
+      n = n * planeAxis;
+    else if (modelRotated)
+      n = placement.axis * n;
+    wp.plane.normal = n;
+  }
+}
+
+WorkEdge& placeTrmEdge(TraceWork& tw, int i) {
+  WorkEdge& e = tw.edges[std::size_t(i)];
+  e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
+  e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+  e.pl = Pluecker::fromLine(e.start, e.end);
+  e.used = true;
+  return e;
+}
+
+void contactToWorld(ContactInfo& c, const Placement& placement) {
+  if (isRotated(placement.axis)) {
+    c.normal = c.normal * placement.axis;
+    c.point = c.point * placement.axis;
+  }
+  c.point += placement.origin;
+  c.dist += placement.origin.dot(c.normal);
+}
+
+}  // namespace cmkit::detail
