@@ -17,7 +17,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(build-essential cmake ninja-build ccache clang-format
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
-          libbullet-dev libembree-dev pkg-config
+          libbullet-dev libembree-dev libassimp-dev pkg-config
           python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
           python3-matplotlib)
 

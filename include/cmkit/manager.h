@@ -26,6 +26,7 @@
 #include "cmkit/compile.h"
 #include "cmkit/contents.h"
 #include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "cmkit/model.h"
 #include "cmkit/ray_index.h"
 #include "cmkit/result.h"
@@ -69,6 +70,12 @@ struct LoadMapResult {
   int procPolygonsRemoved = 0;       ///< world windings it dropped
 };
 
+/// How ModelManager::loadModel converts a mesh file.
+struct LoadModelOptions {
+  MeshLoadOptions mesh;
+  MeshBuildOptions build;
+};
+
 /// One line of ModelManager::list.
 struct ModelListEntry {
   ModelHandle handle;
@@ -94,6 +101,15 @@ class ModelManager {
   /// Loads every model of a .cm file and adds them (handles in file order).
   /// On error nothing is added.
   Result<std::vector<ModelHandle>> loadCm(const std::string& path, const MaterialTable& materials);
+  /// The original's LoadModel: the handle of the model named `name` when
+  /// the manager has one; else NAME.cm (`name` with its extension replaced)
+  /// when it exists and holds a model of that name (all its models are
+  /// added, as the original adds the whole file); else the mesh file `name`
+  /// converted into a collision model (loadMeshModel, named `name`). Errors:
+  /// a malformed NAME.cm, a mesh that cannot be read (or cmkit built without
+  /// assimp), neither file. On error nothing is added.
+  Result<ModelHandle> loadModel(const std::string& name, const MaterialTable& materials,
+                                const LoadModelOptions& options = {});
   /// Adds a model built elsewhere.
   ModelHandle add(ModelPtr model);
   /// Adds the collision model of a trace model (the original's

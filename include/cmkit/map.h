@@ -10,8 +10,11 @@
 //   any version), no Version line (an old map: version 1, material names get
 //   "textures/" prefixed), // and /* */ comments, LF, CRLF and bare CR line
 //   endings (line numbers count each once), primitives brushDef3, brushDef
-//   (three points per side), patchDef2, patchDef3 and keyword-less Quake 3
-//   brushes. Numbers are read bit-exactly like the original lexer.
+//   (three points per side), patchDef2, patchDef3, keyword-less Quake 3
+//   brushes and TrenchBroom's "Doom 3 (Valve)" brushes (three points, material,
+//   Valve 220 texture axes [ x y z offset ] twice, rotation and scales; the
+//   texture data is dropped, the plane comes from the points as for brushDef).
+//   Numbers are read bit-exactly like the original lexer.
 // - Brushes are kept whatever their number of sides (even fewer than 4, even
 //   0): the parser reports what the file says; the model builder skips
 //   brushes that do not enclose a volume, with a warning.
@@ -21,8 +24,7 @@
 //   tokens and structure, a brushDef side whose three points are collinear,
 //   patches whose width or height is even or below 3 (the original reads past
 //   its control points), patchDef3 subdivisions below 1, grids beyond the
-//   limits in tolerances.h, and TrenchBroom "Valve 220" maps (which are not
-//   the Doom 3 format: the message says so). A failed parse returns no map.
+//   limits in tolerances.h. A failed parse returns no map.
 #pragma once
 
 #include <cstdint>

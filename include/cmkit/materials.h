@@ -20,6 +20,10 @@ namespace cmkit {
 struct MaterialInfo {
   std::uint32_t contents = 0;
   bool twoSided = false;  ///< polygons get a reversed copy
+  /// A collision surface (.mtr keyword "collision"; by default only
+  /// textures/common/collision): when a mesh has one, only its collision
+  /// surfaces collide (mesh.h). Maps do not look at it.
+  bool collision = false;
 };
 
 /// A table of materials. Immutable once filled; lookups are const.

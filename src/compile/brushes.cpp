@@ -10,23 +10,6 @@ namespace cmkit::detail {
 
 namespace {
 
-/// Content bits that make a material take part in collision (the original's
-/// CONTENTS_REMOVE_UTIL: everything but the compile-time flags).
-constexpr std::uint32_t kUsefulContents = ~(contents::kAreaPortal | contents::kNoCsg);
-
-/// The original's unguarded vector normalisation: only an exactly zero
-/// vector has length 0 (tiny vectors still get a direction).
-Real normalizeLikeOriginal(Vec3& v) {
-  const Real sq = v.lengthSquared();
-  if (!(sq > 0) || !std::isfinite(sq)) {
-    v = Vec3{};
-    return 0;
-  }
-  const Real inv = compatInvSqrt(sq);
-  v *= inv;
-  return inv * sq;
-}
-
 /// The face of brush side `side`: the side's plane clipped by every other
 /// plane (inward-facing windings of the outward brush planes).
 Winding sideWinding(const std::vector<Plane>& planes, std::size_t side) {
@@ -41,11 +24,18 @@ Winding sideWinding(const std::vector<Plane>& planes, std::size_t side) {
 
 ModelBuilder::ModelBuilder(const MapEntity& entity, std::string name, MaterialCache& materials,
                            std::vector<std::string>* warnings, const ProcBsp* proc)
-    : entity_(entity),
-      name_(std::move(name)),
+    : name_(std::move(name)),
       materials_(materials),
       warnings_(warnings),
-      proc_(proc && proc->usable() ? proc : nullptr) {}
+      proc_(proc && proc->usable() ? proc : nullptr) {
+  entity_ = &entity;
+}
+
+ModelBuilder::ModelBuilder(const TriangleMesh& mesh, std::string name, MaterialCache& materials,
+                           std::vector<std::string>* warnings)
+    : name_(std::move(name)), materials_(materials), warnings_(warnings) {
+  mesh_ = &mesh;
+}
 
 void ModelBuilder::warn(const std::string& message) {
   if (!warnings_) return;
@@ -61,7 +51,7 @@ void ModelBuilder::warn(const std::string& message) {
 }
 
 std::vector<ModelBuilder::BrushPrimitive> ModelBuilder::convertBrushes() {
-  const auto& prims = entity_.primitives;
+  const auto& prims = entity_->primitives;
   std::vector<BrushPrimitive> brushPrims(prims.size());
   for (std::size_t i = 0; i < prims.size(); ++i) {
     if (const auto* mapBrush = std::get_if<MapBrush>(&prims[i])) {
@@ -72,7 +62,7 @@ std::vector<ModelBuilder::BrushPrimitive> ModelBuilder::convertBrushes() {
 }
 
 void ModelBuilder::convertPrimitivesToPolygons(std::vector<BrushPrimitive>& brushPrims) {
-  const auto& prims = entity_.primitives;
+  const auto& prims = entity_->primitives;
   for (std::size_t i = 0; i < prims.size(); ++i) {
     if (const auto* patch = std::get_if<MapPatch>(&prims[i])) {
       convertPatch(*patch, static_cast<int>(i));

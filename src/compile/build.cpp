@@ -11,16 +11,22 @@ namespace detail {
 
 CollisionModel ModelBuilder::build() {
   allocNode();  // the root
-  // Brushes with collision contents (bounds, contents, material), linked into the root.
-  std::vector<BrushPrimitive> brushPrims = convertBrushes();
-  // The axial BSP tree over the brushes (more than 4 of them), before any polygon.
-  createBSPTreeForBrushes();
-  prepareVertexHash();
-  // Brush sides and patches -> polygons: (world model with a .proc only)
-  // windings in solid leaves of the .proc BSP dropped (choppedAwayByProcBsp,
-  // proc_prune.cpp), chopped by the brushes, vertices welded, edges shared,
-  // each filtered into the tree.
-  convertPrimitivesToPolygons(brushPrims);
+  if (mesh_) {
+    // A render model: triangles -> polygons (welded, shared edges) in the
+    // root, then the axial BSP tree over them (triangles.cpp).
+    convertMeshSurfaces();
+  } else {
+    // Brushes with collision contents (bounds, contents, material), linked into the root.
+    std::vector<BrushPrimitive> brushPrims = convertBrushes();
+    // The axial BSP tree over the brushes (more than 4 of them), before any polygon.
+    createBSPTreeForBrushes();
+    prepareVertexHash();
+    // Brush sides and patches -> polygons: (world model with a .proc only)
+    // windings in solid leaves of the .proc BSP dropped (choppedAwayByProcBsp,
+    // proc_prune.cpp), chopped by the brushes, vertices welded, edges shared,
+    // each filtered into the tree.
+    convertPrimitivesToPolygons(brushPrims);
+  }
   mergePolygons();
   markInternalEdges();
   // The immutable layout: compacted arrays, the tree flattened in pre-order.

@@ -9,6 +9,7 @@
 // flatten everything into a CollisionModel.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
@@ -16,8 +17,10 @@
 #include <vector>
 
 #include "cmkit/compile.h"
+#include "cmkit/contents.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "cmkit/model.h"
 #include "geometry/winding.h"
 #include "model/material_cache.h"
@@ -34,6 +37,23 @@ inline Bounds unionBounds(const Bounds& a, const Bounds& b) {
     if (b.max[i] > r.max[i]) r.max[i] = b.max[i];
   }
   return r;
+}
+
+/// Content bits that make a material take part in collision (the original's
+/// CONTENTS_REMOVE_UTIL: everything but the compile-time flags).
+inline constexpr std::uint32_t kUsefulContents = ~(contents::kAreaPortal | contents::kNoCsg);
+
+/// The original's unguarded vector normalisation: only an exactly zero
+/// vector has length 0 (tiny vectors still get a direction).
+inline Real normalizeLikeOriginal(Vec3& v) {
+  const Real sq = v.lengthSquared();
+  if (!(sq > 0) || !std::isfinite(sq)) {
+    v = Vec3{};
+    return 0;
+  }
+  const Real inv = compatInvSqrt(sq);
+  v *= inv;
+  return inv * sq;
 }
 
 /// "None" for the int indices of the build state: no node, no reference, no
@@ -119,7 +139,7 @@ struct BuildCounters {
   int numProcRemovedPolys = 0;  ///< of numRemovedPolys: in solid leaves of the .proc BSP
 };
 
-/// Builds one collision model from one map entity.
+/// Builds one collision model from one map entity or one triangle mesh.
 class ModelBuilder {
  public:
   /// `proc`: the .proc BSP that prunes this model's windings (the world
@@ -128,6 +148,9 @@ class ModelBuilder {
                std::vector<std::string>* warnings, const ProcBsp* proc = nullptr);
   /// BuildOptions::robustEdges: internal edges only from non-parallel polygons.
   void setRobustEdges(bool on) { robustEdges_ = on; }
+  /// A render model's triangles (checked by the caller: indices in range).
+  ModelBuilder(const TriangleMesh& mesh, std::string name, MaterialCache& materials,
+               std::vector<std::string>* warnings);
   /// Runs the whole pipeline (the list of steps) and returns the flattened model.
   CollisionModel build();
 
@@ -146,6 +169,11 @@ class ModelBuilder {
   void convertPrimitivesToPolygons(std::vector<BrushPrimitive>& brushPrims);
   void convertBrushSides(const MapBrush& brush, BrushPrimitive& prim);
   void convertPatch(const MapPatch& patch, int primitiveNum);
+
+  // ---- triangles.cpp
+  /// The mesh's triangles -> polygons (the collision surfaces only, when
+  /// there are any), then the axial BSP tree over them.
+  void convertMeshSurfaces();
 
   // ---- polygons.cpp
   /// The vertex welding hash, over the bounds of the brushes (or a default box).
@@ -284,7 +312,8 @@ class ModelBuilder {
   Vec3 edgeStart(int edgeNum) const { return vertex(edge(edgeNum).v[edgeNum < 0 ? 1 : 0]); }
   Vec3 edgeEnd(int edgeNum) const { return vertex(edge(edgeNum).v[edgeNum < 0 ? 0 : 1]); }
 
-  const MapEntity& entity_;
+  const MapEntity* entity_ = nullptr;   ///< the map entity, or
+  const TriangleMesh* mesh_ = nullptr;  ///< the mesh being built
   std::string name_;
   MaterialCache& materials_;
   std::vector<std::string>* warnings_;

@@ -47,10 +47,6 @@ std::string describe(const Token& t) {
   return "'" + std::string(t.text) + "'";
 }
 
-constexpr std::string_view kValve220Message =
-    "this is a TrenchBroom \"Valve 220\" map, not the Doom 3 .map format: Doom 3 expects "
-    "\"Version 2\" with brushDef3/patchDef2 primitives; re-save it in the Doom 3 (brushDef3) format";
-
 /// Largest map version number accepted (Doom 3 writes 2, Quake 4 3).
 constexpr float kMaxMapVersion = 1000000;
 
@@ -118,6 +114,12 @@ class Parser {
     vector(m, 3, "a texture matrix row");
     expectPunct(')', "to end the texture matrix");
   }
+  /// A Valve 220 texture axis [ x y z offset ]: read and dropped.
+  void textureAxis(std::string_view what) {
+    expectPunct('[', "to start " + std::string(what));
+    for (int i = 0; i < 4; ++i) number("a number in " + std::string(what));
+    expectPunct(']', "to end " + std::string(what) + " (4 numbers)");
+  }
   std::string material(std::string_view where) {
     Token t = next();
     if (t.kind != TokenKind::String && t.kind != TokenKind::Name) {
@@ -166,7 +168,6 @@ class Parser {
       if (v.kind != TokenKind::String) {
         fail(v, "expected the quoted value of key \"" + std::string(t.text) + "\", found " + describe(v));
       }
-      if (equalsIgnoreCase(t.text, "mapversion") && v.text == "220") fail(t, std::string(kValve220Message));
       checkPlacementKey(t, v);
       setKey(entity, t.text, v.text);
     }
@@ -267,7 +268,16 @@ class Parser {
       return side;
     }
     side.material = material("after the three plane points");
-    if (peek().isPunct('[')) fail(peek(), std::string(kValve220Message));
+    if (peek().isPunct('[')) {
+      // Valve 220 (TrenchBroom's "Doom 3 (Valve)" format): the texture axes
+      // [ ux uy uz offset ] [ vx vy vz offset ], rotation, scale x, scale y,
+      // then up to three optional flags. Only the plane matters here.
+      textureAxis("the first Valve 220 texture axis [ x y z offset ]");
+      textureAxis("the second Valve 220 texture axis [ x y z offset ]");
+      for (int i = 0; i < 3; ++i) number("a Valve 220 texture rotation or scale");
+      optionalNumbers(3);
+      return side;
+    }
     // Quake 3: shift x, shift y, rotation, scale x, scale y, then up to three
     // optional flags.
     for (int i = 0; i < 5; ++i) number("a Quake 3 texture shift, rotation or scale");

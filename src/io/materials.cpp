@@ -88,6 +88,7 @@ void applyKeyword(std::string_view lowered, MaterialInfo& info) {
   }
   if (lowered == "translucent") info.contents &= ~contents::kOpaque;
   if (lowered == "twosided") info.twoSided = true;
+  if (lowered == "collision") info.collision = true;
 }
 
 std::string describe(const Token& t) {
@@ -129,6 +130,9 @@ MaterialInfo MaterialTable::defaultInfo(std::string_view c) {
   } else {
     info.contents = kSolid | kOpaque;
   }
+  // Doom 3's collision-only material for render models (mesh.h); its
+  // contents stay those of the rules above.
+  info.collision = c == "textures/common/collision";
   return info;
 }
 

@@ -119,6 +119,55 @@ Result<std::vector<ModelHandle>> ModelManager::loadCm(const std::string& path,
   });
 }
 
+Result<ModelHandle> ModelManager::loadModel(const std::string& name, const MaterialTable& materials,
+                                            const LoadModelOptions& options) {
+  return withoutExceptions(name, [&]() -> Result<ModelHandle> {
+    // Already loaded; checked again under the write lock before adding.
+    auto loaded = [&]() -> std::optional<ModelHandle> {
+      const auto it = byName_.find(name);
+      if (it == byName_.end()) return std::nullopt;
+      for (const std::int32_t i : it->second) {
+        if (models_[static_cast<std::size_t>(i)]) return ModelHandle{i};
+      }
+      return std::nullopt;
+    };
+    {
+      std::shared_lock lock(mutex_);
+      if (auto h = loaded()) return *h;
+    }
+    std::vector<ModelPtr> models;
+    std::size_t wanted = 0;
+    const std::string cmPath = cmPathForMap(name);
+    std::error_code ec;
+    if (cmPath != name && std::filesystem::is_regular_file(cmPath, ec)) {
+      Result<CmFile> cm = loadCmFile(cmPath, materials);
+      if (!cm) return cm.error();
+      for (std::size_t i = 0; i < cm->models.size(); ++i) {
+        if (cm->models[i]->name == name) {
+          models = std::move(cm->models);
+          wanted = i;
+          break;
+        }
+      }
+    }
+    if (models.empty()) {
+      Result<ModelPtr> mesh = loadMeshModel(name, materials, options.mesh, options.build);
+      if (!mesh) return mesh.error();
+      models.push_back(std::move(*mesh));
+    }
+    std::unique_lock lock(mutex_);
+    if (auto h = loaded()) return *h;
+    ModelHandle result;
+    for (std::size_t i = 0; i < models.size(); ++i) {
+      const auto index = std::int32_t(models_.size());
+      byName_[models[i]->name].push_back(index);
+      models_.push_back(std::move(models[i]));
+      if (i == wanted) result = ModelHandle{index};
+    }
+    return result;
+  });
+}
+
 ModelHandle ModelManager::add(ModelPtr model) {
   if (!model) return {};
   std::unique_lock lock(mutex_);

@@ -13,7 +13,9 @@ int MaterialCache::find(std::string_view rawName) {
     index = cit->second;
   } else {
     index = static_cast<int>(materials_.size());
-    materials_.push_back({canonical, table_.info(canonical)});
+    MaterialInfo info = table_.info(canonical);
+    if (contentsOverride_) info.contents = *contentsOverride_;
+    materials_.push_back({canonical, info});
     byCanonical_.emplace(std::move(canonical), index);
   }
   byRaw_.emplace(rawName, index);

@@ -2,7 +2,9 @@
 // once per distinct name (used by the map compiler and the .cm reader).
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -22,7 +24,10 @@ class MaterialCache {
     MaterialInfo info;
   };
 
-  explicit MaterialCache(const MaterialTable& table) : table_(table) {}
+  /// `contentsOverride`: when set, every material gets these contents (the
+  /// mesh builder's MeshBuildOptions::contents).
+  explicit MaterialCache(const MaterialTable& table, std::optional<std::uint32_t> contentsOverride = {})
+      : table_(table), contentsOverride_(contentsOverride) {}
   /// Index of the material (same canonical name -> same index).
   int find(std::string_view rawName);
   const Material& operator[](int i) const { return materials_[static_cast<std::size_t>(i)]; }
@@ -37,6 +42,7 @@ class MaterialCache {
   using IndexByName = std::unordered_map<std::string, int, NameHash, std::equal_to<>>;
 
   const MaterialTable& table_;
+  std::optional<std::uint32_t> contentsOverride_;
   IndexByName byRaw_;
   IndexByName byCanonical_;
   std::vector<Material> materials_;

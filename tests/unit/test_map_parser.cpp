@@ -9,11 +9,15 @@
 
 namespace {
 
+using cmkit::buildCollisionModels;
+using cmkit::CollisionModel;
 using cmkit::MapBrush;
 using cmkit::MapFile;
 using cmkit::MapPatch;
 using cmkit::Mat3;
+using cmkit::MaterialTable;
 using cmkit::parseMapText;
+using cmkit::Real;
 using cmkit::Vec3;
 
 std::uint32_t bits(float f) {
@@ -224,13 +228,60 @@ TEST(MapParser, OldMapsAndQuake3Brushes) {
   EXPECT_EQ(brush.sides[1].plane.normal, (Vec3{0, 0, 1}));
 }
 
-TEST(MapParser, Valve220MapsFailWithAClearMessage) {
-  const std::string byKey = "{\n\"mapversion\" \"220\"\n\"classname\" \"worldspawn\"\n}\n";
-  expectError(byKey, 2, "TrenchBroom \"Valve 220\" map");
-  const std::string bySide =
-      "{\n\"classname\" \"worldspawn\"\n{\n"
-      "( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base_floor/a [ 0 1 0 0 ] [ 0 0 -1 0 ] 0 0.5 0.5\n}\n}\n";
-  expectError(bySide, 4, "not the Doom 3 .map format");
+// A 64-unit box (0..64 on x and y, 0..16 on z) as TrenchBroom writes it in
+// its "Doom 3 (Valve)" format: three points, material, two texture axes,
+// rotation and scales, three flags (absent on the last side).
+const std::string kValve220Box =
+    "// Game: Doom 3 BFG\n// Format: Doom3 (Valve)\n{\n\"mapversion\" \"220\"\n"
+    "\"classname\" \"worldspawn\"\n{\n"
+    "( 0 0 0 ) ( 0 1 0 ) ( 0 0 1 ) base_wall/a [ 0 -1 0 0 ] [ 0 0 -1 0 ] 0 0.5 0.5 0 0 0\n"
+    "( 0 0 0 ) ( 0 0 1 ) ( 1 0 0 ) base_wall/a [ 1 0 0 0 ] [ 0 0 -1 0 ] 0 0.5 0.5 0 0 0\n"
+    "( 0 0 0 ) ( 1 0 0 ) ( 0 1 0 ) base_floor/b [ -1 0 0 0 ] [ 0 -1 0 0 ] 0 0.5 0.5 0 0 0\n"
+    "( 64 64 16 ) ( 64 65 16 ) ( 65 64 16 ) base_floor/b [ 1 0 0 0 ] [ 0 -1 0 0 ] 0 0.5 0.5 0 0 0\n"
+    "( 64 64 16 ) ( 65 64 16 ) ( 64 64 17 ) base_wall/a [ -1 0 0 0 ] [ 0 0 -1 0 ] 0 0.5 0.5 0 0 0\n"
+    "( 64 64 16 ) ( 64 64 17 ) ( 64 65 16 ) common/caulk [ 0 1 0 -64.5 ] [ 0 0 -1 0 ] 12.5 -0.25 1\n"
+    "}\n}\n";
+
+TEST(MapParser, Valve220BrushesGiveThePlanesOfTheirPoints) {
+  auto r = parseMapText(kValve220Box, "box.map");
+  ASSERT_TRUE(r.ok()) << r.error().toString();
+  EXPECT_EQ(r->version, 1);  // no Version line
+  ASSERT_EQ(r->entities.size(), 1u);
+  ASSERT_EQ(r->entities[0].primitives.size(), 1u);
+  const auto& brush = std::get<MapBrush>(r->entities[0].primitives[0]);
+  ASSERT_EQ(brush.sides.size(), 6u);
+  EXPECT_EQ(brush.line, 6);
+  // normal (p1-p2)x(p3-p2), through p2: outward faces of the box
+  const Vec3 normals[6] = {{-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
+  const Real dists[6] = {0, 0, 0, 16, 64, 64};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(brush.sides[i].plane.normal, normals[i]) << "side " << i;
+    EXPECT_EQ(brush.sides[i].plane.dist, dists[i]) << "side " << i;
+  }
+  // Material names get the textures/ folder, as in every map without a Version line.
+  EXPECT_EQ(brush.sides[0].material, "textures/base_wall/a");
+  EXPECT_EQ(brush.sides[5].material, "textures/common/caulk");
+  auto models = buildCollisionModels(*r, MaterialTable{});
+  ASSERT_TRUE(models.ok());
+  ASSERT_EQ(models->size(), 1u);
+  const CollisionModel& m = *(*models)[0];
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.polygons.size(), 6u);
+  EXPECT_EQ(m.brushes.size(), 1u);
+  EXPECT_EQ(m.bounds.min, (Vec3{0, 0, 0}));
+  EXPECT_EQ(m.bounds.max, (Vec3{64, 64, 16}));
+}
+
+TEST(MapParser, Valve220ErrorsGiveFileAndLine) {
+  std::string bad = kValve220Box;
+  bad.replace(bad.find("[ 0 0 -1 0 ] 0 0.5 0.5 0 0 0\n( 0 0 0 ) ( 1 0 0 )"), 12, "[ 0 0 -1 ]  ");
+  expectError(bad, 8, "a number in the second Valve 220 texture axis");
+  std::string noScale = kValve220Box;
+  noScale.replace(noScale.find("12.5 -0.25 1"), 12, "12.5 -0.25 }");
+  expectError(noScale, 12, "a Valve 220 texture rotation or scale");
+  std::string noAxis = kValve220Box;
+  noAxis.replace(noAxis.find("[ -1 0 0 0 ] [ 0 -1 0 0 ]"), 26, "[ -1 0 0 0 ] 0 0.5 0.5 0 0");
+  expectError(noAxis, 9, "to start the second Valve 220 texture axis");
 }
 
 TEST(MapParser, EntityKeys) {

@@ -32,6 +32,7 @@ struct BenchOptions {
   std::string models;
   std::string materials;
   bool noProc = false;  ///< --no-proc
+  MeshCliOptions mesh;  ///< --up, --scale, --contents (mesh files)
   std::string trm = kSpeedTestDefaultTrm;
   std::string origin;
   std::string suite;
@@ -250,7 +251,7 @@ int runSuite(const BenchOptions& o) {
       row.skipped = "no model source";
       continue;
     }
-    auto models = loadModelsForCli(source, o.materials, o.noProc);
+    auto models = loadModelsForCli(source, o.materials, o.noProc, o.mesh);
     if (!models) {
       row.skipped = models.error().toString();
       continue;
@@ -303,10 +304,10 @@ int runSuite(const BenchOptions& o) {
 int runBench(const BenchOptions& o) {
   if (!o.suite.empty()) return runSuite(o);
   if (o.models.empty()) {
-    fmt::print(stderr, "cmkit bench: give MODELS (a .map or .cm file) or --suite DIR\n");
+    fmt::print(stderr, "cmkit bench: give MODELS (a .map, .cm or mesh file) or --suite DIR\n");
     return kExitBadInput;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
   if (!models) {
     fmt::print(stderr, "cmkit bench: {}\n", models.error().toString());
     return kExitBadInput;
@@ -359,7 +360,8 @@ void registerBench(CLI::App& app) {
       "  cmkit bench --suite ../shared/reference --repeat 20\n"
       "  cmkit bench --suite ../shared/reference --json\n"
       "  build/stats/bin/cmkit bench --suite ../shared/reference --stats");
-  cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file; the first model is tested");
+  cmd->add_option("MODELS", o->models,
+                  "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...); the first model is tested");
   cmd->add_option("--trm", o->trm, "trace model (query-format syntax)")->capture_default_str();
   cmd->add_option("--origin", o->origin, "start of the moves x,y,z (default: centre of the model's bounds)")
       ->check(finiteVec3());
@@ -393,6 +395,7 @@ void registerBench(CLI::App& app) {
                 "build with -DCMKIT_QUERY_STATS=ON (cmake --preset stats)");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
+  addMeshOptions(cmd, o->mesh);
   cmd->callback([o] {
     if (int rc = runBench(*o); rc != 0) std::exit(rc);
   });

@@ -29,6 +29,13 @@ void registerCompile(CLI::App& app) {
       "--robust-edges marks fewer edges internal than the original, so that no edge of a\n"
       "brush's shell is hidden where brushes overlap with coplanar faces (the .cm then\n"
       "differs from the original's; see docs/reliability.md). Off by default.\n\n"
+      "A mesh file instead of a map (.obj, .gltf, .glb, .ase, .lwo, .fbx, .ply, ..., read with\n"
+      "assimp) becomes one model named after the file, as the original converts a render\n"
+      "model: every triangle of every surface whose material has contents, or only the\n"
+      "collision surfaces (material keyword \"collision\", textures/common/collision) when\n"
+      "there are any; triangles counter-clockwise seen from the front. -o writes it with\n"
+      "CRC 0. --up says which axis is up in the file (glTF is y up), --scale resizes it,\n"
+      "--contents replaces the materials' contents (meshes without Doom 3 materials).\n\n"
       "Materials decide which brush sides and patches collide (and how): by default the\n"
       "rules of docs/materials (textures/common/clip is player/monster/moveable clip,\n"
       "names containing \"water\" are water, ...); --materials DIR reads the .mtr files\n"
@@ -38,12 +45,14 @@ void registerCompile(CLI::App& app) {
       "  cmkit compile maps/lt4.map -o maps/lt4.cm   write the .cm as well\n"
       "  cmkit compile level.map --materials base/materials --json > stats.json\n"
       "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n"
-      "  cmkit compile maps/lt4.map --robust-edges -o lt4-robust.cm\n\n"
+      "  cmkit compile maps/lt4.map --robust-edges -o lt4-robust.cm\n"
+      "  cmkit compile crate.obj -o crate.cm --contents solid,playerclip\n"
+      "  cmkit compile level.glb --scale 39.37 -o level.cm      metres to Doom units\n\n"
       "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message), an\n"
       "unknown --entity or one without brushes or patches.");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "compile";
-  cmd->add_option("MAP", req->mapPath, "the .map file")->required();
+  cmd->add_option("MAP", req->mapPath, "the .map file, or a mesh file")->required();
   cmd->add_option("-o,--output", req->outPath, "write the models to this .cm file");
   cmd->add_option("--materials", req->materialsDir,
                   "directory of .mtr material files (searched recursively)");
@@ -54,6 +63,7 @@ void registerCompile(CLI::App& app) {
   cmd->add_option("--entity", req->entity,
                   "write only this entity's model to -o: its \"name\" value, or #N for entity N");
   cmd->add_flag("--test-trm", req->testTrm, "with --entity: convert the model to a trace model and report");
+  addMeshOptions(cmd, req->mesh);
   cmd->callback([req] {
     const int rc = runMapBuild(*req);
     if (rc != 0) std::exit(rc);

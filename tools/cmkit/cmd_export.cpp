@@ -16,6 +16,7 @@ struct ExportCliOptions {
   std::string results;
   std::string materials;
   bool noProc = false;  ///< --no-proc
+  MeshCliOptions mesh;  ///< --up, --scale, --contents (mesh files)
   std::string mask;
   bool noEdges = false;
   bool noInternalEdges = false;
@@ -33,7 +34,7 @@ int runExport(const ExportCliOptions& o) {
     }
     e.contentMask = *mask;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
   if (!models) {
     fmt::print(stderr, "cmkit export: {}\n", models.error().toString());
     return kExitBadInput;
@@ -59,7 +60,7 @@ void registerExport(CLI::App& app) {
   auto o = std::make_shared<ExportCliOptions>();
   auto* cmd = app.add_subcommand(
       "export",
-      "Export the collision models of a .map or .cm file, and optionally the traces of a\n"
+      "Export the collision models of a .map, .cm or mesh file, and optionally the traces of a\n"
       "query/results pair, as glTF 2.0 (.gltf with the buffer embedded, or binary .glb) or\n"
       "Wavefront OBJ (+ .mtl beside it). Map coordinates (z up) are kept in the buffers; the\n"
       "glTF root node turns them y-up. One material per contents value; edges, internal edges\n"
@@ -68,7 +69,8 @@ void registerExport(CLI::App& app) {
       "  cmkit export maps/lt4.map -o lt4.glb\n"
       "  cmkit export maps/box_room.map --queries q.txt --results r.txt -o box_room.gltf\n"
       "  cmkit export level.cm --mask playerclip -o clip.obj");
-  cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file")->required();
+  cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
+      ->required();
   cmd->add_option("-o,--output", o->output, "the file to write (.gltf, .glb or .obj)")->required();
   cmd->add_option("--queries", o->queries, "query file whose traces to export (with --results)");
   cmd->add_option("--results", o->results,
@@ -78,6 +80,7 @@ void registerExport(CLI::App& app) {
   cmd->add_flag("--no-internal-edges", o->noInternalEdges, "leave out internal edges");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
+  addMeshOptions(cmd, o->mesh);
   cmd->callback([o] {
     if (int rc = runExport(*o); rc != 0) std::exit(rc);
   });

@@ -21,8 +21,10 @@ void registerInfo(CLI::App& app) {
                          "for a .map, the models are built as by 'cmkit compile' (per model: bounds,\n"
                          "contents, vertices, edges, polygons, brushes, nodes, references, internal and\n"
                          "sharp edges, contained polygons removed, polygons merged, memory); a .cm\n"
-                         "file is loaded instead. NAME.proc beside a .map prunes the world model as\n"
-                         "in the original (--no-proc: not).\n\n"
+                         "file is loaded instead; a mesh file (.obj, .gltf, .glb, .ase, .lwo, ...) is\n"
+                         "converted into one model as by 'cmkit compile' (--up, --scale, --contents).\n"
+                         "NAME.proc beside a .map prunes the world model as in the original\n"
+                         "(--no-proc: not).\n\n"
                          "Examples:\n"
                          "  cmkit info maps/lt4.map\n"
                          "  cmkit info maps/lt4.map --quiet          totals only\n"
@@ -31,12 +33,14 @@ void registerInfo(CLI::App& app) {
                          "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message).");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "info";
-  cmd->add_option("FILE", req->mapPath, "the .map file, or a .cm file (loaded, not built)")->required();
+  cmd->add_option("FILE", req->mapPath, "the .map file, a .cm file (loaded, not built) or a mesh file")
+      ->required();
   cmd->add_option("--materials", req->materialsDir,
                   "directory of .mtr material files (searched recursively)");
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");
   cmd->add_flag("-q,--quiet", req->quiet, "print only the totals, not every model");
   addNoProcFlag(cmd, req->noProc);
+  addMeshOptions(cmd, req->mesh);
   cmd->callback([req] {
     if (req->mapPath.size() > 3 && req->mapPath.ends_with(".cm")) {  // a .cm file: load, no build
       const auto start = std::chrono::steady_clock::now();

@@ -24,11 +24,12 @@ struct QueryOptions {
   std::string materials;
   bool noProc = false;       ///< --no-proc
   bool robustEdges = false;  ///< --robust-edges
+  MeshCliOptions mesh;       ///< --up, --scale, --contents (mesh files)
   int threads = 1;
 };
 
 int runQueryCommand(const QueryOptions& o) {
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.robustEdges);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit query: {}\n", models.error().toString());
     return kExitBadInput;
@@ -89,7 +90,7 @@ void registerQuery(CLI::App& app) {
   auto o = std::make_shared<QueryOptions>();
   auto* cmd = app.add_subcommand(
       "query",
-      "Run a file of collision queries against the models of a .map or .cm file and print one\n"
+      "Run a file of collision queries against the models of a .map, .cm or mesh file and print one\n"
       "result line per query (format: docs/query-format.md).\n\n"
       "Query lines look like:\n"
       "  translation trm=box:-16,-16,0,16,16,72 start=0,0,64 end=0,0,-64 mask=solid,playerclip\n"
@@ -99,12 +100,14 @@ void registerQuery(CLI::App& app) {
       "Optional keys: trmaxis=9 numbers, mask=names|number, model=NAME|#N, origin=x,y,z,\n"
       "modelaxis=9 numbers. A line that cannot run gives error=REASON and the rest go on.\n\n"
       "Example: cmkit query maps/box_room.map queries.txt -o results.txt");
-  cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file")->required();
+  cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
+      ->required();
   cmd->add_option("QUERIES", o->queries, "the query file")->required();
   cmd->add_option("-o,--output", o->output, "write results here instead of standard output");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
   addRobustEdgesFlag(cmd, o->robustEdges);
+  addMeshOptions(cmd, o->mesh);
   cmd->add_option("-j,--threads", o->threads, "worker threads (results are the same for any count)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

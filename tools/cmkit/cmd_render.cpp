@@ -26,6 +26,7 @@ struct RenderOptions {
   std::string results;
   std::string materials;
   bool noProc = false;  ///< --no-proc
+  MeshCliOptions mesh;  ///< --up, --scale, --contents (mesh files)
   std::string mask;
   bool noWireframe = false;
   bool internalEdges = false;
@@ -58,7 +59,7 @@ int runRender(const RenderOptions& o) {
     }
     p.contentMask = *mask;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
   if (!models) {
     fmt::print(stderr, "cmkit render: {}\n", models.error().toString());
     return kExitBadInput;
@@ -85,7 +86,7 @@ void registerRender(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   auto* cmd = app.add_subcommand(
       "render",
-      "Render the collision models of a .map or .cm file to a PNG picture (software rasteriser:\n"
+      "Render the collision models of a .map, .cm or mesh file to a PNG picture (software rasteriser:\n"
       "polygons coloured by contents and shaded by their normal, edges drawn over them), with the\n"
       "traces of a query/results pair overlaid (path in yellow, trace model at the start and end,\n"
       "contact point red, contact normal orange).\n\n"
@@ -94,7 +95,8 @@ void registerRender(CLI::App& app) {
       "  cmkit render maps/lt4.map --top --size 1600x1200 -o plan.png\n"
       "  cmkit query maps/box_room.map q.txt -o r.txt\n"
       "  cmkit render maps/box_room.map --queries q.txt --results r.txt -o traces.png");
-  cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file")->required();
+  cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
+      ->required();
   cmd->add_option("-o,--output", o->output, "the PNG to write")->capture_default_str();
   cmd->add_option("--size", o->size, "picture size WIDTHxHEIGHT")->capture_default_str();
   auto* top =
@@ -113,6 +115,7 @@ void registerRender(CLI::App& app) {
       ->each([o](const std::string&) { o->haveCut = true; });
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
+  addMeshOptions(cmd, o->mesh);
   cmd->callback([o] {
     if (int rc = runRender(*o); rc != 0) std::exit(rc);
   });

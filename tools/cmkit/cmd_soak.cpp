@@ -57,7 +57,7 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
 }
 
 int runSoak(const SoakOptions& o) {
-  auto models = loadModelsForCli(o.map, o.materials, o.noProc, o.robustEdges);
+  auto models = loadModelsForCli(o.map, o.materials, o.noProc, {}, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit soak: {}\n", models.error().toString());
     return kExitBadInput;
@@ -197,7 +197,8 @@ void registerSoak(CLI::App& app) {
       "  cmkit soak data/maps/lt4/lt4.map --trm cone:6:-12,-12,0,12,12,40 --threads 2\n"
       "  cmkit soak data/maps/lt4/lt4.map --robust-edges --fail-on closed-brush\n"
       "  cmkit soak data/maps/lt4/lt4.map --replay cases.txt   (classify pasted translation lines)");
-  cmd->add_option("MAP", o->map, "a .map (built on the fly) or .cm file; the first model is soaked")
+  cmd->add_option("MAP", o->map,
+                  "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...); the first model is soaked")
       ->required();
   cmd->add_option("--sweeps", o->sweeps, "random translations")
       ->capture_default_str()

@@ -1,4 +1,4 @@
-// `cmkit validate FILE.cm|FILE.map`: check the invariants of every model.
+// `cmkit validate FILE.cm|FILE.map|MESH`: check the invariants of every model.
 #include <fmt/core.h>
 
 #include <cstdlib>
@@ -13,8 +13,8 @@ namespace cmkit::cli {
 void registerValidate(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "validate",
-      "Check the invariants of every collision model of FILE (a .cm file, or a .map whose\n"
-      "models are built first): edges used by at most two polygons (in opposite\n"
+      "Check the invariants of every collision model of FILE (a .cm file, or a .map or mesh\n"
+      "file whose models are built first): edges used by at most two polygons (in opposite\n"
       "directions), closed and planar polygon edge loops, bounds that contain their\n"
       "vertices, brushes that enclose a bounded volume inside their bounds, a consistent\n"
       "tree whose nodes reach their items, and no index out of range.\n"
@@ -30,13 +30,15 @@ void registerValidate(CLI::App& app) {
   auto materialsDir = std::make_shared<std::string>();
   auto maxPerModel = std::make_shared<std::size_t>(100);
   auto noProc = std::make_shared<bool>(false);
-  cmd->add_option("FILE", *path, "the .cm or .map file")->required();
+  auto mesh = std::make_shared<MeshCliOptions>();
+  cmd->add_option("FILE", *path, "the .cm, .map or mesh file")->required();
   cmd->add_option("--materials", *materialsDir, "directory of .mtr material files (searched recursively)");
   cmd->add_option("--max", *maxPerModel, "report at most this many violations per model")
       ->capture_default_str();
   addNoProcFlag(cmd, *noProc);
-  cmd->callback([path, materialsDir, maxPerModel, noProc] {
-    Result<std::vector<ModelPtr>> models = loadModelsForCli(*path, *materialsDir, *noProc);
+  addMeshOptions(cmd, *mesh);
+  cmd->callback([path, materialsDir, maxPerModel, noProc, mesh] {
+    Result<std::vector<ModelPtr>> models = loadModelsForCli(*path, *materialsDir, *noProc, *mesh);
     if (!models) {
       fmt::print(stderr, "cmkit validate: {}\n", models.error().toString());
       std::exit(kExitBadInput);

@@ -51,6 +51,7 @@ struct ViewOptions {
   std::string results;
   std::string materials;
   bool noProc = false;  ///< --no-proc
+  MeshCliOptions mesh;  ///< --up, --scale, --contents (mesh files)
   std::string viewerDir;
   int port = kDefaultPort;
   double exitAfter = 0;
@@ -188,7 +189,7 @@ int runView(const ViewOptions& o) {
                viewerDir.string());
     return kExitBadInput;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc);
+  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
   if (!models) {
     fmt::print(stderr, "cmkit view: {}\n", models.error().toString());
     return kExitBadInput;
@@ -279,7 +280,8 @@ void registerView(CLI::App& app) {
       "  cmkit view maps/lt4.map\n"
       "  cmkit query maps/box_room.map q.txt -o r.txt\n"
       "  cmkit view maps/box_room.map --queries q.txt --results r.txt --port 8080");
-  cmd->add_option("MODELS", o->models, "a .map (built on the fly) or .cm file")->required();
+  cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
+      ->required();
   cmd->add_option("--queries", o->queries, "query file whose traces to show (with --results)");
   cmd->add_option("--results", o->results,
                   "results of the queries; without --queries, query lines each followed by its result line");
@@ -291,6 +293,7 @@ void registerView(CLI::App& app) {
       ->check(finiteAtLeast(0));
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
+  addMeshOptions(cmd, o->mesh);
   cmd->callback([o] {
     if (int rc = runView(*o); rc != 0) std::exit(rc);
   });

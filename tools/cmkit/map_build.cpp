@@ -12,6 +12,7 @@
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "progress_bar.h"
@@ -70,6 +71,43 @@ int runEntityWrite(const MapBuildRequest& request, const MapFile& map, const Mat
   return 0;
 }
 
+/// `compile MESH [-o FILE.cm]`: one model from a mesh file.
+int runMeshBuild(const MapBuildRequest& request, const MaterialTable& materials) {
+  const std::string& cmd = request.command;
+  if (!request.entity.empty()) {
+    fmt::print(stderr, "cmkit {}: --entity needs a .map file; {} is a mesh (one model)\n", cmd,
+               request.mapPath);
+    return kExitBadInput;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::string> warnings;
+  Result<ModelPtr> model = loadMeshForCli(request.mapPath, materials, request.mesh, &warnings);
+  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
+  if (!model) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, model.error().toString());
+    return kExitBadInput;
+  }
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  const std::vector<ModelPtr> models{*model};
+  if (!request.outPath.empty()) {
+    if (const Status st = saveCmFile(request.outPath, models, 0); !st) {
+      fmt::print(stderr, "cmkit {}: {}\n", cmd, st.error().toString());
+      return kExitBadInput;
+    }
+  }
+  StatsContext context;
+  context.source = request.mapPath;
+  context.milliseconds = std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count();
+  context.perModel = !request.quiet;
+  if (request.json) {
+    fmt::print("{}", statsJson(models, context));
+  } else {
+    printStatsText(stdout, models, context);
+    if (!request.outPath.empty()) fmt::print("wrote {} (1 model, CRC 0)\n", request.outPath);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runMapBuild(const MapBuildRequest& request) {
@@ -82,6 +120,7 @@ int runMapBuild(const MapBuildRequest& request) {
     }
     for (const std::string& w : materials.warnings()) fmt::print(stderr, "warning: {}\n", w);
   }
+  if (isMeshFileName(request.mapPath)) return runMeshBuild(request, materials);
 
   const auto start = std::chrono::steady_clock::now();
   auto map = loadMapFile(request.mapPath);

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "model_loading.h"
+
 namespace cmkit::cli {
 
 /// What `compile` / `info` were asked to do.
@@ -18,8 +20,11 @@ struct MapBuildRequest {
   std::string entity;        ///< compile only this entity ("name" value or #N); needs outPath
   bool testTrm = false;      ///< with `entity`: also convert the model to a trace model
   bool robustEdges = false;  ///< BuildOptions::robustEdges
+  MeshCliOptions mesh;       ///< how a mesh file (mapPath) is read
 };
 
+/// A mesh file (isMeshFileName) instead of a map: its one model, written
+/// with CRC 0 as the original's .cm files for render models.
 /// Builds every model of the map (the world pruned with NAME.proc unless
 /// noProc; one line on stderr says which), reports the statistics on stdout
 /// and warnings on stderr, writes the .cm when asked. With `entity`: only

@@ -6,7 +6,9 @@
 
 #include "cmkit/cm_file.h"
 #include "cmkit/compile.h"
+#include "cmkit/contents.h"
 #include "cmkit/map.h"
+#include "option_checks.h"
 
 namespace cmkit::cli {
 
@@ -52,8 +54,35 @@ std::string procNote(const ProcForCli& proc, const std::string& mapPath,
   return fmt::format("no .proc beside {}", std::filesystem::path(mapPath).filename().string());
 }
 
+void addMeshOptions(CLI::App* cmd, MeshCliOptions& options) {
+  cmd->add_option("--up", options.up,
+                  "mesh files: which axis is up in the file: auto (glTF/GLB y, others z), y or z;\n"
+                  "y-up coordinates (x, y, z) become (x, -z, y)")
+      ->check(CLI::IsMember({"auto", "y", "z"}));
+  cmd->add_option("--scale", options.scale, "mesh files: multiply every coordinate by this (default 1)")
+      ->check(finiteAtLeast(0));
+  cmd->add_option("--contents", options.contents,
+                  "mesh files: give every surface these contents (\"solid,playerclip\", ...) instead\n"
+                  "of its material's");
+}
+
+Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& materials,
+                                const MeshCliOptions& options, std::vector<std::string>* warnings) {
+  MeshLoadOptions load;
+  load.up = options.up == "y" ? MeshUpAxis::Y : options.up == "z" ? MeshUpAxis::Z : MeshUpAxis::Auto;
+  load.scale = static_cast<Real>(options.scale);
+  MeshBuildOptions build;
+  build.warnings = warnings;
+  if (!options.contents.empty()) {
+    Result<std::uint32_t> c = contentsFromString(options.contents);
+    if (!c) return Error("--contents: " + c.error().message);
+    build.contents = *c;
+  }
+  return loadMeshModel(path, materials, load, build);
+}
+
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
-                                               bool noProc, bool robustEdges) {
+                                               bool noProc, const MeshCliOptions& mesh, bool robustEdges) {
   MaterialTable materials;
   if (!materialsDir.empty()) {
     if (Status s = materials.addMtrDirectory(materialsDir); !s) return s.error();
@@ -81,7 +110,14 @@ Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const st
     if (models) fmt::print(stderr, "{}\n", procNote(*proc, path, *models));
     return models;
   }
-  return Error{"expected a .map or .cm file", path};
+  if (isMeshFileName(path)) {
+    std::vector<std::string> warnings;
+    Result<ModelPtr> model = loadMeshForCli(path, materials, mesh, &warnings);
+    for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+    if (!model) return model.error();
+    return std::vector<ModelPtr>{std::move(*model)};
+  }
+  return Error{"expected a .map, .cm or mesh file (.obj, .gltf, .glb, .ase, .lwo, .fbx, .ply, ...)", path};
 }
 
 }  // namespace cmkit::cli

@@ -1,6 +1,7 @@
-// Loading the models named on a command line: a .cm file, or a .map file
+// Loading the models named on a command line: a .cm file, a .map file
 // whose entities are built into models (the world pruned with NAME.proc
-// beside the map, as the original does, unless --no-proc).
+// beside the map, as the original does, unless --no-proc), or a mesh file
+// (.obj, .gltf, .glb, .ase, .lwo, ...) converted into one model.
 #pragma once
 
 #include <optional>
@@ -10,18 +11,36 @@
 #include <CLI/CLI.hpp>
 
 #include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "cmkit/model.h"
 #include "cmkit/proc_file.h"
 #include "cmkit/result.h"
 
 namespace cmkit::cli {
 
-/// Reads FILE.cm or builds every model of FILE.map (materials from
-/// `materialsDir` when not empty, else the default rules). For a .map, one
-/// line on stderr says whether a .proc pruned the world (procNote).
-/// `robustEdges`: BuildOptions::robustEdges for a .map (ignored for a .cm).
+/// How a mesh file on the command line is read (--up, --scale, --contents).
+struct MeshCliOptions {
+  std::string up = "auto";  ///< auto, y or z (MeshUpAxis)
+  double scale = 1;
+  std::string contents;  ///< empty: the materials decide
+};
+
+/// Adds --up, --scale and --contents (the same text in every command).
+void addMeshOptions(CLI::App* cmd, MeshCliOptions& options);
+
+/// Reads a mesh file into one model named after the path (warnings
+/// appended when not null).
+Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& materials,
+                                const MeshCliOptions& options, std::vector<std::string>* warnings);
+
+/// Reads FILE.cm, builds every model of FILE.map or converts a mesh file
+/// (isMeshFileName) into one model (materials from `materialsDir` when not
+/// empty, else the default rules). For a .map, one line on stderr says
+/// whether a .proc pruned the world (procNote). `robustEdges`:
+/// BuildOptions::robustEdges for a .map (ignored otherwise).
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
-                                               bool noProc = false, bool robustEdges = false);
+                                               bool noProc = false, const MeshCliOptions& mesh = {},
+                                               bool robustEdges = false);
 
 /// Adds the --no-proc flag (the same text in every command).
 void addNoProcFlag(CLI::App* cmd, bool& noProc);
