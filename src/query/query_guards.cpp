@@ -45,6 +45,10 @@ QueryStatus checkPoint(const Vec3& p) {
 /// tol::kAxisDriftEpsilon).
 bool checkAxis(Mat3& axis) {
   if (axis.isIdentity()) return true;
+  // The usual input, a rotation within the drift epsilon, passes unchanged
+  // (validateAxis's own first checks, without building its Result).
+  if (axis.isFinite() && axis.orthonormalityError() <= tol::kAxisDriftEpsilon && axis.determinant() > 0)
+    return true;
   Result<Mat3> checked = validateAxis(axis);
   if (!checked) return false;
   axis = *checked;
