@@ -27,9 +27,10 @@ inline constexpr Real kCircleApproximationLength = 64.0f;
 /// original: default epsilon of the bounds/plane side test used to cull
 /// polygons whose plane the trace bounds do not cross.
 inline constexpr Real kOnEpsilon = 0.1f;
-/// cmkit: a rotation walks the tree with the exact boxes of arc pieces at
-/// most kCircleApproximationLength long, but with no more than this many
-/// pieces per part below 180 degrees (more pieces only make smaller boxes).
+/// cmkit: a rotation walks the tree in pieces along its centre's arc, each
+/// at least kCircleApproximationLength (and twice the trace model's reach)
+/// long, but with no more than this many pieces per part below 180 degrees
+/// (more pieces only make smaller boxes).
 inline constexpr int kMaxRotationWalkPieces = 16;
 /// cmkit: rotating edges whose directions differ by a sine below this at the
 /// contact are parallel: their crossing equation is float noise, no contact.

@@ -30,7 +30,7 @@ bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
   if (!(b.contents & tw.contentMask)) return false;
   if (!b.bounds.intersects(tw.bounds)) return false;
   const auto planes = tw.model.planesOf(b);
-  const int numVerts = tw.pointTrace ? 1 : tw.numVerts;
+  const int numVerts = tw.numVerts;  // a position test always has a trace model (points: pointContents)
   for (int j = 0; j < numVerts; ++j) {
     const Vec3& p = tw.vertices[std::size_t(j)].p;
     // Inside when behind every plane; remember the nearest plane.

@@ -347,12 +347,13 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
 }
 
 std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, const Plane& plane) {
-  const Vec3& nm = plane.normal;
 #ifdef CMKIT_ROTATE_SSE2
   if constexpr (std::is_same_v<Real, float>) {
-    // Four boxes at a time: the scalar loop's arithmetic in the same order in
-    // each lane (the same bits); lanes past n are masked off.
+    // Four boxes at a time: Bounds::intersects and Bounds::planeSide's
+    // arithmetic in the same order in each lane (the same bits); lanes past
+    // n are masked off.
     const __m128 half = _mm_set1_ps(0.5f), dist = _mm_set1_ps(plane.dist);
+    const Vec3& nm = plane.normal;
     const __m128 nx = _mm_set1_ps(nm.x), ny = _mm_set1_ps(nm.y), nz = _mm_set1_ps(nm.z);
     const __m128 eps = _mm_set1_ps(tol::kOnEpsilon), negEps = _mm_set1_ps(-tol::kOnEpsilon);
     const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
@@ -385,18 +386,11 @@ std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, 
     return ~rejected & all;
   }
 #endif
+  // Elsewhere (and -DCMKIT_NO_SIMD): Bounds' own tests, box by box.
   std::uint32_t bits = 0;
   for (std::size_t i = 0; i < std::size_t(n); ++i) {
-    const Real cx = (b.minX[i] + b.maxX[i]) * Real(0.5);
-    const Real cy = (b.minY[i] + b.maxY[i]) * Real(0.5);
-    const Real cz = (b.minZ[i] + b.maxZ[i]) * Real(0.5);
-    const Real d1 = nm.x * cx + nm.y * cy + nm.z * cz - plane.dist;
-    const Real d2 = std::fabs((b.maxX[i] - cx) * nm.x) + std::fabs((b.maxY[i] - cy) * nm.y) +
-                    std::fabs((b.maxZ[i] - cz) * nm.z);
-    const bool apart = (bounds.max.x < b.minX[i]) | (bounds.max.y < b.minY[i]) | (bounds.max.z < b.minZ[i]) |
-                       (bounds.min.x > b.maxX[i]) | (bounds.min.y > b.maxY[i]) | (bounds.min.z > b.maxZ[i]);
-    const bool oneSide = (d1 - d2 > tol::kOnEpsilon) | (d1 + d2 < -tol::kOnEpsilon);
-    bits |= std::uint32_t(!(apart | oneSide)) << i;
+    const Bounds box = b.get(i);
+    bits |= std::uint32_t(box.intersects(bounds) && box.planeSide(plane) == Side::Cross) << i;
   }
   return bits;
 }
@@ -405,9 +399,7 @@ std::uint32_t boxesTouching(const FeatureBoxes& b, std::uint32_t candidates, con
   std::uint32_t bits = 0;
   for (; candidates; candidates &= candidates - 1) {
     const auto i = std::size_t(std::countr_zero(candidates));
-    const bool apart = (bounds.max.x < b.minX[i]) | (bounds.max.y < b.minY[i]) | (bounds.max.z < b.minZ[i]) |
-                       (bounds.min.x > b.maxX[i]) | (bounds.min.y > b.maxY[i]) | (bounds.min.z > b.maxZ[i]);
-    bits |= std::uint32_t(!apart) << i;
+    bits |= std::uint32_t(b.get(i).intersects(bounds)) << i;
   }
   return bits;
 }
