@@ -2,17 +2,32 @@
 //
 // config.h: the scalar type and the library version.
 //
-// Storage and arithmetic are 32-bit float, like the original Doom 3 code, so
-// that results can be compared bit for bit with it. The scalar type lives
-// behind one alias so that a double-precision build stays possible later;
-// code that depends on float bit patterns (the map CRC, the original's
-// reciprocal square root) says so where it does.
+// Storage and arithmetic are 32-bit float by default, like the original Doom 3
+// code, so that results can be compared bit for bit with it. A build with
+// -DCMKIT_DOUBLE=ON makes Real a 64-bit double: far from the origin (tens of
+// thousands of units) float's spacing makes sweeps drift; double keeps them
+// exact to far smaller distances (docs/reliability.md, "Large worlds"). The
+// .cm format, the map CRC and the original's reciprocal square root stay
+// float wherever the original's bits matter; code that depends on float bit
+// patterns says so where it does.
 #pragma once
 
 namespace cmkit {
 
-/// The scalar type of all geometry.
+#if defined(CMKIT_DOUBLE) && CMKIT_DOUBLE
+/// 1 in a double-precision build, 0 otherwise (for #if in code written for
+/// float lanes, such as SSE paths).
+#define CMKIT_REAL_IS_DOUBLE 1
+/// The scalar type of all geometry (this build: double, -DCMKIT_DOUBLE=ON).
+using Real = double;
+#else
+#define CMKIT_REAL_IS_DOUBLE 0
+/// The scalar type of all geometry (this build: float, as the original).
 using Real = float;
+#endif
+
+/// True in a double-precision build (-DCMKIT_DOUBLE=ON).
+inline constexpr bool kDoublePrecision = sizeof(Real) == sizeof(double);
 
 /// Library version (semantic versioning).
 inline constexpr int kVersionMajor = 0;

@@ -17,8 +17,9 @@
 
 // SSE2 on x86-64 (boxesCrossing: four feature boxes at a time); any other
 // target, or -DCMKIT_NO_SIMD, uses the portable loop, which does the same
-// arithmetic.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+// arithmetic. The lanes are float: a double build (CMKIT_DOUBLE) uses the
+// portable loop.
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_REAL_IS_DOUBLE
 #include <emmintrin.h>
 #define CMKIT_ROTATE_SSE2 1
 #endif
@@ -348,7 +349,7 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
 
 std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, const Plane& plane) {
 #ifdef CMKIT_ROTATE_SSE2
-  if constexpr (std::is_same_v<Real, float>) {
+  {
     // Four boxes at a time: Bounds::intersects and Bounds::planeSide's
     // arithmetic in the same order in each lane (the same bits); lanes past
     // n are masked off.

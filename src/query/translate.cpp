@@ -10,8 +10,9 @@
 
 // SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time); any
 // other target, or -DCMKIT_NO_SIMD, uses the portable loop, which does the
-// same arithmetic.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+// same arithmetic. The lanes are float: a double build (CMKIT_DOUBLE) uses the
+// portable loop.
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_REAL_IS_DOUBLE
 #include <emmintrin.h>
 #define CMKIT_SIDES_SSE2 1
 #endif

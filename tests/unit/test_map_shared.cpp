@@ -54,6 +54,7 @@ TEST(MapShared, EveryMapParses) {
 // The fork's tools wrote a .cm beside each Valve 220 map; its CRC is ours
 // (docs/fidelity.md compares the models).
 TEST(MapShared, Valve220MapsHaveTheCrcOfTheForksCmFiles) {
+  CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   int pairs = 0;
   for (const auto& p : sharedMaps()) {

@@ -440,7 +440,7 @@ TEST(MeshFile, GltfExportImportExportIsStable) {
     EXPECT_EQ(m->numEdges(), m0->numEdges());
     ASSERT_EQ(m->vertices.size(), m0->vertices.size());
     for (std::size_t v = 0; v < m->vertices.size(); ++v) {
-      float nearest = 1e30f;
+      Real nearest = 1e30f;
       for (const Vec3& w : m0->vertices) nearest = std::min(nearest, (m->vertices[v] - w).length());
       EXPECT_LT(nearest, 1e-3f) << "vertex " << v;
     }
@@ -562,7 +562,10 @@ TEST(MeshCli, CompileInfoValidateAndQueryTakeMeshFiles) {
   std::ofstream(dir / "q.txt") << "translation trm=point start=32,32,100 end=32,32,-100\n";
   out = test::runCapture(cli + " query '" + cube + "' '" + (dir / "q.txt").string() + "'", rc);
   EXPECT_EQ(rc, 0) << out;
-  EXPECT_NE(out.find("fraction=0.178749993 endpos=32,32,64.25"), std::string::npos) << out;
+  // (100 - 64.25) / 200 = 0.17875: float prints its nearest value, double the exact one.
+  const char* const hit =
+      kDoublePrecision ? "fraction=0.17875 endpos=32,32,64.25" : "fraction=0.178749993 endpos=32,32,64.25";
+  EXPECT_NE(out.find(hit), std::string::npos) << out;
   out = test::runCapture(cli + " compile '" + meshData("malformed.obj").string() + "' 2>&1", rc);
   EXPECT_EQ(rc, 2) << out;
   EXPECT_NE(out.find("malformed.obj: "), std::string::npos) << out;

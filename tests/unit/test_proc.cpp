@@ -185,6 +185,7 @@ std::pair<std::string, std::vector<ModelPtr>> buildWithProcBeside(const fs::path
 }
 
 TEST(ProcPruning, TheTwoProcMapsGiveTheOriginalsCmFiles) {
+  CMKIT_FLOAT_BUILD_ONLY();
   for (const char* name : {"box_room_proc", "inline_patch_proc"}) {
     SCOPED_TRACE(name);
     const auto [text, models] = buildWithProcBeside(procData() / (std::string(name) + ".map"));

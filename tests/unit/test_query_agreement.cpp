@@ -119,6 +119,7 @@ std::vector<ModelPtr> referenceModels(const std::string& name) {
 }  // namespace
 
 TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
+  CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   std::map<std::string, Tally> total;
   // reference-proc: maps with a .proc beside them, built with it (referenceModels)

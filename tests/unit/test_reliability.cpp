@@ -155,6 +155,7 @@ TEST(RobustEdges, Lt4ConeStopsAtTheCornerItPassedThrough) {
 }
 
 TEST(RobustEdges, Lt4SolidFaceSharingEdgesWithClipKeepsThem) {
+  CMKIT_FLOAT_BUILD_ONLY();
   // lt4 polygon 2859: a solid post face 8 units wide (y = -830) whose four
   // edges it shares with the faces of a monster-clip brush. The clip faces
   // mark them internal among themselves, which hides them from the solid
@@ -188,6 +189,7 @@ TEST(RobustEdges, Lt4SolidFaceSharingEdgesWithClipKeepsThem) {
 // ---- the clip-epsilon case (the original's behaviour) ------------------------
 
 TEST(OutOfPlaneEdge, LetsABoxCornerThroughAsTheOriginalDoes) {
+  CMKIT_FLOAT_BUILD_ONLY();
   // docs/fidelity.md: polygon 10222 of lt4 (the diagonal face x + y = -575)
   // has a 16-unit edge whose upper vertex (577.03125, -1152, -328) lies
   // 0.022 units behind the polygon's plane. The edge's line, extended, runs
@@ -218,6 +220,25 @@ TEST(OutOfPlaneEdge, LetsABoxCornerThroughAsTheOriginalDoes) {
       translate(m, {&box, Mat3::identity(), start, {565.717773f, -1168.25f, -903.75f}, 265, {}}, work);
   EXPECT_EQ(straight.fraction, 0);
   EXPECT_EQ(straight.contact.modelFeature, 10222);
+}
+
+// The same sweep in the double build: the face's edges are computed in
+// double, the corner does not get through, and the box stops outside.
+TEST(OutOfPlaneEdge, TheDoubleBuildStopsTheCorner) {
+  if constexpr (!kDoublePrecision) {
+    GTEST_SKIP() << "double build (CMKIT_DOUBLE) only";
+  }
+  const auto models = buildLt4(false);
+  ASSERT_FALSE(models.empty());
+  const CollisionModel& m = *models[0];
+  const TraceModel box = trm("box:-16,-16,0,16,16,72");
+  const Vec3 start{560.897461f, -1168.25f, -903.75f};
+  QueryWork work;
+  ASSERT_EQ(contentsAt(m, box, start, 265), 0u);
+  const TraceResult oblique =
+      translate(m, {&box, Mat3::identity(), start, {565.717773f, -1170.53235f, -903.75f}, 265, {}}, work);
+  EXPECT_LT(oblique.fraction, 1);
+  EXPECT_EQ(contentsAt(m, box, oblique.endPos, 265), 0u) << "the end must not be inside the brush";
 }
 
 // ---- query guards ------------------------------------------------------------

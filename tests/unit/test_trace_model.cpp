@@ -22,7 +22,7 @@ void expectClosedConvexSolid(const TraceModel& t) {
   Vec3 centre;
   for (const Vec3& v : t.vertices()) centre += v;
   centre = centre * (1.0f / float(t.numVertices()));
-  const float scale = std::max(1.0f, (t.bounds().max - t.bounds().min).length());
+  const Real scale = std::max(Real(1), (t.bounds().max - t.bounds().min).length());
   std::vector<int> uses(size_t(t.numEdges() + 1), 0);
   for (const TrmPolygon& p : t.polygons()) {
     EXPECT_NEAR(p.normal.length(), 1.0f, 1e-5f);

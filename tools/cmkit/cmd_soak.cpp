@@ -10,15 +10,20 @@
 #include <chrono>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
+#include "cmkit/compile.h"
+#include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
 #include "cmkit/tools/text_file.h"
 #include "commands.h"
 #include "model_loading.h"
+#include "option_checks.h"
 #include "progress_bar.h"
 #include "soak.h"
 
@@ -56,8 +61,35 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
   return bad == 0 ? 0 : kExitBadInput;
 }
 
+/// --offset: the .map's world geometry (the worldspawn's brush planes and
+/// patch points) moved by `offset` before it is built, to soak a world far
+/// from the origin. No .proc: its planes would have to move too.
+Result<std::vector<ModelPtr>> loadMovedMap(const SoakOptions& o, const Vec3& offset) {
+  if (o.map.size() < 4 || o.map.compare(o.map.size() - 4, 4, ".map") != 0)
+    return Error{"--offset needs a .map file (its geometry is moved before it is built)", o.map};
+  MaterialTable materials;
+  if (!o.materials.empty()) {
+    if (Status s = materials.addMtrDirectory(o.materials); !s) return s.error();
+  }
+  auto map = loadMapFile(o.map);
+  if (!map) return map.error();
+  if (!map->entities.empty()) {
+    for (MapPrimitive& primitive : map->entities.front().primitives) {
+      if (auto* brush = std::get_if<MapBrush>(&primitive)) {
+        for (MapBrushSide& side : brush->sides) side.plane.dist += side.plane.normal.dot(offset);
+      } else {
+        for (Vec3& p : std::get<MapPatch>(primitive).points) p = p + offset;
+      }
+    }
+  }
+  BuildOptions options;
+  options.robustEdges = o.robustEdges;
+  return buildCollisionModels(*map, materials, options);
+}
+
 int runSoak(const SoakOptions& o) {
-  auto models = loadModelsForCli(o.map, o.materials, o.noProc, {}, o.robustEdges);
+  const std::optional<Vec3> offset = o.offset.empty() ? std::nullopt : parseFiniteVec3(o.offset);
+  auto models = offset ? loadMovedMap(o, *offset) : loadModelsForCli(o.map, o.materials, o.noProc, {}, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit soak: {}\n", models.error().toString());
     return kExitBadInput;
@@ -196,6 +228,7 @@ void registerSoak(CLI::App& app) {
       "  cmkit soak data/maps/lt4/lt4.map --sweeps 20000 --walker-steps 2000\n"
       "  cmkit soak data/maps/lt4/lt4.map --trm cone:6:-12,-12,0,12,12,40 --threads 2\n"
       "  cmkit soak data/maps/lt4/lt4.map --robust-edges --fail-on closed-brush\n"
+      "  cmkit soak data/maps/lt4/lt4.map --offset 40000,40000,0   (lt4 far from the origin)\n"
       "  cmkit soak data/maps/lt4/lt4.map --replay cases.txt   (classify pasted translation lines)");
   cmd->add_option("MAP", o->map,
                   "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...); the first model is soaked")
@@ -222,6 +255,10 @@ void registerSoak(CLI::App& app) {
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
   addRobustEdgesFlag(cmd, o->robustEdges);
+  cmd->add_option("--offset", o->offset,
+                  "X,Y,Z: move the .map's world geometry by this before building it (no .proc), to soak "
+                  "a world far from the origin; compare a float and a -DCMKIT_DOUBLE=ON build")
+      ->check(finiteVec3());
   cmd->add_option("--replay", o->replay,
                   "instead: run the translation lines of this query file (e.g. the soak's output) and "
                   "print the class of each end");

@@ -74,6 +74,7 @@ struct SoakOptions {
   std::string replay;
   bool robustEdges = false;  ///< build a .map with BuildOptions::robustEdges
   bool noProc = false;       ///< ignore NAME.proc beside the map
+  std::string offset;        ///< "x,y,z": move a .map's world geometry by this first (empty: not moved)
 };
 
 struct Shape {
