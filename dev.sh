@@ -4,7 +4,8 @@
 #   ./dev.sh demo    install what is needed, build, run the main job
 #   ./dev.sh test    install what is needed, build, run the whole test suite
 #                    (format check, release tests, the Python package's
-#                    pytest suite, ASan+UBSan tests)
+#                    pytest suite, the double-precision build's tests,
+#                    ASan+UBSan tests)
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
@@ -93,6 +94,9 @@ case "${1:-}" in
     echo "== Python package (library + module) and its pytest suite"
     build python
     ctest --preset python
+    echo "== double-precision build (CMKIT_DOUBLE) and its tests"
+    build double
+    ctest --preset double
     echo "== ASan + UBSan build and tests"
     build asan
     ctest --preset asan

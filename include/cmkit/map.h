@@ -109,4 +109,10 @@ Result<MapFile> parseMapText(std::string_view text, std::string fileName = "<map
 /// Reads and parses a .map file.
 Result<MapFile> loadMapFile(const std::string& path);
 
+/// Moves the world's geometry (the worldspawn entity's brush planes and patch
+/// points) by `offset`, to build the same world far from the origin (the
+/// large-world checks of docs/reliability.md). Other entities keep their
+/// geometry and origins; the geometry CRC is left as it was read.
+void moveWorldGeometry(MapFile& map, const Vec3& offset);
+
 }  // namespace cmkit

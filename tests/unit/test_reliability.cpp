@@ -7,9 +7,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "cmkit/compile.h"
@@ -239,6 +241,65 @@ TEST(OutOfPlaneEdge, TheDoubleBuildStopsTheCorner) {
       translate(m, {&box, Mat3::identity(), start, {565.717773f, -1170.53235f, -903.75f}, 265, {}}, work);
   EXPECT_LT(oblique.fraction, 1);
   EXPECT_EQ(contentsAt(m, box, oblique.endPos, 265), 0u) << "the end must not be inside the brush";
+}
+
+// ---- large worlds ------------------------------------------------------------
+
+// lt4 built at the origin and moved by (40000, 40000, 0): the same random
+// box translations (moved alike) in both. The double build answers alike to
+// 1e-6 of the move; the float build drifts (docs/reliability.md, "Large
+// worlds": float's spacing is 1/256 of a unit out there), so there the test
+// only checks that the moved world answers at all.
+TEST(LargeWorlds, SweepsFarFromTheOriginAnswerAsAtTheOrigin) {
+  auto map = loadMapFile(lt4Path());
+  ASSERT_TRUE(map.ok());
+  const Vec3 offset{40000, 40000, 0};
+  MapFile moved = *map;
+  moveWorldGeometry(moved, offset);
+  auto here = buildCollisionModels(*map, MaterialTable{}, {});
+  auto far = buildCollisionModels(moved, MaterialTable{}, {});
+  ASSERT_TRUE(here.ok() && far.ok());
+  const CollisionModel& a = *here->front();
+  const CollisionModel& b = *far->front();
+  EXPECT_EQ(b.bounds.min.x, a.bounds.min.x + offset.x);
+  if constexpr (kDoublePrecision) {  // (in float, merging rounds differently: a few polygons fewer)
+    ASSERT_EQ(a.polygons.size(), b.polygons.size());
+  }
+  const TraceModel box = trm("box:-16,-16,0,16,16,72");
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0, 1);
+  const auto inside = [&](const Bounds& w) {
+    return Vec3{w.min.x + (w.max.x - w.min.x) * u(rng), w.min.y + (w.max.y - w.min.y) * u(rng),
+                w.min.z + (w.max.z - w.min.z) * u(rng)};
+  };
+  QueryWork work;
+  int hits = 0, farther = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 start = inside(a.bounds), end = inside(a.bounds);
+    const TraceResult r0 = translate(a, {&box, Mat3::identity(), start, end, 265, {}}, work);
+    const TraceResult r1 =
+        translate(b, {&box, Mat3::identity(), start + offset, end + offset, 265, {}}, work);
+    ASSERT_TRUE(std::isfinite(r1.fraction));
+    hits += r0.fraction < 1;
+    const Real travelled = (r1.endPos - offset - r0.endPos).length();
+    farther += travelled > Real(0.01);
+    if constexpr (kDoublePrecision) {
+      EXPECT_NEAR(r1.fraction, r0.fraction, 1e-6) << "sweep " << i;
+      EXPECT_LT(travelled, 1e-3) << "sweep " << i;
+    }
+  }
+  EXPECT_GT(hits, 100);  // the sweeps hit walls, so the comparison means something
+  std::printf("far from the origin: %d of 2000 box sweeps end more than 0.01 units apart (%s build)\n",
+              farther, kDoublePrecision ? "double" : "float");
+}
+
+TEST(LargeWorlds, VersionNamesThePrecision) {
+  int rc = -1;
+  const std::string out = test::runCapture(std::string(CMKIT_CLI_PATH) + " --version", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find(kDoublePrecision ? "(double precision, CMKIT_DOUBLE)" : "(float precision)"),
+            std::string::npos)
+      << out;
 }
 
 // ---- query guards ------------------------------------------------------------

@@ -21,11 +21,11 @@
 /// bytes, statistics, CRCs, the shared reference answers): a double build
 /// (CMKIT_DOUBLE) computes in double, so its last digits differ by design
 /// (docs/reliability.md, "Large worlds"). The float build runs them all.
-#define CMKIT_FLOAT_BUILD_ONLY()                                                                  \
-  if constexpr (cmkit::kDoublePrecision) {                                                        \
-    GTEST_SKIP() << "checks the original's float results bit for bit; this is the double build "  \
-                    "(CMKIT_DOUBLE)";                                                             \
-  }                                                                                               \
+#define CMKIT_FLOAT_BUILD_ONLY()                                                                 \
+  if constexpr (cmkit::kDoublePrecision) {                                                       \
+    GTEST_SKIP() << "checks the original's float results bit for bit; this is the double build " \
+                    "(CMKIT_DOUBLE)";                                                            \
+  }                                                                                              \
   static_assert(true)
 
 namespace cmkit::test {

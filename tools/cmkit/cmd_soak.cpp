@@ -10,10 +10,8 @@
 #include <chrono>
 #include <cstdint>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <thread>
-#include <variant>
 #include <vector>
 
 #include "cmkit/compile.h"
@@ -73,23 +71,18 @@ Result<std::vector<ModelPtr>> loadMovedMap(const SoakOptions& o, const Vec3& off
   }
   auto map = loadMapFile(o.map);
   if (!map) return map.error();
-  if (!map->entities.empty()) {
-    for (MapPrimitive& primitive : map->entities.front().primitives) {
-      if (auto* brush = std::get_if<MapBrush>(&primitive)) {
-        for (MapBrushSide& side : brush->sides) side.plane.dist += side.plane.normal.dot(offset);
-      } else {
-        for (Vec3& p : std::get<MapPatch>(primitive).points) p = p + offset;
-      }
-    }
-  }
+  moveWorldGeometry(*map, offset);
   BuildOptions options;
   options.robustEdges = o.robustEdges;
   return buildCollisionModels(*map, materials, options);
 }
 
 int runSoak(const SoakOptions& o) {
-  const std::optional<Vec3> offset = o.offset.empty() ? std::nullopt : parseFiniteVec3(o.offset);
-  auto models = offset ? loadMovedMap(o, *offset) : loadModelsForCli(o.map, o.materials, o.noProc, {}, o.robustEdges);
+  // (--offset was checked by finiteVec3 while the command line was parsed.)
+  const bool moved = !o.offset.empty();
+  const Vec3 offset = moved ? parseFiniteVec3(o.offset).value_or(Vec3{}) : Vec3{};
+  auto models =
+      moved ? loadMovedMap(o, offset) : loadModelsForCli(o.map, o.materials, o.noProc, {}, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit soak: {}\n", models.error().toString());
     return kExitBadInput;
@@ -161,6 +154,11 @@ int runSoak(const SoakOptions& o) {
       "{}\n",
       world.name, o.map, world.polygons.size(), world.brushes.size(), soak.numClosedBrushes(), o.mask,
       o.seed);
+  if (moved)
+    fmt::print("moved by ({} {} {}): world bounds ({} {} {}) to ({} {} {}); {} precision\n", offset.x,
+               offset.y, offset.z, world.bounds.min.x, world.bounds.min.y, world.bounds.min.z,
+               world.bounds.max.x, world.bounds.max.y, world.bounds.max.z,
+               kDoublePrecision ? "double" : "float");
   fmt::print("trace models:");
   for (const std::string& s : specs) fmt::print(" {}", s);
   fmt::print("\n");
