@@ -20,7 +20,8 @@ namespace cmkit::fuzz {
 /// the point is odd input, not big input.
 inline constexpr std::size_t kMaxInputBytes = 64 * 1024;
 
-/// Runs a few queries of every kind on each model (bounded work).
+/// Runs a few queries of every kind on each of the first 8 models (bounded
+/// work).
 void exerciseModels(std::span<const ModelPtr> models);
 
 /// Checks a model the library produced; aborts (a finding) when its

@@ -65,7 +65,8 @@ enum class QueryStatus : std::uint8_t {
                     ///< non-finite, scaled or sheared, or mirrored (determinant < 0)
   BadModelAxis,     ///< placement.axis is not a rotation (as above)
   NonFinite,        ///< a position, origin, direction, depth or angle is NaN or infinite
-  OutOfRange,       ///< a coordinate (or the end of the move) lies beyond tol::kMaxQueryCoordinate
+  OutOfRange,       ///< a coordinate, the end of the move or the trace model's bounds lie beyond
+                    ///< tol::kMaxQueryCoordinate
   BadRotationAxis,  ///< the rotation axis is zero or not of unit length
 };
 

@@ -18,7 +18,7 @@ const char* describe(QueryStatus status) {
     case QueryStatus::NonFinite:
       return "a position, origin, direction, depth or angle is not finite";
     case QueryStatus::OutOfRange:
-      return "a coordinate or the end of the move is beyond 1e9 units";
+      return "a coordinate, the end of the move or the trace model's size is beyond 1e9 units";
     case QueryStatus::BadRotationAxis:
       return "rotation axis is zero or not of unit length";
   }
@@ -57,6 +57,16 @@ bool checkAxis(Mat3& axis) {
 
 bool hasShape(const TraceModel* trm) { return trm && !trm->isPoint(); }
 
+/// A trace model whose bounds reach beyond tol::kMaxQueryCoordinate (a box
+/// of 1e22, say) is refused like a position that far: its vertices' products
+/// would overflow.
+QueryStatus checkTrmSize(const TraceModel* trm) {
+  if (!hasShape(trm)) return QueryStatus::Ok;
+  const Bounds& b = trm->bounds();
+  if (checkPoint(b.min) != QueryStatus::Ok) return checkPoint(b.min);
+  return checkPoint(b.max);
+}
+
 QueryStatus checkPlacement(Placement& placement) {
   if (const QueryStatus s = checkPoint(placement.origin); s != QueryStatus::Ok) return s;
   return checkAxis(placement.axis) ? QueryStatus::Ok : QueryStatus::BadModelAxis;
@@ -67,7 +77,7 @@ QueryStatus checkCommon(const Vec3& position, Placement& placement, const TraceM
   if (const QueryStatus s = checkPoint(position); s != QueryStatus::Ok) return s;
   if (const QueryStatus s = checkPlacement(placement); s != QueryStatus::Ok) return s;
   if (hasShape(trm) && !checkAxis(trmAxis)) return QueryStatus::BadTrmAxis;
-  return QueryStatus::Ok;
+  return checkTrmSize(trm);
 }
 
 }  // namespace

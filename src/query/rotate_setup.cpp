@@ -163,8 +163,10 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   const double partRadians = std::fabs(double(endAngle - startAngle)) * kPi / 180;
   const double centreArc = double((rw.centre - centreRo).length()) * partRadians;
   const double pieceLength = std::max(double(tol::kCircleApproximationLength), 2 * double(reach));
-  const int pieces =
-      int(std::clamp(std::ceil(centreArc / pieceLength), 1.0, double(tol::kMaxRotationWalkPieces)));
+  // (A NaN ratio, from a trace model too large for its arithmetic, walks
+  // once: the comparison is false.)
+  const double ratio = centreArc / pieceLength;
+  const int pieces = ratio > 1 ? int(std::min(std::ceil(ratio), double(tol::kMaxRotationWalkPieces))) : 1;
   if (pieces == 1) {
     rotateThroughBox(tw, tw.bounds);
   } else {

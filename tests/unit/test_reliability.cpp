@@ -354,6 +354,41 @@ TEST_F(QueryGuards, TraceModelAxisMustBeARotation) {
   EXPECT_EQ(point.status, QueryStatus::Ok);
 }
 
+// Found by fuzz_query: a box 1.3e22 units long made the rotation's walk
+// divide inf by inf and convert the NaN to an int (UBSan). Trace models
+// beyond 1e9 units are refused by every query, like positions that far.
+TEST_F(QueryGuards, HugeTraceModelsAreRefused) {
+  const TraceModel huge = trm("box:-51,-12888888888888888888888,-25,28,282,5");
+  const Vec3 start{0, 0, 64};
+  expectRefused(
+      translate(floor(), {&huge, Mat3::identity(), start, {0, 0, -64}, contents::kMaskSolid, {}, false},
+                work_),
+      QueryStatus::OutOfRange, start);
+  RotationQuery r;
+  r.trm = &huge;
+  r.start = start;
+  r.rotation = Rotation({243, 0, 64}, {0, 0, -1}, 60.0334473f);
+  r.contentMask = contents::kMaskSolid;
+  expectRefused(rotate(floor(), r, work_), QueryStatus::OutOfRange, start);
+  EXPECT_EQ(
+      contentsTest(floor(), {&huge, Mat3::identity(), start, contents::kMaskSolid, {}}, work_).trace.status,
+      QueryStatus::OutOfRange);
+  ContactsQuery c;
+  c.trm = &huge;
+  c.start = start;
+  c.dir = {0, 0, -1};
+  c.depth = 128;
+  c.contentMask = contents::kMaskSolid;
+  EXPECT_EQ(contacts(floor(), c, work_).status, QueryStatus::OutOfRange);
+  // 1e8 units is within range: the query runs.
+  const TraceModel large = trm("box:-100000000,-16,0,16,16,72");
+  EXPECT_EQ(drop(Mat3::identity(), {0, 0, 64}, {0, 0, -64}).status, QueryStatus::Ok);
+  EXPECT_EQ(translate(floor(),
+                      {&large, Mat3::identity(), start, {0, 0, -64}, contents::kMaskSolid, {}, false}, work_)
+                .status,
+            QueryStatus::Ok);
+}
+
 TEST_F(QueryGuards, SlightlyDriftedAxisIsReorthonormalised) {
   // 45 degrees about z, rows scaled by 1.001: accepted (drift 2e-3 is below
   // tol::kAxisRejectTolerance) and used as the orthonormalised rotation.
@@ -457,8 +492,10 @@ TEST(QueryGuardsCli, QueryShowsTheRefusal) {
                            (dir / "q.txt").string() + " 2>/dev/null",
                        rc);
   EXPECT_EQ(rc, 0);
-  EXPECT_NE(out.find("error=refused: a coordinate or the end of the move is beyond 1e9 units"),
-            std::string::npos)
+  EXPECT_NE(
+      out.find(
+          "error=refused: a coordinate, the end of the move or the trace model's size is beyond 1e9 units"),
+      std::string::npos)
       << out;
   EXPECT_NE(out.find("fraction="), std::string::npos) << out;
 }
