@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "cmkit/batch.h"
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/query.h"
@@ -85,6 +86,62 @@ double fastestPass(std::size_t n, int passes, const std::function<void(std::size
 void agreement(Comparison& c, const std::vector<char>& a, const std::vector<char>& b) {
   for (std::size_t i = 0; i < a.size(); ++i)
     (a[i] && b[i]) ? ++c.bothHit : (!a[i] && !b[i]) ? ++c.bothMiss : ++c.differ;
+}
+
+/// The fastest of `passes` runs of run(), in ns per query of a batch of n.
+double fastestBatch(std::size_t n, int passes, const std::function<void()>& run) {
+  double best = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    const auto t0 = Clock::now();
+    run();
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(n);
+    best = pass == 0 ? ns : std::min(best, ns);
+  }
+  return best;
+}
+
+/// Batches (cmkit/batch.h) of the speed test's moves, repeated to
+/// kBatchSize queries: box translations and ray casts on 1 and 2 threads,
+/// and the same rays through `peerRays` (one peer ray per call, one thread)
+/// when given. Prints ns per query and the speed-ups.
+constexpr std::size_t kBatchSize = 20000;
+void batchThroughput(const cmkit::CollisionModel& world, const cmkit::RayIndex& rays,
+                     const cmkit::TraceModel& box, const cmkit::Vec3& origin,
+                     const std::vector<cmkit::Vec3>& moves, int passes,
+                     const std::function<void(const cmkit::Vec3&, const cmkit::Vec3&)>& peerRays,
+                     const char* peerName) {
+  std::vector<cmkit::Vec3> ends(kBatchSize);
+  for (std::size_t i = 0; i < kBatchSize; ++i) ends[i] = moves[i % moves.size()];
+  const cmkit::Vec3 starts[] = {origin};
+  std::vector<cmkit::TraceResult> traces(kBatchSize);
+  std::vector<cmkit::RayHit> hits(kBatchSize);
+  double boxNs[3] = {}, rayNs[3] = {};
+  for (int threads = 1; threads <= 2; ++threads) {
+    cmkit::BatchOptions options;
+    options.threads = threads;
+    const cmkit::TranslationBatch tb{&box, cmkit::Mat3::identity(), starts, ends, kMask, {}, false};
+    boxNs[threads] =
+        fastestBatch(kBatchSize, passes, [&] { (void)cmkit::translateBatch(world, tb, traces, options); });
+    const cmkit::RayBatch rb{starts, ends, kMask, {}};
+    rayNs[threads] =
+        fastestBatch(kBatchSize, passes, [&] { (void)cmkit::castRayBatch(rays, rb, hits, options); });
+  }
+  std::printf("\nbatches of %zu (the moves above, repeated; cmkit/batch.h):\n", kBatchSize);
+  std::printf(
+      "translation (box)   batch 1 thread %7.0f ns/query   2 threads %7.0f ns/query   speed-up %.2fx\n",
+      boxNs[1], boxNs[2], boxNs[1] / boxNs[2]);
+  std::printf(
+      "ray cast (point)    batch 1 thread %7.0f ns/query   2 threads %7.0f ns/query   speed-up %.2fx\n",
+      rayNs[1], rayNs[2], rayNs[1] / rayNs[2]);
+  if (peerRays) {
+    const double peerNs = fastestBatch(kBatchSize, passes, [&] {
+      for (const cmkit::Vec3& e : ends) peerRays(origin, e);
+    });
+    std::printf(
+        "ray cast (point)    %s loop, 1 thread %7.0f ns/query:  %s / cmkit batch  %.2fx (1 thread)  %.2fx (2 "
+        "threads)\n",
+        peerName, peerNs, peerName, peerNs / rayNs[1], peerNs / rayNs[2]);
+  }
 }
 
 std::string defaultMap() {
@@ -277,10 +334,28 @@ int main(int argc, char** argv) {
   embreeRayCmp.peerNs = embreeCmp.peerNs;
   agreement(embreeRayCmp, cmkitRay, peerPoint);
   print(embreeRayCmp, times);
+  batchThroughput(
+      world, rayIndex, *boxTrm, origin, ends, passes,
+      [&](const cmkit::Vec3& from, const cmkit::Vec3& to) {
+        RTCRayHit rh{};
+        rh.ray.org_x = from.x;
+        rh.ray.org_y = from.y;
+        rh.ray.org_z = from.z;
+        rh.ray.dir_x = to.x - from.x;
+        rh.ray.dir_y = to.y - from.y;
+        rh.ray.dir_z = to.z - from.z;
+        rh.ray.tnear = 0;
+        rh.ray.tfar = 1;
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &rh);
+      },
+      "embree");
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);
 #else
   std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
+  batchThroughput(world, rayIndex, *boxTrm, origin, ends, passes, {}, "");
 #endif
   bulletWorld.removeCollisionObject(&object);
   return 0;
