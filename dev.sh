@@ -3,9 +3,9 @@
 #
 #   ./dev.sh demo    install what is needed, build, run the main job
 #   ./dev.sh test    install what is needed, build, run the whole test suite
-#                    (format check, release tests, the Python package's
-#                    pytest suite, the double-precision build's tests,
-#                    ASan+UBSan tests)
+#                    (format check, release tests with the Python
+#                    package's pytest suite, the Clang build's tests, the
+#                    double-precision build's tests, ASan+UBSan tests)
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
@@ -18,7 +18,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-PACKAGES=(build-essential cmake ninja-build ccache clang-format
+PACKAGES=(build-essential cmake ninja-build ccache clang clang-format
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
           libbullet-dev libembree-dev libassimp-dev pkg-config
           python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
@@ -64,9 +64,11 @@ viewer_deps() {
   fi
 }
 
-build() {  # build PRESET
-  cmake --preset "$1" >/dev/null
-  cmake --build --preset "$1"
+build() {  # build PRESET [CACHE OPTIONS...]
+  local preset="$1"
+  shift
+  cmake --preset "$preset" "$@" >/dev/null
+  cmake --build --preset "$preset"
 }
 
 format_check() {
@@ -90,12 +92,14 @@ case "${1:-}" in
     deps
     viewer_deps
     format_check
-    echo "== release build and tests"
-    build release
+    # The release build also builds the Python package (one library for
+    # both), so its ctest runs the pytest suite too.
+    echo "== release build (with the Python package) and tests, pytest included"
+    build release -DCMKIT_PYTHON=ON -DPython3_EXECUTABLE=/usr/bin/python3
     ctest --preset release
-    echo "== Python package (library + module) and its pytest suite"
-    build python
-    ctest --preset python
+    echo "== Clang build and tests"
+    build clang
+    ctest --preset clang
     echo "== double-precision build (CMKIT_DOUBLE) and its tests"
     build double
     ctest --preset double
@@ -117,7 +121,6 @@ case "${1:-}" in
     maxlen=()
     [ "$target" = cm ] || maxlen=(-max_len=4096)
     case "$target" in map | cm | query) ;; *) echo "fuzz target: map, cm or query" >&2; exit 2 ;; esac
-    PACKAGES+=(clang)
     deps
     build fuzz
     # New inputs go to build/fuzz/work/TARGET; the seeds in fuzz/corpus stay as they are.

@@ -301,8 +301,9 @@ inline bool pointMayTouch(const TraceWork& tw, const CmPolygon& poly) {
 inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
   if (!(poly.contents & tw.contentMask) || !boxesTouch(tw.bounds, poly.bounds)) return false;
   const bool backFace = poly.plane.normal.dot(tw.dir) > 0;  // only front faces collide
-  return !(backFace | boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1) |
-           boxBeyondPlane(poly.bounds, tw.heartPlane2, tw.maxDistFromHeartPlane2));
+  // (int | int on purpose: all three tests run, no branch between them.)
+  return (int(backFace) | int(boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1)) |
+          int(boxBeyondPlane(poly.bounds, tw.heartPlane2, tw.maxDistFromHeartPlane2))) == 0;
 }
 
 // A nearer hit shrinks the trace bounds (not when collecting contacts).

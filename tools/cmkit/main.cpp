@@ -12,10 +12,10 @@ int main(int argc, char** argv) {
       "from .map and .cm files, and runs exact swept-shape queries against them.\n"
       "Run 'cmkit COMMAND --help' for the options of a command."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", fmt::format("cmkit {}.{}.{} ({} precision{})", cmkit::kVersionMajor,
-                                                cmkit::kVersionMinor, cmkit::kVersionPatch,
-                                                cmkit::kDoublePrecision ? "double" : "float",
-                                                cmkit::kDoublePrecision ? ", CMKIT_DOUBLE" : ""));
+  app.set_version_flag(
+      "--version", fmt::format("cmkit {}.{}.{} ({} precision{})", cmkit::kVersionMajor, cmkit::kVersionMinor,
+                               cmkit::kVersionPatch, cmkit::kDoublePrecision ? "double" : "float",
+                               cmkit::kDoublePrecision ? ", CMKIT_DOUBLE" : ""));
   cmkit::cli::registerTrm(app);
   cmkit::cli::registerCompile(app);
   cmkit::cli::registerInfo(app);
