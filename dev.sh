@@ -11,6 +11,10 @@
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
 #   ./dev.sh fuzz [map|cm|query] [SECONDS]
 #                    coverage-guided fuzzing with libFuzzer (Clang, ASan+UBSan)
+#   ./dev.sh fidelity
+#                    build, then check the bundled lt4 against the original's
+#                    answers (data/reference/lt4): .cm identity, agreement per kind
+#   ./dev.sh docs    API reference of include/cmkit with Doxygen -> build/docs/html
 #
 # Works on a fresh Debian 12 machine; uses sudo for apt-get when not root.
 set -euo pipefail
@@ -118,6 +122,18 @@ case "${1:-}" in
     echo "== fuzzing $target for ${seconds}s; findings: build/fuzz/work/$target-crash-*"
     "./build/fuzz/fuzz/fuzz_$target" "build/fuzz/work/$target" "fuzz/corpus/$target" \
       -max_total_time="$seconds" -artifact_prefix="build/fuzz/work/$target-" -print_final_stats=1
+    ;;
+  fidelity)
+    deps
+    build release
+    python3 tests/fidelity/check_lt4.py build/release/bin/cmkit . build/release/fidelity --report
+    ;;
+  docs)
+    PACKAGES+=(doxygen)
+    deps
+    mkdir -p build/docs
+    doxygen docs/Doxyfile
+    echo "== API reference: build/docs/html/index.html"
     ;;
   *)
     sed -n '2,/^[^#]/p' "$0" | grep '^#' | cut -c3-
