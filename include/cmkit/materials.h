@@ -3,7 +3,7 @@
 // Sources, in this order: .mtr declarations supplied by the user (only their
 // content keywords are read), then the default rules of the reference data
 // (textures/common/clip -> playerclip|monsterclip|moveableclip, ..., anything
-// else -> solid|opaque); see docs and shared/spec/materials.md.
+// else -> solid|opaque); see docs/materials.md.
 #pragma once
 
 #include <cstdint>

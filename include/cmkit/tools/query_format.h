@@ -1,5 +1,5 @@
 // query_format.h: the line-oriented query format (docs/query-format.md, the
-// same as shared/spec/query-format.md v1): one query per line, one result
+// format of the original's reference answers, v1): one query per line, one result
 // line per query, so that two implementations can be compared line by line.
 #pragma once
 
