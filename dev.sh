@@ -4,8 +4,9 @@
 #   ./dev.sh demo    install what is needed, build, run the main job
 #   ./dev.sh test    install what is needed, build, run the whole test suite
 #                    (format check, release tests with the Python
-#                    package's pytest suite, the Clang build's tests, the
-#                    double-precision build's tests, ASan+UBSan tests)
+#                    package's pytest suite, the Doxygen reference, the
+#                    Clang build's tests, the double-precision build's
+#                    tests, ASan+UBSan tests)
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
@@ -13,12 +14,16 @@
 #                    coverage-guided fuzzing with libFuzzer (Clang, ASan+UBSan);
 #                    SECONDS 0 = no time limit, RUNS = stop after that many
 #                    inputs (a campaign: ./dev.sh fuzz map 0 10000000)
+#   ./dev.sh fidelity
+#                    build, then check the bundled lt4 against the original's
+#                    answers (data/reference/lt4): .cm identity, agreement per kind
+#   ./dev.sh docs    API reference of include/cmkit with Doxygen -> build/docs/html
 #
 # Works on a fresh Debian 12 machine; uses sudo for apt-get when not root.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-PACKAGES=(build-essential cmake ninja-build ccache clang clang-format
+PACKAGES=(build-essential cmake ninja-build ccache clang clang-format doxygen
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
           libbullet-dev libembree-dev libassimp-dev pkg-config
           python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
@@ -97,6 +102,9 @@ case "${1:-}" in
     echo "== release build (with the Python package) and tests, pytest included"
     build release -DCMKIT_PYTHON=ON -DPython3_EXECUTABLE=/usr/bin/python3
     ctest --preset release
+    echo "== API reference (Doxygen; an undocumented public symbol fails)"
+    mkdir -p build/docs
+    doxygen docs/Doxyfile >/dev/null
     echo "== Clang build and tests"
     build clang
     ctest --preset clang
@@ -129,6 +137,17 @@ case "${1:-}" in
     "./build/fuzz/fuzz/fuzz_$target" "build/fuzz/work/$target" "fuzz/corpus/$target" \
       -max_total_time="$seconds" -runs="$runs" "${maxlen[@]}" -artifact_prefix="build/fuzz/work/$target-" \
       -print_final_stats=1
+    ;;
+  fidelity)
+    deps
+    build release
+    python3 tests/fidelity/check_lt4.py build/release/bin/cmkit . build/release/fidelity --report
+    ;;
+  docs)
+    deps
+    mkdir -p build/docs
+    doxygen docs/Doxyfile
+    echo "== API reference: build/docs/html/index.html"
     ;;
   *)
     sed -n '2,/^[^#]/p' "$0" | grep '^#' | cut -c3-

@@ -66,46 +66,66 @@ struct BatchOptions {
 /// Translations of one trace model: query i moves it from starts[i] (or
 /// starts[0]) to ends[i] (or ends[0]). See TranslationQuery.
 struct TranslationBatch {
+  /// The trace model moved (nullptr or a point shape: a point).
   const TraceModel* trm = nullptr;
+  /// Orientation of the trace model.
   Mat3 trmAxis;
   std::span<const Vec3> starts;  ///< 1 or N
   std::span<const Vec3> ends;    ///< 1 or N
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
+  /// Also run a position test at each start and set TraceResult::startSolid.
   bool detectStartSolid = false;
 };
 
 /// Rotations of one trace model: query i turns it from starts[i] by
 /// rotations[i] (either may be 1 long). See RotationQuery.
 struct RotationBatch {
+  /// The trace model moved (nullptr or a point shape: a point).
   const TraceModel* trm = nullptr;
+  /// Orientation of the trace model.
   Mat3 trmAxis;
   std::span<const Vec3> starts;         ///< 1 or N
   std::span<const Rotation> rotations;  ///< 1 or N
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
+  /// Also run a position test at each start and set TraceResult::startSolid.
   bool detectStartSolid = false;
 };
 
 /// Position tests of one trace model at many positions. See ContentsQuery.
 struct ContentsBatch {
+  /// The trace model tested (nullptr or a point shape: point contents).
   const TraceModel* trm = nullptr;
+  /// Orientation of the trace model.
   Mat3 trmAxis;
   std::span<const Vec3> positions;  ///< N
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
 };
 
 /// Contacts of one trace model moved from starts[i] along dirs[i] by
 /// `depth`. See ContactsQuery.
 struct ContactsBatch {
+  /// The trace model moved (nullptr or a point shape: a point).
   const TraceModel* trm = nullptr;
+  /// Orientation of the trace model.
   Mat3 trmAxis;
   std::span<const Vec3> starts;  ///< 1 or N
   std::span<const Vec3> dirs;    ///< 1 or N
+  /// How far each start moves along its direction.
   Real depth = 0;
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
+  /// At most this many contacts per query.
   int maxContacts = 16;
 };
 
@@ -113,7 +133,9 @@ struct ContactsBatch {
 struct RayBatch {
   std::span<const Vec3> starts;  ///< 1 or N
   std::span<const Vec3> ends;    ///< 1 or N
+  /// Content flags of the polygons the rays hit.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
 };
 

@@ -10,22 +10,30 @@ namespace cmkit {
 /// max = -infinity-ish (tol::kBoundsInfinity), so adding a point makes it that
 /// point; isCleared() tells such an empty box.
 struct Bounds {
+  /// Smallest corner (+infinity on every axis when cleared).
   Vec3 min{tol::kBoundsInfinity, tol::kBoundsInfinity, tol::kBoundsInfinity};
+  /// Largest corner (-infinity on every axis when cleared).
   Vec3 max{-tol::kBoundsInfinity, -tol::kBoundsInfinity, -tol::kBoundsInfinity};
 
   constexpr Bounds() = default;
+  /// Bounds from their two corners.
   constexpr Bounds(const Vec3& mn, const Vec3& mx) : min(mn), max(mx) {}
   /// The box around one point.
   static constexpr Bounds ofPoint(const Vec3& p) { return {p, p}; }
 
+  /// 0: min, 1: max.
   constexpr const Vec3& operator[](int i) const { return i == 0 ? min : max; }
+  /// 0: min, 1: max.
   constexpr Vec3& operator[](int i) { return i == 0 ? min : max; }
+  /// Same corners, exactly.
   constexpr bool operator==(const Bounds& o) const { return min == o.min && max == o.max; }
 
+  /// Back to the cleared (empty) state.
   constexpr void clear() { *this = Bounds{}; }
   /// True when max < min on some axis (nothing added yet, or inverted).
   constexpr bool isCleared() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
 
+  /// Grows the bounds to hold p.
   constexpr void addPoint(const Vec3& p) {
     if (p.x < min.x) min.x = p.x;
     if (p.x > max.x) max.x = p.x;
@@ -34,6 +42,7 @@ struct Bounds {
     if (p.z < min.z) min.z = p.z;
     if (p.z > max.z) max.z = p.z;
   }
+  /// Grows the bounds to hold b.
   constexpr void addBounds(const Bounds& b) {
     addPoint(b.min);
     addPoint(b.max);
@@ -42,8 +51,11 @@ struct Bounds {
   constexpr Bounds expanded(Real d) const {
     return {{min.x - d, min.y - d, min.z - d}, {max.x + d, max.y + d, max.z + d}};
   }
+  /// The bounds moved by t.
   constexpr Bounds translated(const Vec3& t) const { return {min + t, max + t}; }
+  /// The middle point.
   constexpr Vec3 center() const { return (min + max) * Real(0.5); }
+  /// max - min on every axis.
   constexpr Vec3 size() const { return max - min; }
 
   /// True when the boxes overlap or touch (closed intervals).
@@ -61,6 +73,7 @@ struct Bounds {
   constexpr bool containsPoint(const Vec3& p) const {
     return !(p.x < min.x || p.y < min.y || p.z < min.z || p.x > max.x || p.y > max.y || p.z > max.z);
   }
+  /// True when b lies inside these bounds (touching counts).
   constexpr bool containsBounds(const Bounds& b) const {
     return containsPoint(b.min) && containsPoint(b.max);
   }

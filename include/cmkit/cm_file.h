@@ -1,5 +1,5 @@
 // cm_file.h: .cm collision model files (the original's CM "1.00" text
-// format, spec section 14): reading and writing.
+// format, docs/cm-format.md): reading and writing.
 //
 // Reading follows the original loader (LoadCollisionModelFile):
 //  - header `CM "1.00"`, the map's geometry CRC (unsigned, 0 = any map), then
@@ -13,7 +13,7 @@
 // After a model is read:
 //  - polygons and brushes are stored in file order; each is filtered into
 //    the stored tree by its bounds and PREPENDED to the list of every node it
-//    reaches (spec 3.6/4), so node lists run in reverse file order, as in the
+//    reaches (docs/cm-format.md), so node lists run in reverse file order, as in the
 //    original after loading;
 //  - polygon contents come from their material through the MaterialTable
 //    (material names are stored canonical); brushes get no material (-1)

@@ -33,7 +33,7 @@ struct BuildOptions {
   /// The renderer's BSP of the map's .proc file (loadProcFileForMap), or
   /// null. When set and usable, the world model (the first model built)
   /// drops every solid polygon winding lying entirely in its opaque solid
-  /// leaves, as the original does (cm-algorithms.md section 3.7); the count
+  /// leaves, as the original does (docs/algorithms.md); the count
   /// is ModelStats::procPolygonsRemoved. Must outlive the call.
   const ProcBsp* procBsp = nullptr;
   /// Internal-edge marking that never hides an edge of a brush's shell (not

@@ -38,7 +38,9 @@ namespace cmkit {
 struct ModelHandle {
   std::int32_t index = -1;  ///< -1: no model
 
+  /// True when the handle names a model slot (it may have been freed since).
   constexpr bool valid() const { return index >= 0; }
+  /// Handles order by index.
   constexpr auto operator<=>(const ModelHandle&) const = default;
 };
 
@@ -72,14 +74,19 @@ struct LoadMapResult {
 
 /// How ModelManager::loadModel converts a mesh file.
 struct LoadModelOptions {
+  /// How the mesh file is read.
   MeshLoadOptions mesh;
+  /// How the mesh becomes a collision model.
   MeshBuildOptions build;
 };
 
 /// One line of ModelManager::list.
 struct ModelListEntry {
+  /// The model's handle.
   ModelHandle handle;
+  /// The model's name.
   std::string name;
+  /// The model.
   ModelPtr model;
 };
 
@@ -137,7 +144,9 @@ class ModelManager {
 
   /// Name, bounds and contents of a model.
   Result<std::string> name(ModelHandle handle) const;
+  /// The model's bounds, or an error for a bad handle.
   Result<Bounds> bounds(ModelHandle handle) const;
+  /// The OR of the model's contents, or an error for a bad handle.
   Result<std::uint32_t> contents(ModelHandle handle) const;
   /// The model's vertex positions.
   Result<std::vector<Vec3>> vertices(ModelHandle handle) const;

@@ -52,6 +52,7 @@ struct MapBrushSide {
 
 /// A convex brush: the intersection of the back half-spaces of its sides.
 struct MapBrush {
+  /// The sides in file order.
   std::vector<MapBrushSide> sides;
   int line = 0;  ///< line of the primitive in the file (for messages)
 };
@@ -67,6 +68,7 @@ struct MapPatch {
   /// width*height control points, already minus the entity origin: the
   /// file's group j (0..width-1), point i (0..height-1) is at i*width + j.
   std::vector<Vec3> points;
+  /// Line of the patch in the file (1-based).
   int line = 0;
 };
 
@@ -74,8 +76,11 @@ using MapPrimitive = std::variant<MapBrush, MapPatch>;
 
 /// An entity: key/value pairs and primitives in file order.
 struct MapEntity {
+  /// Key/value pairs in file order.
   std::vector<std::pair<std::string, std::string>> keyValues;
+  /// Brushes and patches in file order.
   std::vector<MapPrimitive> primitives;
+  /// Line of the entity in the file (1-based).
   int line = 0;
 
   /// The value of the first pair with this key (case-insensitive, as the
@@ -92,8 +97,11 @@ struct MapEntity {
 
 /// A parsed .map file.
 struct MapFile {
+  /// The name given to the parser (used in errors).
   std::string fileName;
+  /// The file's Version number.
   int version = 2;
+  /// The entities in file order (entity 0: worldspawn).
   std::vector<MapEntity> entities;
   /// The geometry CRC (line 3 of the .cm files written for this map).
   std::uint32_t geometryCrc = 0;

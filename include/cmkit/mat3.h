@@ -19,20 +19,28 @@ namespace cmkit {
 
 /// A 3x3 matrix stored as three row vectors.
 struct Mat3 {
+  /// The three rows (identity by default).
   Vec3 rows[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
   constexpr Mat3() = default;
+  /// A matrix from its rows.
   constexpr Mat3(const Vec3& r0, const Vec3& r1, const Vec3& r2) : rows{r0, r1, r2} {}
 
+  /// The identity matrix.
   static constexpr Mat3 identity() { return Mat3{}; }
 
+  /// Row i.
   constexpr const Vec3& operator[](int i) const { return rows[i]; }
+  /// Row i.
   constexpr Vec3& operator[](int i) { return rows[i]; }
+  /// Exactly equal, row by row.
   constexpr bool operator==(const Mat3& o) const {
     return rows[0] == o.rows[0] && rows[1] == o.rows[1] && rows[2] == o.rows[2];
   }
+  /// Not exactly equal.
   constexpr bool operator!=(const Mat3& o) const { return !(*this == o); }
 
+  /// The transpose (for a rotation: its inverse).
   constexpr Mat3 transposed() const {
     return {{rows[0].x, rows[1].x, rows[2].x},
             {rows[0].y, rows[1].y, rows[2].y},
@@ -48,8 +56,11 @@ struct Mat3 {
     }
     return r;
   }
+  /// The determinant (1 for a rotation).
   constexpr Real determinant() const { return rows[0].dot(rows[1].cross(rows[2])); }
+  /// Exactly the identity.
   constexpr bool isIdentity() const { return *this == identity(); }
+  /// Every element is finite.
   bool isFinite() const { return rows[0].isFinite() && rows[1].isFinite() && rows[2].isFinite(); }
 
   /// Largest deviation from orthonormality: max over |row length^2 - 1| and

@@ -3,7 +3,7 @@
 // Sources, in this order: .mtr declarations supplied by the user (only their
 // content keywords are read), then the default rules of the reference data
 // (textures/common/clip -> playerclip|monsterclip|moveableclip, ..., anything
-// else -> solid|opaque); see docs and shared/spec/materials.md.
+// else -> solid|opaque); see docs/materials.md.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +18,7 @@ namespace cmkit {
 
 /// What a material means for collision.
 struct MaterialInfo {
+  /// Content flags (contents.h).
   std::uint32_t contents = 0;
   bool twoSided = false;  ///< polygons get a reversed copy
   /// A collision surface (.mtr keyword "collision"; by default only
@@ -45,10 +46,12 @@ class MaterialTable {
 
   /// The material's info: declared, else the default rules.
   MaterialInfo info(std::string_view name) const;
+  /// The material's content flags: info(name).contents.
   std::uint32_t contents(std::string_view name) const { return info(name).contents; }
 
   /// Warnings gathered while reading .mtr files.
   const std::vector<std::string>& warnings() const { return warnings_; }
+  /// Number of materials declared by .mtr text read so far.
   std::size_t numDeclared() const { return declared_.size(); }
 
  private:

@@ -36,7 +36,9 @@ struct MeshSurface {
 
 /// A triangle mesh in model space.
 struct TriangleMesh {
+  /// Vertex positions.
   std::vector<Vec3> positions;
+  /// Triangles grouped by material.
   std::vector<MeshSurface> surfaces;
 };
 
@@ -71,6 +73,7 @@ enum class MeshUpAxis {
 
 /// Options of loadMeshFile.
 struct MeshLoadOptions {
+  /// Which axis of the file is up.
   MeshUpAxis up = MeshUpAxis::Auto;
   Real scale = 1;  ///< multiplies every coordinate (after the axis change)
 };

@@ -35,6 +35,7 @@ namespace cmkit {
 
 /// An edge between two model vertices.
 struct CmEdge {
+  /// Indices of its two vertices.
   std::int32_t vertex[2] = {0, 0};
   /// Internal edges can never be touched first by a trace (a concave crease
   /// between faces, or an edge lying on another face): queries skip them.
@@ -49,21 +50,27 @@ struct CmEdge {
 
 /// A convex polygon of the model.
 struct CmPolygon {
+  /// Bounds of the polygon's vertices.
   Bounds bounds;
   Plane plane;  ///< normal points out of the solid
+  /// Content flags (from its material).
   std::uint32_t contents = 0;
   std::int32_t material = -1;   ///< index into CollisionModel::materials, -1 = none
   std::uint32_t firstEdge = 0;  ///< into CollisionModel::polygonEdges
+  /// Number of edges (entries of polygonEdges).
   std::uint32_t numEdges = 0;
 };
 
 /// A convex volume (a map brush) used by position tests and point contents.
 struct CmBrush {
+  /// Bounds of the brush.
   Bounds bounds;
+  /// Content flags.
   std::uint32_t contents = 0;
   std::int32_t material = -1;     ///< index into CollisionModel::materials, -1 = none
   std::int32_t primitiveNum = 0;  ///< the brush's primitive number in its entity
   std::uint32_t firstPlane = 0;   ///< into CollisionModel::brushPlanes
+  /// Number of planes (entries of brushPlanes).
   std::uint32_t numPlanes = 0;
 };
 
@@ -75,20 +82,30 @@ struct CmNode {
   Real planeDist = 0;
   /// children[0]: front (coordinate > planeDist), children[1]: back. -1 in leaves.
   std::int32_t children[2] = {-1, -1};
+  /// Parent node index, -1 for the root.
   std::int32_t parent = -1;
+  /// First entry of the node's polygon list in CollisionModel::polygonRefs.
   std::uint32_t firstPolygonRef = 0;
+  /// Number of polygons listed at the node.
   std::uint32_t numPolygonRefs = 0;
+  /// First entry of the node's brush list in CollisionModel::brushRefs.
   std::uint32_t firstBrushRef = 0;
+  /// Number of brushes listed at the node.
   std::uint32_t numBrushRefs = 0;
 
+  /// True for a leaf (no split plane).
   bool isLeaf() const { return planeType < 0; }
 };
 
 /// Statistics of building or loading a model (the original's PrintModel).
 struct ModelStats {
+  /// Edges marked internal.
   int internalEdges = 0;
+  /// Edges whose polygons meet at a sharp angle (tol::kSharpEdgeDot).
   int sharpEdges = 0;
+  /// Polygons removed because they lay inside brushes.
   int containedPolygonsRemoved = 0;
+  /// Polygons merged into coplanar neighbours.
   int polygonsMerged = 0;
   /// Of containedPolygonsRemoved: the windings dropped because they lie in
   /// solid leaves of the .proc BSP (BuildOptions::procBsp; world model only).
@@ -98,33 +115,43 @@ struct ModelStats {
 /// A collision model. Build it with buildCollisionModels (compile.h) or read it with loadCmFile (cm_file.h);
 /// treat it as immutable afterwards.
 struct CollisionModel {
+  /// The model's name ("worldMap", an entity's model or name key, ...).
   std::string name;
+  /// Bounds of all polygons and brushes.
   Bounds bounds;
   std::uint32_t contents = 0;  ///< OR of all polygon and brush contents
   bool isConvex = false;       ///< true only for models made from a trace model
 
+  /// Vertex positions.
   std::vector<Vec3> vertices;
   std::vector<CmEdge> edges;               ///< edges[0] is a dummy
   std::vector<std::int32_t> polygonEdges;  ///< signed edge numbers of all polygons
+  /// The polygons.
   std::vector<CmPolygon> polygons;
   std::vector<Plane> brushPlanes;  ///< planes of all brushes, normals out of the brush
+  /// The brushes.
   std::vector<CmBrush> brushes;
   std::vector<CmNode> nodes;              ///< nodes[0] is the root
   std::vector<std::int32_t> polygonRefs;  ///< node polygon lists
   std::vector<std::int32_t> brushRefs;    ///< node brush lists
   std::vector<std::string> materials;     ///< material names used by polygons and brushes
 
+  /// Statistics of the build (or load).
   ModelStats stats;
 
+  /// The signed edge numbers of a polygon.
   std::span<const std::int32_t> edgesOf(const CmPolygon& p) const {
     return {polygonEdges.data() + p.firstEdge, p.numEdges};
   }
+  /// The planes of a brush.
   std::span<const Plane> planesOf(const CmBrush& b) const {
     return {brushPlanes.data() + b.firstPlane, b.numPlanes};
   }
+  /// The polygons listed at a node (indices into polygons).
   std::span<const std::int32_t> polygonsAt(const CmNode& n) const {
     return {polygonRefs.data() + n.firstPolygonRef, n.numPolygonRefs};
   }
+  /// The brushes listed at a node (indices into brushes).
   std::span<const std::int32_t> brushesAt(const CmNode& n) const {
     return {brushRefs.data() + n.firstBrushRef, n.numBrushRefs};
   }

@@ -14,10 +14,13 @@ enum class Side : int { Front = 0, Back = 1, On = 2, Cross = 3 };
 /// side the normal points to). Brush planes point out of the brush; polygon
 /// planes out of the solid. ("dist" in .cm files and results is this dist.)
 struct Plane {
+  /// Unit normal.
   Vec3 normal;
+  /// normal . p = dist for points p on the plane.
   Real dist = 0;
 
   constexpr Plane() = default;
+  /// The plane n.p = d.
   constexpr Plane(const Vec3& n, Real d) : normal(n), dist(d) {}
 
   /// The plane through three points, normal = (p1 - p2) x (p3 - p2)
@@ -34,7 +37,9 @@ struct Plane {
     if (d < -epsilon) return Side::Back;
     return Side::On;
   }
+  /// The same plane facing the other way.
   constexpr Plane flipped() const { return {-normal, -dist}; }
+  /// Exactly equal.
   constexpr bool operator==(const Plane& o) const { return normal == o.normal && dist == o.dist; }
   /// The same plane through `point` (normal kept, dist recomputed).
   void fitThroughPoint(const Vec3& point) { dist = normal.dot(point); }

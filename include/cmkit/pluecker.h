@@ -15,6 +15,7 @@ namespace cmkit {
 
 /// A line in Plücker coordinates (6 numbers; the original's layout).
 struct Pluecker {
+  /// The six coordinates.
   Real p[6] = {0, 0, 0, 0, 0, 0};
 
   /// The line through start and end, directed start -> end.
@@ -40,7 +41,9 @@ struct Pluecker {
     return l;
   }
 
+  /// Coordinate i.
   constexpr Real operator[](int i) const { return p[i]; }
+  /// Coordinate i.
   constexpr Real& operator[](int i) { return p[i]; }
 
   /// The permuted inner product (see the file comment), in the original's

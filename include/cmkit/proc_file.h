@@ -4,7 +4,7 @@
 // A map compiler writes NAME.proc beside NAME.map. When it is there, the
 // original drops every solid polygon winding of the world model that lies
 // entirely in opaque solid leaves of this tree (BuildOptions::procBsp,
-// cm-algorithms.md section 3.7).
+// docs/algorithms.md, "Building a model").
 #pragma once
 
 #include <cstdint>

@@ -85,6 +85,7 @@ enum class ContactType : std::uint8_t {
 /// The contact of a trace. Every field is defined on every path; on a miss
 /// everything is zero, material -1.
 struct ContactInfo {
+  /// Which features touched.
   ContactType type = ContactType::None;
   Vec3 point;                  ///< contact point (see the per-type notes in docs/fidelity.md)
   Vec3 normal;                 ///< normal of the contact plane, facing the trace model
@@ -104,6 +105,7 @@ struct TraceResult {
   Real fraction = 1;  ///< fraction of the movement completed, 1 = no contact
   Vec3 endPos;        ///< position of the trace model after the move
   Mat3 endAxis;       ///< orientation of the trace model after the move
+  /// The contact (all zero, material -1, when fraction is 1).
   ContactInfo contact;
   /// True when the start position overlaps a brush or polygon matching the
   /// mask (only computed when the query asks for it).
@@ -143,7 +145,9 @@ class QueryWork {
  public:
   QueryWork();
   ~QueryWork();
+  /// Moves the scratch memory.
   QueryWork(QueryWork&&) noexcept;
+  /// Moves the scratch memory.
   QueryWork& operator=(QueryWork&&) noexcept;
   QueryWork(const QueryWork&) = delete;
   QueryWork& operator=(const QueryWork&) = delete;
@@ -151,6 +155,7 @@ class QueryWork {
   /// The work counters of the queries run with this QueryWork (all 0 unless
   /// queryStatsEnabled()).
   const QueryStats& stats() const;
+  /// Sets every work counter back to 0.
   void resetStats();
 
  private:
@@ -160,6 +165,7 @@ class QueryWork {
 
 /// Where a model is placed in the world.
 struct Placement {
+  /// Position of the model's origin in the world.
   Vec3 origin;
   Mat3 axis;  ///< rows = the model's axes in world space
 };
@@ -167,10 +173,15 @@ struct Placement {
 /// A translation (or, with start == end, a position test).
 struct TranslationQuery {
   const TraceModel* trm = nullptr;  ///< nullptr or a point shape: a point trace
+  /// Orientation of the trace model (rows: its axes).
   Mat3 trmAxis;
+  /// Position of the trace model at the start.
   Vec3 start;
+  /// Position of the trace model at the end of the move.
   Vec3 end;
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
   /// Also run a position test at the start and set TraceResult::startSolid.
   bool detectStartSolid = false;
@@ -182,9 +193,13 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& query
 /// A position test: what does a placed trace model overlap?
 struct ContentsQuery {
   const TraceModel* trm = nullptr;  ///< nullptr or a point shape: point contents
+  /// Orientation of the trace model.
   Mat3 trmAxis;
+  /// Position of the trace model.
   Vec3 position;
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
 };
 
@@ -196,7 +211,9 @@ struct ContentsQuery {
 /// original ignored the mask for a point and took the first brush found).
 /// A refused query (trace.status) has contents 0.
 struct ContentsResult {
+  /// Contents of what the trace model overlaps (0: free).
   std::uint32_t contents = 0;
+  /// The contact found (fraction 0 when stuck, 1 when free).
   TraceResult trace;
 };
 
@@ -213,18 +230,26 @@ std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, cons
 
 /// All contacts of a trace model moved up to `depth` along `dir`.
 struct ContactsQuery {
+  /// The trace model moved (nullptr or a point shape: a point).
   const TraceModel* trm = nullptr;
+  /// Orientation of the trace model.
   Mat3 trmAxis;
+  /// Position of the trace model at the start.
   Vec3 start;
   Vec3 dir;  ///< direction of the move (need not be unit: end = start + dir * depth)
+  /// How far to move along dir.
   Real depth = 0;
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
+  /// At most this many contacts are returned.
   int maxContacts = 16;
 };
 
 /// Result of contacts(): the contacts found, in the order the walk met them.
 struct ContactsResult {
+  /// The contacts found.
   std::vector<ContactInfo> contacts;
   QueryStatus status = QueryStatus::Ok;  ///< refused: no contacts (see QueryStatus)
 };
@@ -275,7 +300,9 @@ struct RotationQuery {
   Mat3 trmAxis;                     ///< orientation of the trace model at the start
   Vec3 start;                       ///< position of the trace model at the start
   Rotation rotation;                ///< world-space rotation (origin, unit axis, degrees)
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement;
   /// Also run a position test at the start and set TraceResult::startSolid.
   bool detectStartSolid = false;

@@ -55,15 +55,20 @@ struct RayHit {
   std::uint32_t contents = 0;  ///< contents of the polygon
   std::int32_t material = -1;  ///< index into the model's materials, -1 = none
 
+  /// True when the ray hit a polygon.
   bool hit() const { return polygon >= 0; }
 };
 
 /// A ray cast: the segment start -> end against the model placed in the
 /// world by `placement`, hitting polygons whose contents match the mask.
 struct RayCastQuery {
+  /// Start of the segment (world space).
   Vec3 start;
+  /// End of the segment (world space).
   Vec3 end;
+  /// Content flags of the polygons the ray can hit.
   std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
   Placement placement = {};
 };
 
@@ -84,9 +89,13 @@ class RayIndex {
   explicit RayIndex(const CollisionModel& model, NodeTest nodeTest = NodeTest::Auto);
 
   ~RayIndex();
+  /// Shares the copied index.
   RayIndex(const RayIndex&);
+  /// Takes the index over.
   RayIndex(RayIndex&&) noexcept;
+  /// Shares the copied index.
   RayIndex& operator=(const RayIndex&);
+  /// Takes the index over.
   RayIndex& operator=(RayIndex&&) noexcept;
 
   /// The first front face the segment query.start -> query.end crosses
@@ -95,8 +104,9 @@ class RayIndex {
 
   /// Whether cast() tests nodes with AVX2.
   bool usesAvx2() const;
-  /// Number of 8-wide nodes, and of polygons indexed.
+  /// Number of 8-wide nodes.
   std::size_t numNodes() const;
+  /// Number of polygons indexed.
   std::size_t numPolygons() const;
   /// Heap memory held.
   std::size_t memoryBytes() const;

@@ -21,6 +21,7 @@ struct Error {
   int column = 0;       ///< 1-based column, 0 when unknown
 
   Error() = default;
+  /// An error with its message and, when known, its file, line and column.
   explicit Error(std::string msg, std::string fileName = {}, int lineNo = 0, int col = 0)
       : message(std::move(msg)), file(std::move(fileName)), line(lineNo), column(col) {}
 
@@ -47,29 +48,41 @@ struct Error {
 template <class T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : v_(std::move(value)) {}      // NOLINT(google-explicit-constructor)
+  /// A successful result.
+  Result(T value) : v_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
+  /// A failed result.
   Result(Error error) : v_(std::move(error)) {}  // NOLINT(google-explicit-constructor)
 
+  /// True when the result holds a value.
   bool ok() const { return v_.index() == 0; }
+  /// True when the result holds a value.
   explicit operator bool() const { return ok(); }
 
+  /// The value; only when ok().
   T& value() & {
     assert(ok());
     return std::get<0>(v_);
   }
+  /// The value; only when ok().
   const T& value() const& {
     assert(ok());
     return std::get<0>(v_);
   }
+  /// The value, moved out; only when ok().
   T&& value() && {
     assert(ok());
     return std::get<0>(std::move(v_));
   }
+  /// The value's members; only when ok().
   T* operator->() { return &value(); }
+  /// The value's members; only when ok().
   const T* operator->() const { return &value(); }
+  /// The value; only when ok().
   T& operator*() & { return value(); }
+  /// The value; only when ok().
   const T& operator*() const& { return value(); }
 
+  /// The error; only when !ok().
   const Error& error() const {
     assert(!ok());
     return std::get<1>(v_);

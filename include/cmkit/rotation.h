@@ -12,11 +12,14 @@ namespace cmkit {
 /// POSITIVE angle turns points CLOCKWISE when looking down the axis from its
 /// tip. About +z by +90 degrees, (100,0,10) goes to (0,-100,10).
 struct Rotation {
+  /// A point on the rotation axis.
   Vec3 origin;
+  /// Unit direction of the axis.
   Vec3 axis{0, 0, 1};
   Real angle = 0;  ///< degrees
 
   constexpr Rotation() = default;
+  /// A rotation about the axis through o along a, by deg degrees.
   constexpr Rotation(const Vec3& o, const Vec3& a, Real deg) : origin(o), axis(a), angle(deg) {}
 
   /// The matrix M of this rotation for the original's `v * M` convention:

@@ -59,6 +59,7 @@ std::string_view toString(TrmShape shape);
 
 /// An edge of a trace model: from vertex v[0] to vertex v[1].
 struct TrmEdge {
+  /// Start and end vertex indices.
   int v[2] = {0, 0};
   /// Unit-ish direction the edge "faces": the bisector of the normals of its
   /// two polygons (scaled so its component along each normal is 1), or the
@@ -72,11 +73,14 @@ struct TrmEdge {
 struct TrmPolygon {
   Vec3 normal;    ///< outward unit normal
   Real dist = 0;  ///< normal . p = dist on the polygon
+  /// Number of edges in `edges`.
   int numEdges = 0;
   /// Signed edge numbers, counter-clockwise around the normal.
   std::array<int, kMaxTrmPolygonEdges> edges{};
+  /// Bounds of the polygon's vertices.
   Bounds bounds;
 
+  /// The signed edge numbers in use.
   std::span<const int> edgeList() const { return {edges.data(), size_t(numEdges)}; }
   /// The vertex the signed edge `edges[i]` starts at.
   int startVertex(const class TraceModel& trm, int i) const;
@@ -84,8 +88,11 @@ struct TrmPolygon {
 
 /// Mass properties of a solid trace model for a uniform density.
 struct MassProperties {
+  /// Volume of the solid.
   Real volume = 0;
+  /// Mass (volume times density).
   Real mass = 0;
+  /// Centre of mass in the trace model's frame.
   Vec3 centerOfMass;
   /// Inertia tensor about the centre of mass, in the trace model's frame.
   Mat3 inertiaTensor = Mat3{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -131,19 +138,27 @@ class TraceModel {
   /// on all axes is a point.
   static Result<TraceModel> parse(std::string_view spec);
 
+  /// The kind of shape.
   TrmShape shape() const { return shape_; }
   /// True for a single point (a point trace).
   bool isPoint() const { return shape_ == TrmShape::Point; }
   /// True when the shape is a closed convex solid (not a polygon or point).
   bool isConvex() const { return isConvex_; }
+  /// Number of vertices.
   int numVertices() const { return numVertices_; }
+  /// Number of edges (numbered 1..numEdges()).
   int numEdges() const { return numEdges_; }
+  /// Number of polygons.
   int numPolygons() const { return numPolygons_; }
+  /// The vertices, relative to the trace model's origin.
   std::span<const Vec3> vertices() const { return {vertices_.data(), size_t(numVertices_)}; }
+  /// Vertex i.
   const Vec3& vertex(int i) const { return vertices_[size_t(i)]; }
   /// Edge number n, 1 <= n <= numEdges().
   const TrmEdge& edge(int n) const { return edges_[size_t(n)]; }
+  /// The polygons.
   std::span<const TrmPolygon> polygons() const { return {polygons_.data(), size_t(numPolygons_)}; }
+  /// Polygon i.
   const TrmPolygon& polygon(int i) const { return polygons_[size_t(i)]; }
   /// Bounds of all vertices.
   const Bounds& bounds() const { return bounds_; }

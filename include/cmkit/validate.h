@@ -43,8 +43,11 @@ struct Violation {
 
   std::string model;     ///< model name
   std::string itemKind;  ///< "vertex", "edge", "polygon", "brush", "node" or "model"
+  /// Index of the item (-1 for the model itself).
   std::int64_t item = -1;
+  /// What is wrong.
   std::string message;
+  /// Structure (the model is unusable) or geometry.
   Kind kind = Kind::Structure;
 
   /// "model "NAME" polygon 12: message".

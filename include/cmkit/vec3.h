@@ -40,44 +40,61 @@ float compatInvSqrt(float x);
 
 /// A 3-component vector of Real.
 struct Vec3 {
+  /// Coordinates.
+  ///@{
   Real x = 0, y = 0, z = 0;
+  ///@}
 
   constexpr Vec3() = default;
+  /// A vector from its coordinates.
   constexpr Vec3(Real x_, Real y_, Real z_) : x(x_), y(y_), z(z_) {}
 
+  /// Coordinate i (0: x, 1: y, 2: z).
   constexpr Real operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  /// Coordinate i (0: x, 1: y, 2: z).
   constexpr Real& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 
+  /// The opposite vector.
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
+  /// Sum.
   constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  /// Difference.
   constexpr Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+  /// Scaled by s.
   constexpr Vec3 operator*(Real s) const { return {x * s, y * s, z * s}; }
+  /// Adds o.
   constexpr Vec3& operator+=(const Vec3& o) {
     x += o.x;
     y += o.y;
     z += o.z;
     return *this;
   }
+  /// Subtracts o.
   constexpr Vec3& operator-=(const Vec3& o) {
     x -= o.x;
     y -= o.y;
     z -= o.z;
     return *this;
   }
+  /// Scales by s.
   constexpr Vec3& operator*=(Real s) {
     x *= s;
     y *= s;
     z *= s;
     return *this;
   }
+  /// Exactly equal.
   constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
+  /// Not exactly equal.
   constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 
   /// Dot product, evaluated x, y, z in that order (as the original does).
   constexpr Real dot(const Vec3& o) const { return x * o.x + y * o.y + z * o.z; }
+  /// Cross product (this x o).
   constexpr Vec3 cross(const Vec3& o) const {
     return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x};
   }
+  /// Squared length.
   constexpr Real lengthSquared() const { return x * x + y * y + z * z; }
   /// Length, computed as the original does (|v|^2 * InvSqrt(|v|^2)).
   Real length() const {
@@ -104,7 +121,9 @@ struct Vec3 {
     v.normalize();
     return v;
   }
+  /// Every coordinate is finite.
   bool isFinite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
+  /// Exactly (0, 0, 0).
   bool isZero() const { return x == 0 && y == 0 && z == 0; }
 
   /// The reciprocal square root used by length() and normalize(): the

@@ -30,7 +30,7 @@ const Winding* ModelBuilder::windingOutsideBrushes(const Winding& w, const Plane
   // Several fragments: the world model keeps the one fragment the .proc BSP
   // does not chop away; otherwise (no .proc, not the world, or more than one
   // left) the whole winding. When every fragment would be chopped away the
-  // whole winding stays too (the spec leaves that case open; the winding as
+  // whole winding stays too (the original's behaviour there is not known; the winding as
   // a whole was not chopped away).
   const Winding* left = nullptr;
   for (std::size_t k = 0; k < list.numWindings; ++k) {

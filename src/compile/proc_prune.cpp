@@ -1,5 +1,5 @@
 // Pruning the world model with the renderer's BSP of the .proc file (the
-// original's ChoppedAwayByProcBSP, cm-algorithms.md section 3.7): a solid
+// original's ChoppedAwayByProcBSP, docs/algorithms.md): a solid
 // winding is dropped when every piece of it, split down the .proc tree, ends
 // in an opaque solid leaf.
 #include "cmkit/contents.h"

@@ -1,4 +1,4 @@
-// Patch tessellation for collision, from cm-algorithms.md section 3 step 6.
+// Patch tessellation for collision, as the original does it (docs/algorithms.md, "Building a model").
 //
 // The grid is kept as lines of points, rows (rows[i][j]: row i = second
 // index, column j = first index, as in MapPatch) or columns, transposed

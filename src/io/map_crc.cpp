@@ -1,4 +1,4 @@
-// The map geometry CRC (see shared spec map-format.md, "The map geometry CRC").
+// The map geometry CRC (include/cmkit/map.h; line 3 of a .cm file, docs/cm-format.md).
 #include "io/map_crc.h"
 
 #include <type_traits>

@@ -1,5 +1,5 @@
-// The .map parser (the original's idMapFile, rewritten from the format
-// description in shared/spec/map-format.md and cm-algorithms.md section 2).
+// The .map parser (the original's idMapFile, rewritten from the Doom 3
+// .map format as the original reads it; include/cmkit/map.h says what is kept).
 //
 // Internally the lexer and the recursive-descent functions throw a
 // SyntaxError that parseMapText catches and turns into an Error: nothing

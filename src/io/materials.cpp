@@ -1,7 +1,7 @@
 // Material names -> content flags: canonical names, the default rules of the
 // reference data, and the content keywords of .mtr declarations.
 //
-// .mtr semantics (the spec lists the keywords; where it is silent these are
+// .mtr semantics (docs/materials.md lists them; where the original's rules are unknown these are
 // cmkit's documented choices, modelled on the original's surface parameters):
 // - a material starts as solid|opaque;
 // - `solid`, `playerclip`, `monsterclip`, `moveableclip`, `ikclip`, `blood`,

@@ -1,5 +1,5 @@
 // The .proc reader of the collision code (the original's LoadProcBSP and
-// ParseProcNodes, rewritten from cm-algorithms.md section 3.7 and the .proc
+// ParseProcNodes, rewritten from the original's behaviour and the .proc
 // layout): the header, sections skipped as braced blocks until `nodes`, then
 // the node count and per node ( a b c d ) front back.
 //

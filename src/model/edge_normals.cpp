@@ -1,4 +1,4 @@
-// Edge normals (spec section 3.5): see edge_normals.h for the order and the
+// Edge normals (docs/algorithms.md): see edge_normals.h for the order and the
 // formulas.
 #include "model/edge_normals.h"
 

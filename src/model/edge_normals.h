@@ -1,5 +1,5 @@
 // Internal: edge normals, bounds and contents of a collision model (the original's edge normal
-// pass, spec section 3.5). Used by the map builder on freshly built models
+// pass, docs/algorithms.md). Used by the map builder on freshly built models
 // and by the .cm reader after loading.
 #pragma once
 

@@ -1,7 +1,7 @@
 // Internal: the tree-filter rule (which nodes of an axial tree a polygon or
 // brush is linked into), shared by the map compiler, which filters into its
 // growing tree, and the .cm reader, which filters a loaded model's items into
-// its stored tree (spec 3.6 and 4). The two must agree: the order of
+// its stored tree (docs/cm-format.md, "How cmkit reads a model"). The two must agree: the order of
 // polygons and brushes in .cm files comes from it.
 #pragma once
 

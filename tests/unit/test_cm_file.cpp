@@ -18,7 +18,7 @@ namespace {
 
 using test::modelDifference;
 
-// The hand-written model of the spec (section 14): a 128x128 floor on a slab.
+// The hand-written model of docs/cm-format.md: a 128x128 floor on a slab.
 constexpr std::string_view kFloorCm = R"(CM "1.00"
 
 0
@@ -130,7 +130,7 @@ collisionModel "m" { }
 }
 
 // Items are filtered into the stored tree by their bounds and prepended to
-// each node's list (spec 3.6 and 4).
+// each node's list (docs/cm-format.md).
 TEST(CmFile, ItemsAreFilteredIntoTheTreeAndPrepended) {
   // Root splits x at 0; its front child splits y at 0.
   const std::string text = R"(CM "1.00" 0

@@ -1,4 +1,4 @@
-// .proc pruning of the world model (cm-algorithms.md section 3.7) and
+// .proc pruning of the world model (docs/algorithms.md, "Building a model") and
 // writing one entity's model (the original's WriteCollisionModelForMapEntity).
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Agreement with the original implementation: every query file in
-// shared/reference is answered and compared with the original's results by
-// the rules of shared/tools/agree.py. Where the original is known to be wrong
+// ../shared/reference (skipped without it) is answered and compared with the
+// original's results by the rules tests/fidelity/check_lt4.py states. Where the original is known to be wrong
 // (shared/reference/README.md), the difference must be explained by an
 // independent re-implementation of the original's mistake.
 #include <gtest/gtest.h>

@@ -37,7 +37,7 @@ void registerCompile(CLI::App& app) {
       "CRC 0. --up says which axis is up in the file (glTF is y up), --scale resizes it,\n"
       "--contents replaces the materials' contents (meshes without Doom 3 materials).\n\n"
       "Materials decide which brush sides and patches collide (and how): by default the\n"
-      "rules of docs/materials (textures/common/clip is player/monster/moveable clip,\n"
+      "rules of docs/materials.md (textures/common/clip is player/monster/moveable clip,\n"
       "names containing \"water\" are water, ...); --materials DIR reads the .mtr files\n"
       "below DIR first.\n\n"
       "Examples:\n"

@@ -39,19 +39,31 @@ namespace cmkit {
 
 /// A colour, 8 bits per channel, non-premultiplied alpha (255 = opaque).
 struct Rgba {
+  /// Red, green, blue and alpha channels.
+  ///@{
   std::uint8_t r = 255, g = 255, b = 255, a = 255;
+  ///@}
+  /// Same channels.
   constexpr bool operator==(const Rgba&) const = default;
 };
 
 /// Colours the original's debug drawing uses.
 namespace colors {
+/// Red.
 inline constexpr Rgba kRed{255, 0, 0, 255};
+/// Green.
 inline constexpr Rgba kGreen{0, 255, 0, 255};
+/// Blue.
 inline constexpr Rgba kBlue{0, 0, 255, 255};
+/// Cyan.
 inline constexpr Rgba kCyan{0, 255, 255, 255};
+/// Magenta.
 inline constexpr Rgba kMagenta{255, 0, 255, 255};
+/// Yellow.
 inline constexpr Rgba kYellow{255, 255, 0, 255};
+/// White.
 inline constexpr Rgba kWhite{255, 255, 255, 255};
+/// Orange.
 inline constexpr Rgba kOrange{255, 128, 0, 255};
 }  // namespace colors
 
@@ -75,6 +87,7 @@ std::string_view toString(DrawKind kind);
 
 /// Which part of a model or trace a primitive belongs to.
 struct DrawTag {
+  /// What the primitive shows.
   DrawKind kind = DrawKind::Polygon;
   /// Contents of the polygon or edge's polygon (model primitives), of the
   /// surface hit (contact primitives), else 0.
@@ -136,9 +149,13 @@ void drawTraceModel(DebugDraw& draw, const TraceModel* trm, const Vec3& origin, 
 /// One trace to draw: a query and its result.
 struct TraceDrawing {
   const TraceModel* trm = nullptr;  ///< nullptr or a point shape: a point trace
+  /// Orientation of the trace model at the start.
   Mat3 trmAxis;
+  /// Start of the trace.
   Vec3 start;
+  /// End the trace aimed for.
   Vec3 end;
+  /// The query's result.
   TraceResult result;
   std::int32_t index = 0;  ///< goes to DrawTag::feature
 };
@@ -154,8 +171,11 @@ Rgba contentColor(std::uint32_t contents);
 
 /// One row of the content name/colour table.
 struct ContentStyle {
+  /// Name of the content flag.
   std::string_view name;
+  /// The flag's bit.
   std::uint32_t flag;
+  /// The colour drawn for it.
   Rgba color;
 };
 
@@ -167,11 +187,16 @@ std::span<const ContentStyle> contentStyles();
 
 /// A query line and its result line, parsed for drawing.
 struct TraceRecord {
+  /// The query line as read.
   std::string queryLine;
+  /// Its result line as read.
   std::string resultLine;
   std::string op;  ///< "translation", "rotation", "contents", ...
+  /// The trace model (empty: a point).
   std::optional<TraceModel> trm;
+  /// Orientation of the trace model at the start.
   Mat3 trmAxis;
+  /// Start position.
   Vec3 start;
   Vec3 end;  ///< = start for queries that do not move
   /// The result (fraction, end pose, contact); fraction 1 and no contact

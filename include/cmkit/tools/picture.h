@@ -24,14 +24,19 @@ namespace cmkit {
 
 /// An RGBA picture, rows top to bottom, 4 bytes per pixel.
 struct Image {
+  /// Width in pixels.
   int width = 0;
+  /// Height in pixels.
   int height = 0;
+  /// width * height * 4 bytes, rows top to bottom.
   std::vector<std::uint8_t> rgba;
 };
 
 /// A pinhole (perspective) or orthographic camera.
 struct Camera {
+  /// True: pinhole camera, false: orthographic.
   bool perspective = true;
+  /// Position of the camera.
   Vec3 eye;
   Vec3 forward{1, 0, 0};       ///< unit view direction
   Vec3 right{0, -1, 0};        ///< unit, screen x
@@ -54,6 +59,7 @@ Camera frameCamera(const Bounds& bounds, CameraView view, Real aspect);
 /// The software rasteriser: a DebugDraw that draws into an Image.
 class PictureCanvas final : public DebugDraw {
  public:
+  /// A canvas of width x height pixels filled with `background`, seen through `camera`.
   PictureCanvas(int width, int height, const Camera& camera, const Rgba& background);
 
   void line(const Vec3& a, const Vec3& b, const Rgba& color, const DrawTag& tag) override;
@@ -64,6 +70,7 @@ class PictureCanvas final : public DebugDraw {
   /// With depth testing off, later primitives are drawn over everything
   /// (used for trace overlays).
   void setDepthTest(bool on) { depthTest_ = on; }
+  /// The picture drawn so far.
   const Image& image() const { return image_; }
 
  private:
@@ -86,8 +93,11 @@ class PictureCanvas final : public DebugDraw {
 
 /// Options of renderPicture.
 struct PictureOptions {
+  /// Width of the picture in pixels.
   int width = 1024;
+  /// Height of the picture in pixels.
   int height = 768;
+  /// Where the camera is put when `camera` is empty.
   CameraView view = CameraView::Perspective;
   /// The camera; when absent, frameCamera() on the models' bounds.
   std::optional<Camera> camera;
@@ -106,6 +116,7 @@ struct PictureOptions {
   std::vector<Placement> placements;
   /// Draw traces over the geometry, ignoring depth.
   bool tracesOnTop = true;
+  /// Colour of the empty background.
   Rgba background{28, 30, 36, 255};
 };
 

@@ -1,5 +1,5 @@
 // query_format.h: the line-oriented query format (docs/query-format.md, the
-// same as shared/spec/query-format.md v1): one query per line, one result
+// format of the original's reference answers, v1): one query per line, one result
 // line per query, so that two implementations can be compared line by line.
 #pragma once
 
@@ -28,9 +28,11 @@ const char* toString(QueryOp op);
 
 /// A query line parsed once (for running it many times, e.g. benchmarks).
 struct ParsedQuery {
+  /// The kind of query.
   QueryOp op = QueryOp::Translation;
   std::optional<TraceModel> trm;  ///< empty: a point
   std::string trmSpec;            ///< the trm= field as written (e.g. "box:-16,-16,0,16,16,72")
+  /// Orientation of the trace model.
   Mat3 trmAxis;
   Vec3 position;         ///< start (pos for pointcontents)
   Vec3 end;              ///< translation
@@ -38,8 +40,10 @@ struct ParsedQuery {
   Real depth = 0;        ///< contacts
   int maxContacts = 16;  ///< contacts
   Rotation rotation;     ///< rotation
+  /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
   std::size_t model = 0;  ///< index into the models
+  /// Where the model is placed in the world.
   Placement placement;
 };
 

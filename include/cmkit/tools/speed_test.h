@@ -43,6 +43,7 @@ struct SpeedTestOptions {
   bool rays = false;        ///< cmkit: also cast the moves as RayIndex rays
   std::uint32_t seed = 0;   ///< seed of the generator (the original: always 0)
   int threads = 1;          ///< worker threads, each with its own QueryWork
+  /// Content flags the queries collide with (the original: solid | playerclip).
   std::uint32_t contentMask = contents::kSolid | contents::kPlayerClip;
   Vec3 origin;          ///< start of every move (the original: cm_testOrigin)
   Mat3 trmAxis;         ///< orientation of the trace model at the start
@@ -67,15 +68,21 @@ struct SpeedTestBatch {
 
 /// The two batches of a speed test run.
 struct SpeedTestReport {
+  /// The translation batch.
   SpeedTestBatch translation;
   SpeedTestBatch rotation;  ///< count 0 when options.rotations is false
   SpeedTestBatch rays;      ///< ray casts; count 0 unless options.rays
   /// The RayIndex of the ray casts (zero unless options.rays).
   struct RayIndexStats {
+    /// Number of nodes, polygons indexed and heap bytes.
+    ///@{
     std::size_t nodes = 0, polygons = 0, bytes = 0;
+    ///@}
+    /// Time to build the index, in milliseconds.
     double buildMs = 0;
     bool avx2 = false;  ///< its node test is the AVX2 one (RayIndex::usesAvx2)
-  } rayIndex;
+  } rayIndex;           ///< the ray index's figures
+  /// Threads the batches ran on.
   int threads = 1;
 };
 
@@ -83,6 +90,7 @@ struct SpeedTestReport {
 /// (the original's idRandom constants), returning its top 24 bits.
 class SpeedTestRandom {
  public:
+  /// A generator started from `seed`.
   explicit SpeedTestRandom(std::uint32_t seed) : state_(seed) {}
   /// Uniform in [0, 1).
   Real uniform();
