@@ -53,7 +53,8 @@ void registerCompile(CLI::App& app) {
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "compile";
   cmd->add_option("MAP", req->mapPath, "the .map file, or a mesh file")->required();
-  cmd->add_option("-o,--output", req->outPath, "write the models to this .cm file");
+  cmd->add_option("-o,--output", req->outPath,
+                  "write the models to this .cm file (- : standard output; the report then goes to stderr)");
   cmd->add_option("--materials", req->materialsDir,
                   "directory of .mtr material files (searched recursively)");
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");

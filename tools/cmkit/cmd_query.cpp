@@ -29,12 +29,16 @@ struct QueryOptions {
 };
 
 int runQueryCommand(const QueryOptions& o) {
+  if (o.models == kStdinPath && o.queries == kStdinPath) {
+    fmt::print(stderr, "cmkit query: MODELS and QUERIES cannot both be standard input (-)\n");
+    return kExitBadInput;
+  }
   auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh, o.robustEdges);
   if (!models) {
     fmt::print(stderr, "cmkit query: {}\n", models.error().toString());
     return kExitBadInput;
   }
-  const Result<std::string> text = readTextFile(o.queries);
+  const Result<std::string> text = readCliText(o.queries);
   if (!text) {
     fmt::print(stderr, "cmkit query: query file: {}\n", text.error().toString());
     return kExitBadInput;
@@ -77,11 +81,11 @@ int runQueryCommand(const QueryOptions& o) {
   }
   if (out != stdout) std::fclose(out);
   if (!o.output.empty() || !isatty(fileno(stdout))) {
-    fmt::print(stderr, "{} queries on {} thread{} in {:.3f} s ({:.2f} us/query), {} error line{}\n",
-               lines.size(), threads, threads == 1 ? "" : "s", secs,
+    fmt::print(stderr, "{} quer{} on {} thread{} in {:.3f} s ({:.2f} us/query), {} error line{}\n",
+               lines.size(), lines.size() == 1 ? "y" : "ies", threads, threads == 1 ? "" : "s", secs,
                lines.empty() ? 0.0 : secs * 1e6 / double(lines.size()), errors, errors == 1 ? "" : "s");
   }
-  return 0;
+  return errors == 0 ? 0 : kExitQueryErrors;
 }
 
 }  // namespace
@@ -99,10 +103,18 @@ void registerQuery(CLI::App& app) {
       "  contacts trm=point start=0,0,8 dir=0,0,-1 depth=16 max=8\n"
       "Optional keys: trmaxis=9 numbers, mask=names|number, model=NAME|#N, origin=x,y,z,\n"
       "modelaxis=9 numbers. A line that cannot run gives error=REASON and the rest go on.\n\n"
-      "Example: cmkit query maps/box_room.map queries.txt -o results.txt");
-  cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
+      "MODELS or QUERIES may be - (standard input, not both). A MODELS file that is not named\n"
+      "*.map, *.cm or a mesh file is read as a .cm when its first token is CM, else as a .map.\n\n"
+      "Exit codes: 0 every line answered; 3 every line written, but some are error=REASON (so that\n"
+      "scripts notice); 2 bad input (unreadable models or query file, bad option).\n\n"
+      "Examples:\n"
+      "  cmkit query maps/box_room.map queries.txt -o results.txt\n"
+      "  echo 'pointcontents pos=0,0,8' | cmkit query maps/box_room.map -\n"
+      "  cmkit compile maps/box_room.map -o - | cmkit query - queries.txt   (a .cm through a pipe)");
+  cmd->add_option("MODELS", o->models,
+                  "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...); - for standard input")
       ->required();
-  cmd->add_option("QUERIES", o->queries, "the query file")->required();
+  cmd->add_option("QUERIES", o->queries, "the query file; - for standard input")->required();
   cmd->add_option("-o,--output", o->output, "write results here instead of standard output");
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);

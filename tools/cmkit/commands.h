@@ -42,5 +42,8 @@ void registerDemo(CLI::App& app);
 
 /// Exit code for bad input (files, arguments) as opposed to 0 = success.
 inline constexpr int kExitBadInput = 2;
+/// Exit code of `cmkit query` when it wrote every result line but some are
+/// error=REASON.
+inline constexpr int kExitQueryErrors = 3;
 
 }  // namespace cmkit::cli

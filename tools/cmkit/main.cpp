@@ -1,6 +1,7 @@
 // cmkit: collision models for id Tech 4 (Doom 3) level geometry.
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "cmkit/config.h"
 #include "commands.h"
@@ -27,6 +28,20 @@ int main(int argc, char** argv) {
   cmkit::cli::registerBench(app);
   cmkit::cli::registerSoak(app);
   cmkit::cli::registerDemo(app);
+  // An unknown command is named as such (CLI11 alone would say that a
+  // subcommand is required).
+  bool known = argc < 2 || argv[1][0] == '-';
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+    known = known || sub->get_name() == argv[1];
+  }
+  if (!known) {
+    fmt::print(stderr,
+               "cmkit: unknown command '{}'; the commands are: {}\nRun 'cmkit --help' for what each does.\n",
+               argv[1], names);
+    return cmkit::cli::kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -32,8 +32,9 @@ namespace {
 /// `compile MAP --entity NAME -o FILE.cm [--test-trm]`.
 int runEntityWrite(const MapBuildRequest& request, const MapFile& map, const MaterialTable& materials) {
   const std::string& cmd = request.command;
-  if (request.outPath.empty()) {
-    fmt::print(stderr, "cmkit {}: --entity needs -o FILE.cm (the file the model is written to)\n", cmd);
+  if (request.outPath.empty() || request.outPath == kStdinPath) {
+    fmt::print(stderr, "cmkit {}: --entity needs -o FILE.cm (the file the model is written to; not -)\n",
+               cmd);
     return kExitBadInput;
   }
   const Result<std::size_t> index = map.findEntity(request.entity);
@@ -156,7 +157,14 @@ int runMapBuild(const MapBuildRequest& request) {
   for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
   fmt::print(stderr, "{}\n", procNote(*proc, request.mapPath, *models));
 
-  if (!request.outPath.empty()) {
+  // "-o -": the .cm text goes to standard output and the report to stderr.
+  const bool cmToStdout = request.outPath == kStdinPath;
+  std::FILE* report = cmToStdout ? stderr : stdout;
+  if (cmToStdout) {
+    const std::string text = writeCmText(*models, map->geometryCrc);
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+  } else if (!request.outPath.empty()) {
     if (const Status st = saveCmFile(request.outPath, *models, map->geometryCrc); !st) {
       fmt::print(stderr, "cmkit {}: {}\n", cmd, st.error().toString());
       return kExitBadInput;
@@ -170,10 +178,13 @@ int runMapBuild(const MapBuildRequest& request) {
   context.perModel = !request.quiet;
   if (proc->bsp) context.procFile = proc->path;
   if (request.json) {
-    fmt::print("{}", statsJson(*models, context));
+    fmt::print(report, "{}", statsJson(*models, context));
   } else {
-    printStatsText(stdout, *models, context);
-    if (!request.outPath.empty()) fmt::print("wrote {} ({} models)\n", request.outPath, models->size());
+    printStatsText(report, *models, context);
+    if (!request.outPath.empty())
+      fmt::print(report, "wrote {} ({} model{})\n",
+                 cmToStdout ? "the .cm to standard output" : request.outPath, models->size(),
+                 models->size() == 1 ? "" : "s");
   }
   return 0;
 }

@@ -2,12 +2,14 @@
 
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "cmkit/cm_file.h"
 #include "cmkit/compile.h"
 #include "cmkit/contents.h"
 #include "cmkit/map.h"
+#include "cmkit/tools/text_file.h"
 #include "option_checks.h"
 
 namespace cmkit::cli {
@@ -81,6 +83,61 @@ Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& ma
   return loadMeshModel(path, materials, load, build);
 }
 
+Result<std::string> readCliText(const std::string& path) {
+  if (path != kStdinPath) return readTextFile(path);
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const std::size_t n = std::fread(buffer, 1, sizeof buffer, stdin);
+    text.append(buffer, n);
+    if (n < sizeof buffer) break;
+  }
+  if (std::ferror(stdin)) return Error("cannot read standard input", "-");
+  return text;
+}
+
+bool looksLikeCm(std::string_view text) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte-order mark
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
+      ++i;
+    } else if (text.substr(i, 2) == "//") {
+      i = std::min(text.find('\n', i), text.size());
+    } else if (text.substr(i, 2) == "/*") {
+      const std::size_t end = text.find("*/", i + 2);
+      i = end == std::string_view::npos ? text.size() : end + 2;
+    } else {
+      break;
+    }
+  }
+  const std::string_view rest = text.substr(i);
+  return rest.substr(0, 2) == "CM" && (rest.size() == 2 || rest[2] == ' ' || rest[2] == '\t' ||
+                                       rest[2] == '\r' || rest[2] == '\n' || rest[2] == '"');
+}
+
+namespace {
+
+/// Models from text whose format is told by its first token (looksLikeCm):
+/// a .cm file's models, or every entity of a .map built (no .proc: there is
+/// no file beside it to look for).
+Result<std::vector<ModelPtr>> modelsFromText(const std::string& text, const std::string& name,
+                                             const MaterialTable& materials, bool robustEdges) {
+  if (looksLikeCm(text)) {
+    auto file = parseCmText(text, name, materials);
+    if (!file) return file.error();
+    return std::move(file->models);
+  }
+  auto map = parseMapText(text, name);
+  if (!map) return map.error();
+  BuildOptions options;
+  options.robustEdges = robustEdges;
+  return buildCollisionModels(*map, materials, options);
+}
+
+}  // namespace
+
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
                                                bool noProc, const MeshCliOptions& mesh, bool robustEdges) {
   MaterialTable materials;
@@ -117,7 +174,15 @@ Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const st
     if (!model) return model.error();
     return std::vector<ModelPtr>{std::move(*model)};
   }
-  return Error{"expected a .map, .cm or mesh file (.obj, .gltf, .glb, .ase, .lwo, .fbx, .ply, ...)", path};
+  // Standard input ("-") or a file of another name: the first token tells a
+  // .cm file from a .map; mesh files need their extension (assimp reads the
+  // file itself).
+  std::error_code ec;
+  if (path != kStdinPath && std::filesystem::is_directory(path, ec))
+    return Error{"is a directory; expected a .map, .cm or mesh file (.obj, .gltf, .glb, .ase, ...)", path};
+  Result<std::string> text = readCliText(path);
+  if (!text) return text.error();
+  return modelsFromText(*text, path == kStdinPath ? "<stdin>" : path, materials, robustEdges);
 }
 
 }  // namespace cmkit::cli

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -33,11 +34,24 @@ void addMeshOptions(CLI::App* cmd, MeshCliOptions& options);
 Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& materials,
                                 const MeshCliOptions& options, std::vector<std::string>* warnings);
 
+/// The path that means standard input.
+inline constexpr const char* kStdinPath = "-";
+
+/// The whole text of a file, or of standard input for "-".
+Result<std::string> readCliText(const std::string& path);
+
+/// Whether text is a .cm file's: its first token (after a UTF-8 byte-order
+/// mark, blanks and comments) is CM. Anything else is taken for a .map.
+bool looksLikeCm(std::string_view text);
+
 /// Reads FILE.cm, builds every model of FILE.map or converts a mesh file
 /// (isMeshFileName) into one model (materials from `materialsDir` when not
 /// empty, else the default rules). For a .map, one line on stderr says
 /// whether a .proc pruned the world (procNote). `robustEdges`:
-/// BuildOptions::robustEdges for a .map (ignored otherwise).
+/// BuildOptions::robustEdges for a .map (ignored otherwise). "-" (standard
+/// input) and files of other names are read whole and told apart by their
+/// first token (looksLikeCm): a .cm's models, or a .map built without a
+/// .proc.
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
                                                bool noProc = false, const MeshCliOptions& mesh = {},
                                                bool robustEdges = false);

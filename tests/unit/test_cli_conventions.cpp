@@ -1,0 +1,111 @@
+// The CLI's conventions (docs: cmkit --help, cmkit query --help): exit codes,
+// unknown commands, standard input as "-", the format of a models file told
+// by its first token, singular and plural in counts.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test_support.h"
+
+namespace cmkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string cli() { return CMKIT_CLI_PATH; }
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+class CliConventions : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / "cmkit_cli_conventions";
+    fs::create_directories(dir_);
+    map_ = test::testDataDir() / "maps" / "features.map";
+    std::ofstream(dir_ / "good.txt") << "translation trm=box:-8,-8,0,8,8,16 start=0,0,64 end=0,0,-64\n";
+    std::ofstream(dir_ / "bad.txt") << "translation trm=box:-8,-8,0,8,8,16 start=0,0,64 end=0,0,-64\n"
+                                       "translation trm=box:1,1,1,0,0,0 start=0,0,0 end=1,1,1\n";
+  }
+  fs::path dir_, map_;
+};
+
+TEST_F(CliConventions, AnUnknownCommandIsNamedAndExitsWith2) {
+  int rc = -1;
+  const std::string out = test::runCapture(cli() + " bogus 2>&1", rc);
+  EXPECT_EQ(rc, 2);
+  EXPECT_NE(out.find("unknown command 'bogus'"), std::string::npos) << out;
+  EXPECT_NE(out.find("query"), std::string::npos) << out;  // the commands are listed
+  test::runCapture(cli() + " query --no-such-option 2>&1", rc);
+  EXPECT_EQ(rc, 2);
+  test::runCapture(cli() + " 2>&1", rc);
+  EXPECT_EQ(rc, 2);
+  test::runCapture(cli() + " --help", rc);
+  EXPECT_EQ(rc, 0);
+}
+
+TEST_F(CliConventions, QueryExits3WhenALineIsAnErrorAnd0Otherwise) {
+  int rc = -1;
+  std::string out = test::runCapture(cli() + " query " + q(map_) + " " + q(dir_ / "good.txt") + " 2>&1", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("1 query on 1 thread"), std::string::npos) << out;  // singular
+  out = test::runCapture(cli() + " query " + q(map_) + " " + q(dir_ / "bad.txt") + " 2>&1", rc);
+  EXPECT_EQ(rc, 3) << out;
+  EXPECT_NE(out.find("fraction="), std::string::npos) << out;  // every line is still written
+  EXPECT_NE(out.find("error=degenerate trm"), std::string::npos) << out;
+  EXPECT_NE(out.find("2 queries on 1 thread"), std::string::npos) << out;
+  EXPECT_NE(out.find("1 error line\n"), std::string::npos) << out;
+}
+
+TEST_F(CliConventions, StandardInputAndSniffedFormats) {
+  int rc = -1;
+  const std::string expected =
+      test::runCapture(cli() + " query " + q(map_) + " " + q(dir_ / "good.txt") + " 2>/dev/null", rc);
+  ASSERT_EQ(rc, 0);
+  ASSERT_NE(expected.find("fraction=0 "), std::string::npos) << expected;
+  // Queries from standard input.
+  EXPECT_EQ(test::runCapture(
+                "cat " + q(dir_ / "good.txt") + " | " + cli() + " query " + q(map_) + " - 2>/dev/null", rc),
+            expected);
+  EXPECT_EQ(rc, 0);
+  // A .map from standard input.
+  EXPECT_EQ(test::runCapture(
+                "cat " + q(map_) + " | " + cli() + " query - " + q(dir_ / "good.txt") + " 2>/dev/null", rc),
+            expected);
+  EXPECT_EQ(rc, 0);
+  // A .cm through a pipe: compile -o - writes it to standard output.
+  EXPECT_EQ(test::runCapture(cli() + " compile " + q(map_) + " -o - 2>/dev/null | " + cli() + " query - " +
+                                 q(dir_ / "good.txt") + " 2>/dev/null",
+                             rc),
+            expected);
+  EXPECT_EQ(rc, 0);
+  // Files of other names: a .cm named .dat and a .map named .txt.
+  test::runCapture(cli() + " compile " + q(map_) + " -o " + q(dir_ / "features.cm") + " 2>/dev/null", rc);
+  ASSERT_EQ(rc, 0);
+  fs::copy_file(dir_ / "features.cm", dir_ / "features.dat", fs::copy_options::overwrite_existing);
+  fs::copy_file(map_, dir_ / "features.txt", fs::copy_options::overwrite_existing);
+  for (const char* name : {"features.dat", "features.txt"}) {
+    EXPECT_EQ(test::runCapture(
+                  cli() + " query " + q(dir_ / name) + " " + q(dir_ / "good.txt") + " 2>/dev/null", rc),
+              expected)
+        << name;
+    EXPECT_EQ(rc, 0) << name;
+  }
+  // Not both from standard input.
+  const std::string both = test::runCapture("true | " + cli() + " query - - 2>&1", rc);
+  EXPECT_EQ(rc, 2);
+  EXPECT_NE(both.find("cannot both be standard input"), std::string::npos) << both;
+}
+
+TEST(CliLooksLikeCm, FirstTokenDecides) {
+  // (The rule of tools/cmkit/model_loading.h, seen through the CLI above;
+  // here its edge cases through a pipe.)
+  int rc = -1;
+  const std::string out =
+      test::runCapture("printf 'CMX' | " + std::string(CMKIT_CLI_PATH) + " query - /dev/null 2>&1", rc);
+  EXPECT_EQ(rc, 2) << out;  // "CMX" is no .cm header: read as a .map, which it is not either
+  EXPECT_NE(out.find("<stdin>"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace cmkit
