@@ -12,6 +12,8 @@
 // patterns says so where it does.
 #pragma once
 
+#include "cmkit/version.h"  // generated: the version numbers and CMKIT_DOUBLE
+
 namespace cmkit {
 
 #if defined(CMKIT_DOUBLE) && CMKIT_DOUBLE
@@ -29,9 +31,14 @@ using Real = float;
 /// True in a double-precision build (-DCMKIT_DOUBLE=ON).
 inline constexpr bool kDoublePrecision = sizeof(Real) == sizeof(double);
 
-/// Library version (semantic versioning).
-inline constexpr int kVersionMajor = 0;
-inline constexpr int kVersionMinor = 1;
-inline constexpr int kVersionPatch = 0;
+/// Library version (semantic versioning; project(VERSION) in CMakeLists.txt,
+/// through the generated cmkit/version.h).
+inline constexpr int kVersionMajor = CMKIT_VERSION_MAJOR;
+/// Minor version (0.x: the API may change between minor versions; CHANGELOG.md).
+inline constexpr int kVersionMinor = CMKIT_VERSION_MINOR;
+/// Patch version.
+inline constexpr int kVersionPatch = CMKIT_VERSION_PATCH;
+/// "MAJOR.MINOR.PATCH".
+inline constexpr const char* kVersionString = CMKIT_VERSION_STRING;
 
 }  // namespace cmkit
