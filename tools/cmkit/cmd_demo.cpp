@@ -15,6 +15,7 @@
 #include "cmkit/map.h"
 #include "cmkit/tools/picture.h"
 #include "commands.h"
+#include "data_paths.h"
 #include "progress_bar.h"
 
 namespace cmkit::cli {
@@ -37,11 +38,14 @@ struct DemoOptions {
   std::string output = "cmkit-demo.png";
 };
 
-/// The bundled map: beside the executable's source tree, the source tree it
-/// was built from, or the current directory. Empty when not found.
+/// The bundled map: in the installed tree (PREFIX/share/cmkit/maps/lt4),
+/// beside the executable's source tree, the source tree it was built from,
+/// or the current directory. Empty when not found.
 std::string findBundledMap() {
   std::vector<fs::path> candidates;
   std::error_code ec;
+  if (const fs::path share = installedDataDir(); !share.empty())
+    candidates.push_back(share / "maps" / "lt4" / "lt4.map");
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     // build/<preset>/bin/cmkit -> the source tree is three levels up.

@@ -22,6 +22,7 @@
 
 #include "cmkit/tools/export.h"
 #include "commands.h"
+#include "data_paths.h"
 #include "model_loading.h"
 #include "option_checks.h"
 #include "trace_loading.h"
@@ -103,6 +104,10 @@ int openStopSignals() {
 
 std::string defaultViewerDir() {
   if (const char* env = std::getenv("CMKIT_VIEWER_DIR")) return env;
+  // An installed tree: PREFIX/share/cmkit/viewer.
+  if (const fs::path share = installedDataDir();
+      !share.empty() && fs::exists(share / "viewer" / "index.html"))
+    return (share / "viewer").string();
 #ifdef CMKIT_VIEWER_DIST
   return CMKIT_VIEWER_DIST;
 #else

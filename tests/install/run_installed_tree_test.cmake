@@ -1,0 +1,38 @@
+# The installed tree stands alone: installs the build in CMKIT_BUILD_DIR into
+# WORK_DIR/prefix, moves that tree to WORK_DIR/moved (so no path of the build
+# or of the first prefix can be used), then, from another working directory,
+# runs the moved cmkit's demo (which must find the installed bundled map) and
+# info on the installed map, and checks the docs and licence are there.
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR}/elsewhere)
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${CMKIT_BUILD_DIR} --prefix ${WORK_DIR}/prefix
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cmake --install failed: ${rc}")
+endif()
+file(RENAME ${WORK_DIR}/prefix ${WORK_DIR}/moved)
+set(root ${WORK_DIR}/moved)
+foreach(f bin/cmkit share/cmkit/maps/lt4/lt4.map share/doc/cmkit/LICENSE share/doc/cmkit/README.md
+          share/doc/cmkit/docs/fidelity.md include/cmkit/version.h)
+  if(NOT EXISTS ${root}/${f})
+    message(FATAL_ERROR "the installed tree has no ${f}")
+  endif()
+endforeach()
+execute_process(COMMAND ${root}/bin/cmkit demo -o demo.png WORKING_DIRECTORY ${WORK_DIR}/elsewhere
+                OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the installed cmkit demo failed (${rc}):\n${out}\n${err}")
+endif()
+string(FIND "${out}" "compiling ${root}/share/cmkit/maps/lt4/lt4.map" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "the installed demo did not use the installed map:\n${out}")
+endif()
+if(NOT EXISTS ${WORK_DIR}/elsewhere/demo.png)
+  message(FATAL_ERROR "the installed demo wrote no picture")
+endif()
+execute_process(COMMAND ${root}/bin/cmkit info ${root}/share/cmkit/maps/lt4/lt4.map --quiet
+                WORKING_DIRECTORY ${WORK_DIR}/elsewhere OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the installed cmkit info failed (${rc}):\n${out}")
+endif()
+message(STATUS "installed tree OK:\n${out}")
