@@ -26,7 +26,7 @@ cd "$(dirname "$0")"
 PACKAGES=(build-essential cmake ninja-build ccache clang clang-format doxygen
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
           libbullet-dev libembree-dev libassimp-dev pkg-config
-          python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+          python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dask python3-distributed
           python3-matplotlib)
 
 deps() {

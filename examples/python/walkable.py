@@ -74,7 +74,17 @@ def floor_candidates(world, points, max_hits, threads, bar):
     return np.concatenate(found) if found else np.zeros((0, 4), np.float32)
 
 
-def walkable(world, spacing, min_normal_z, threads):
+class QuietBar(ProgressBar):
+    """The same steps without output (fleet.py's workers)."""
+
+    def show(self, fraction):
+        pass
+
+    def finish_step(self):
+        self.step += 1
+
+
+def walkable(world, spacing, min_normal_z, threads, progress=True):
     """The walkable floor height per grid cell (NaN: none), the grid's x and y, and counts."""
     player = cmkit.TraceModel.from_spec(PLAYER_SPEC)
     lo, hi = world.bounds
@@ -82,7 +92,7 @@ def walkable(world, spacing, min_normal_z, threads):
     ys = np.arange(lo[1] + spacing / 2, hi[1], spacing, dtype=np.float32)
     gx, gy = np.meshgrid(xs, ys, indexing="ij")
     tops = np.stack([gx.ravel(), gy.ravel(), np.full(gx.size, hi[2] + 16, np.float32)], axis=1)
-    bar = ProgressBar(5)
+    bar = ProgressBar(5) if progress else QuietBar(5)
 
     # 1. Floor candidates: the walkable-looking surfaces under every cell.
     floors = floor_candidates(world, tops, 32, threads, bar)
@@ -115,10 +125,11 @@ def walkable(world, spacing, min_normal_z, threads):
     bar.finish_step()
 
     height = np.full((len(xs), len(ys)), np.nan, dtype=np.float32)
-    ix = np.rint((spots[:, 0] - xs[0]) / spacing).astype(int)
-    iy = np.rint((spots[:, 1] - ys[0]) / spacing).astype(int)
-    order = np.argsort(spots[:, 2])  # the highest landing of a cell is written last
-    height[ix[order], iy[order]] = spots[order, 2]
+    if len(spots):  # (a map smaller than one grid cell has no cells and no spots)
+        ix = np.rint((spots[:, 0] - xs[0]) / spacing).astype(int)
+        iy = np.rint((spots[:, 1] - ys[0]) / spacing).astype(int)
+        order = np.argsort(spots[:, 2])  # the highest landing of a cell is written last
+        height[ix[order], iy[order]] = spots[order, 2]
     return height, xs, ys, len(starts), len(spots)
 
 
