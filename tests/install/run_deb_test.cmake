@@ -2,6 +2,7 @@
 # into WORK_DIR/root with dpkg-deb -x, checks its control fields, and builds
 # the find_package and pkg-config consumers (tests/consumer) against the
 # unpacked /usr, then runs the unpacked cmkit.
+include(${CMAKE_CURRENT_LIST_DIR}/../consumer/consumers.cmake)
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 execute_process(COMMAND cpack -G DEB -B ${WORK_DIR}/out --config ${CMKIT_BUILD_DIR}/CPackConfig.cmake
@@ -29,33 +30,8 @@ execute_process(COMMAND ${usr}/bin/cmkit info ${usr}/share/cmkit/maps/lt4/lt4.ma
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the packaged cmkit failed (${rc}):\n${out}")
 endif()
-# find_package against the unpacked package.
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/consumer
-                        -DCMAKE_PREFIX_PATH=${usr} -DCMAKE_BUILD_TYPE=Release RESULT_VARIABLE rc OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "configuring the consumer against the package failed: ${rc}")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/consumer RESULT_VARIABLE rc OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "building the consumer against the package failed: ${rc}")
-endif()
-execute_process(COMMAND ${WORK_DIR}/consumer/consumer RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the consumer built against the package failed: ${rc}")
-endif()
-# pkg-config against the unpacked package (cmkit.pc is relocatable).
+# find_package and pkg-config against the unpacked package (cmkit.pc is relocatable).
 file(GLOB_RECURSE pcs ${usr}/cmkit.pc)
 list(GET pcs 0 pc)
 get_filename_component(pcdir ${pc} DIRECTORY)
-execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pcdir} pkg-config --cflags --libs cmkit
-                OUTPUT_VARIABLE flags OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
-separate_arguments(flags UNIX_COMMAND "${flags}")
-execute_process(COMMAND ${CXX} -std=c++20 ${CONSUMER_SOURCE_DIR}/main.cpp ${flags} -o ${WORK_DIR}/consumer_pc
-                RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "building the pkg-config consumer against the package failed: ${rc}")
-endif()
-execute_process(COMMAND ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the pkg-config consumer against the package failed: ${rc}")
-endif()
+cmkit_build_consumers(${CONSUMER_SOURCE_DIR} ${usr} ${pcdir} ${WORK_DIR}/consumer ${CXX})

@@ -1,0 +1,28 @@
+# Shared by the consumer tests (run_consumer_test.cmake, tests/install/run_deb_test.cmake):
+# builds and runs the consumer program (tests/consumer) against an installed cmkit, once
+# through find_package (CMAKE_PREFIX_PATH = prefix) and once with the flags of
+# `pkg-config --cflags --libs cmkit` (PKG_CONFIG_PATH = pcdir).
+function(cmkit_run_checked what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif()
+endfunction()
+
+function(cmkit_build_consumers source prefix pcdir work cxx)
+  cmkit_run_checked("configuring the find_package consumer"
+    ${CMAKE_COMMAND} -S ${source} -B ${work}/build -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+  cmkit_run_checked("building the find_package consumer" ${CMAKE_COMMAND} --build ${work}/build)
+  cmkit_run_checked("the find_package consumer" ${work}/build/consumer)
+  find_program(PKG_CONFIG pkg-config REQUIRED)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pcdir} ${PKG_CONFIG} --cflags --libs cmkit
+                  OUTPUT_VARIABLE flags OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config --cflags --libs cmkit failed (${rc}) with PKG_CONFIG_PATH=${pcdir}")
+  endif()
+  message(STATUS "pkg-config --cflags --libs cmkit: ${flags}")
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  cmkit_run_checked("building the pkg-config consumer"
+    ${cxx} -std=c++20 ${source}/main.cpp ${flags} -o ${work}/consumer_pc)
+  cmkit_run_checked("the pkg-config consumer" ${work}/consumer_pc)
+endfunction()
