@@ -26,6 +26,8 @@ namespace fs = std::filesystem;
 
 /// The bundled map, relative to the source tree (or the current directory).
 constexpr const char* kBundledMap = "data/maps/lt4/lt4.map";
+/// Map units shown around the drawn moves in the picture.
+constexpr Real kDemoFrameMargin = 192;
 /// Traces drawn in the picture.
 constexpr int kDemoTraces = 12;
 /// Threads of the demo's second speed test run (when the machine has them).
@@ -137,17 +139,35 @@ int runDemo(const DemoOptions& o) {
   }
   PictureOptions picture;
   picture.view = CameraView::TopDown;  // the roof cut away: the rooms and the traces in them
+  // Framed on the moves (their starts and stops, kDemoFrameMargin around them) rather than
+  // the whole map, where they filled a corner; heights are the whole map's, so the camera
+  // is above everything.
+  Bounds focus;
+  for (const TraceRecord& r : traces) {
+    focus.addPoint(r.start);
+    focus.addPoint(r.result.endPos);
+  }
+  focus.min = focus.min - Vec3{kDemoFrameMargin, kDemoFrameMargin, 0};
+  focus.max = focus.max + Vec3{kDemoFrameMargin, kDemoFrameMargin, 0};
+  focus.min.z = world.bounds.min.z;
+  focus.max.z = world.bounds.max.z;
+  picture.camera = frameCamera(focus, CameraView::TopDown, Real(picture.width) / Real(picture.height));
   // The world model only: inline models are in their entities' local frames.
   const Image image = renderPicture(std::span(models->data(), 1), traces, picture);
   if (Status s = savePng(o.output, image); !s) {
     fmt::print(stderr, "cmkit demo: {}\n", s.error().toString());
     return kExitBadInput;
   }
-  fmt::print("wrote {} ({}x{}): the world's collision polygons seen from above, and {} box moves\n",
-             fs::absolute(o.output).lexically_normal().string(), image.width, image.height, kDemoTraces);
   fmt::print(
-      "from the centre of the map (yellow path, the box at its start and where it stopped, red\n"
-      "contact point, orange contact normal).\n\n");
+      "wrote {} ({}x{}): the world's collision polygons seen from above (the upper part\n"
+      "of the map cut away), framed on {} box moves from the centre of the map:\n",
+      fs::absolute(o.output).lexically_normal().string(), image.width, image.height, kDemoTraces);
+  fmt::print(
+      "  yellow line        the path the box moved, from the start to where it stopped\n"
+      "  dim olive line     the rest of the requested move, past the stop (not travelled)\n"
+      "  grey box outline   the box at its start; white box outline: where it stopped\n"
+      "  red cross          the contact point; orange line: the contact normal\n"
+      "  polygon colours    contents (solid grey-blue, clip, water, ...; docs/materials.md)\n\n");
   fmt::print(
       "What the numbers mean: each line is {} queries of one kind. 'total' is the time spent in\n"
       "the queries, min/avg/max the time of one query. Speed against the original or another\n"
