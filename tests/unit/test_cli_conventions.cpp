@@ -44,6 +44,19 @@ TEST_F(CliConventions, AnUnknownCommandIsNamedAndExitsWith2) {
   EXPECT_EQ(rc, 0);
 }
 
+TEST(CliExitCodes, EveryCommandsHelpSaysThem) {
+  for (const char* command :
+       {"trm", "compile", "info", "validate", "query", "render", "export", "view", "bench", "soak", "demo"}) {
+    int rc = -1;
+    const std::string out = test::runCapture(cli() + " " + command + " --help", rc);
+    EXPECT_EQ(rc, 0) << command;
+    EXPECT_NE(out.find("Exit codes"), std::string::npos) << command << ":\n" << out;
+  }
+  int rc = -1;
+  const std::string top = test::runCapture(cli() + " --help", rc);
+  EXPECT_NE(top.find("3 query only"), std::string::npos) << top;
+}
+
 TEST_F(CliConventions, QueryExits3WhenALineIsAnErrorAnd0Otherwise) {
   int rc = -1;
   std::string out = test::runCapture(cli() + " query " + q(map_) + " " + q(dir_ / "good.txt") + " 2>&1", rc);

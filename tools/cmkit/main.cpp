@@ -28,6 +28,21 @@ int main(int argc, char** argv) {
   cmkit::cli::registerBench(app);
   cmkit::cli::registerSoak(app);
   cmkit::cli::registerDemo(app);
+  // Exit codes: every command's --help ends with the ones it uses.
+  app.footer(
+      "Exit codes (every command): 0 success; 1 the work ran but a check failed (validate: violations;\n"
+      "soak: a must-hold check; demo, bench: threaded results differ from the single-thread ones);\n"
+      "2 bad input or arguments (an unreadable or malformed file with file:line, an unknown option);\n"
+      "3 query only: every result line written, but some are error=REASON.");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    if (sub->get_description().find("Exit codes") != std::string::npos) continue;
+    const std::string name = sub->get_name();
+    sub->footer(
+        name == "demo" || name == "bench"
+            ? "Exit codes: 0 success, 1 the threaded run's results differ from the single-thread run's,\n"
+              "2 bad input or arguments."
+            : "Exit codes: 0 success, 2 bad input or arguments (file:line: message).");
+  }
   // An unknown command is named as such (CLI11 alone would say that a
   // subcommand is required).
   bool known = argc < 2 || argv[1][0] == '-';
