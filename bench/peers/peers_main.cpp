@@ -89,6 +89,26 @@ void agreement(Comparison& c, const std::vector<char>& a, const std::vector<char
     (a[i] && b[i]) ? ++c.bothHit : (!a[i] && !b[i]) ? ++c.bothMiss : ++c.differ;
 }
 
+#ifdef CMKIT_HAVE_EMBREE
+/// One rtcIntersect1 from `from` to `to` (t in [0, 1] spans the move): whether it hits.
+bool embreeHits(RTCScene scene, RTCIntersectContext& context, const cmkit::Vec3& from,
+                const cmkit::Vec3& to) {
+  RTCRayHit rh{};
+  rh.ray.org_x = from.x;
+  rh.ray.org_y = from.y;
+  rh.ray.org_z = from.z;
+  rh.ray.dir_x = to.x - from.x;
+  rh.ray.dir_y = to.y - from.y;
+  rh.ray.dir_z = to.z - from.z;
+  rh.ray.tnear = 0;
+  rh.ray.tfar = 1;
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &context, &rh);
+  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+#endif
+
 /// The fastest of `passes` runs of run(), in ns per query of a batch of n.
 double fastestBatch(std::size_t n, int passes, const std::function<void()>& run) {
   double best = 0;
@@ -317,21 +337,8 @@ int main(int argc, char** argv) {
   embreeCmp.cmkitNs = pointCmp.cmkitNs;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  embreeCmp.peerNs = fastestPass(n, passes, [&](std::size_t i) {
-    RTCRayHit rh{};
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.dir_x = ends[i].x - origin.x;  // t in [0, 1] spans the move
-    rh.ray.dir_y = ends[i].y - origin.y;
-    rh.ray.dir_z = ends[i].z - origin.z;
-    rh.ray.tnear = 0;
-    rh.ray.tfar = 1;
-    rh.ray.mask = ~0u;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rh);
-    peerPoint[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  });
+  embreeCmp.peerNs = fastestPass(
+      n, passes, [&](std::size_t i) { peerPoint[i] = embreeHits(scene, context, origin, ends[i]); });
   agreement(embreeCmp, cmkitPoint, peerPoint);
   print(embreeCmp, times);
   Comparison embreeRayCmp{"ray cast (point)", "embree"};
@@ -341,20 +348,7 @@ int main(int argc, char** argv) {
   print(embreeRayCmp, times);
   batchThroughput(
       world, rayIndex, *boxTrm, origin, ends, passes,
-      [&](const cmkit::Vec3& from, const cmkit::Vec3& to) {
-        RTCRayHit rh{};
-        rh.ray.org_x = from.x;
-        rh.ray.org_y = from.y;
-        rh.ray.org_z = from.z;
-        rh.ray.dir_x = to.x - from.x;
-        rh.ray.dir_y = to.y - from.y;
-        rh.ray.dir_z = to.z - from.z;
-        rh.ray.tnear = 0;
-        rh.ray.tfar = 1;
-        rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &context, &rh);
-      },
+      [&](const cmkit::Vec3& from, const cmkit::Vec3& to) { (void)embreeHits(scene, context, from, to); },
       "embree");
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);

@@ -16,14 +16,12 @@
 
 namespace cmkit {
 
-#if defined(CMKIT_DOUBLE) && CMKIT_DOUBLE
-/// 1 in a double-precision build, 0 otherwise (for #if in code written for
-/// float lanes, such as SSE paths).
-#define CMKIT_REAL_IS_DOUBLE 1
+// CMKIT_DOUBLE (cmkit/version.h) is 1 in a double-precision build, 0
+// otherwise; code written for float lanes (SSE paths) tests it with #if.
+#if CMKIT_DOUBLE
 /// The scalar type of all geometry (this build: double, -DCMKIT_DOUBLE=ON).
 using Real = double;
 #else
-#define CMKIT_REAL_IS_DOUBLE 0
 /// The scalar type of all geometry (this build: float, as the original).
 using Real = float;
 #endif

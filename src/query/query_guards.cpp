@@ -63,7 +63,7 @@ bool hasShape(const TraceModel* trm) { return trm && !trm->isPoint(); }
 QueryStatus checkTrmSize(const TraceModel* trm) {
   if (!hasShape(trm)) return QueryStatus::Ok;
   const Bounds& b = trm->bounds();
-  if (checkPoint(b.min) != QueryStatus::Ok) return checkPoint(b.min);
+  if (const QueryStatus s = checkPoint(b.min); s != QueryStatus::Ok) return s;
   return checkPoint(b.max);
 }
 

@@ -19,7 +19,7 @@
 // target, or -DCMKIT_NO_SIMD, uses the portable loop, which does the same
 // arithmetic. The lanes are float: a double build (CMKIT_DOUBLE) uses the
 // portable loop.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_REAL_IS_DOUBLE
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
 #include <emmintrin.h>
 #define CMKIT_ROTATE_SSE2 1
 #endif

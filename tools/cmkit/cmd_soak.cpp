@@ -65,16 +65,14 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
 Result<std::vector<ModelPtr>> loadMovedMap(const SoakOptions& o, const Vec3& offset) {
   if (o.map.size() < 4 || o.map.compare(o.map.size() - 4, 4, ".map") != 0)
     return Error{"--offset needs a .map file (its geometry is moved before it is built)", o.map};
-  MaterialTable materials;
-  if (!o.materials.empty()) {
-    if (Status s = materials.addMtrDirectory(o.materials); !s) return s.error();
-  }
+  Result<MaterialTable> materials = materialsForCli(o.materials);
+  if (!materials) return materials.error();
   auto map = loadMapFile(o.map);
   if (!map) return map.error();
   moveWorldGeometry(*map, offset);
   BuildOptions options;
   options.robustEdges = o.robustEdges;
-  return buildCollisionModels(*map, materials, options);
+  return buildCollisionModels(*map, *materials, options);
 }
 
 int runSoak(const SoakOptions& o) {

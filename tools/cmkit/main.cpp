@@ -34,22 +34,20 @@ int main(int argc, char** argv) {
       "soak: a must-hold check; demo, bench: threaded results differ from the single-thread ones);\n"
       "2 bad input or arguments (an unreadable or malformed file with file:line, an unknown option);\n"
       "3 query only: every result line written, but some are error=REASON.");
+  // An unknown command is named as such (CLI11 alone would say that a
+  // subcommand is required): `known` and `names` are gathered in the same loop.
+  bool known = argc < 2 || argv[1][0] == '-';
+  std::string names;
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-    if (sub->get_description().find("Exit codes") != std::string::npos) continue;
     const std::string name = sub->get_name();
+    names += (names.empty() ? "" : ", ") + name;
+    known = known || name == argv[1];
+    if (sub->get_description().find("Exit codes") != std::string::npos) continue;
     sub->footer(
         name == "demo" || name == "bench"
             ? "Exit codes: 0 success, 1 the threaded run's results differ from the single-thread run's,\n"
               "2 bad input or arguments."
             : "Exit codes: 0 success, 2 bad input or arguments (file:line: message).");
-  }
-  // An unknown command is named as such (CLI11 alone would say that a
-  // subcommand is required).
-  bool known = argc < 2 || argv[1][0] == '-';
-  std::string names;
-  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-    names += (names.empty() ? "" : ", ") + sub->get_name();
-    known = known || sub->get_name() == argv[1];
   }
   if (!known) {
     fmt::print(stderr,

@@ -113,14 +113,13 @@ int runMeshBuild(const MapBuildRequest& request, const MaterialTable& materials)
 
 int runMapBuild(const MapBuildRequest& request) {
   const std::string& cmd = request.command;
-  MaterialTable materials;
-  if (!request.materialsDir.empty()) {
-    if (const Status st = materials.addMtrDirectory(request.materialsDir); !st) {
-      fmt::print(stderr, "cmkit {}: {}\n", cmd, st.error().toString());
-      return kExitBadInput;
-    }
-    for (const std::string& w : materials.warnings()) fmt::print(stderr, "warning: {}\n", w);
+  Result<MaterialTable> table = materialsForCli(request.materialsDir);
+  if (!table) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, table.error().toString());
+    return kExitBadInput;
   }
+  const MaterialTable& materials = *table;
+  for (const std::string& w : materials.warnings()) fmt::print(stderr, "warning: {}\n", w);
   if (isMeshFileName(request.mapPath)) return runMeshBuild(request, materials);
 
   const auto start = std::chrono::steady_clock::now();

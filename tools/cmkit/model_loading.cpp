@@ -138,12 +138,19 @@ Result<std::vector<ModelPtr>> modelsFromText(const std::string& text, const std:
 
 }  // namespace
 
-Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
-                                               bool noProc, const MeshCliOptions& mesh, bool robustEdges) {
+Result<MaterialTable> materialsForCli(const std::string& materialsDir) {
   MaterialTable materials;
   if (!materialsDir.empty()) {
     if (Status s = materials.addMtrDirectory(materialsDir); !s) return s.error();
   }
+  return materials;
+}
+
+Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
+                                               bool noProc, const MeshCliOptions& mesh, bool robustEdges) {
+  Result<MaterialTable> table = materialsForCli(materialsDir);
+  if (!table) return table.error();
+  const MaterialTable& materials = *table;
   auto endsWith = [&](const char* ext) {
     const std::string e(ext);
     return path.size() >= e.size() && path.compare(path.size() - e.size(), e.size(), e) == 0;

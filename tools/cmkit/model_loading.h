@@ -34,6 +34,10 @@ void addMeshOptions(CLI::App* cmd, MeshCliOptions& options);
 Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& materials,
                                 const MeshCliOptions& options, std::vector<std::string>* warnings);
 
+/// The built-in material rules, plus the .mtr files under `materialsDir`
+/// when it is not empty (--materials).
+Result<MaterialTable> materialsForCli(const std::string& materialsDir);
+
 /// The path that means standard input.
 inline constexpr const char* kStdinPath = "-";
 
