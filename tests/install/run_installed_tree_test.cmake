@@ -10,6 +10,14 @@ execute_process(COMMAND ${CMAKE_COMMAND} --install ${CMKIT_BUILD_DIR} --prefix $
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cmake --install failed: ${rc}")
 endif()
+# Nothing may land outside the prefix (an absolute DESTINATION would).
+file(STRINGS ${CMKIT_BUILD_DIR}/install_manifest.txt installed)
+foreach(f IN LISTS installed)
+  string(FIND "${f}" "${WORK_DIR}/prefix/" at)
+  if(NOT at EQUAL 0)
+    message(FATAL_ERROR "cmake --install --prefix put ${f} outside the prefix")
+  endif()
+endforeach()
 file(RENAME ${WORK_DIR}/prefix ${WORK_DIR}/moved)
 set(root ${WORK_DIR}/moved)
 foreach(f bin/cmkit share/cmkit/maps/lt4/lt4.map share/doc/cmkit/LICENSE share/doc/cmkit/README.md
