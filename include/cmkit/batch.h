@@ -16,7 +16,9 @@
 //   most one per chunk); each owns a QueryWork. The calling thread is one of
 //   them. The queries are cut into chunks of a size that depends only on N
 //   (or BatchOptions::chunkSize); workers take the next chunk from a shared
-//   counter.
+//   counter. Ray batches take larger chunks and cast each with
+//   RayIndex::castMany, which reorders a chunk's rays into packets of
+//   neighbouring rays: the answers are still those of single casts.
 // - Progress and cancelling: BatchOptions::progress, when set, is called on
 //   the CALLING thread only, with the number of queries answered so far and
 //   N: after each chunk the calling thread answers, while it waits for the

@@ -28,13 +28,16 @@
 //   cast() hits, translate() stops too, no later (tests check this on lt4).
 // - Non-finite input or start == end: no hit.
 // - The node test runs 8 children at a time with AVX2 where the processor has
-//   it (chosen when the index is built), else as two halves with SSE2 (or
-//   one child at a time off x86). Both give exactly the same answers.
+//   AVX2 and FMA (chosen when the index is built), else as two halves with
+//   SSE2 (or one child at a time off x86). Both give exactly the same answers.
+// - castMany() casts many rays at once, the same answers as cast() on each:
+//   with AVX2 it walks packets of eight neighbouring rays together.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include "cmkit/contents.h"
 #include "cmkit/math.h"
@@ -80,8 +83,8 @@ struct RayIndexData;
 /// (immutable) index.
 class RayIndex {
  public:
-  /// Which node test cast() uses. Auto: AVX2 if the processor (and the
-  /// build) has it, else the baseline. Baseline: SSE2 on x86-64, plain C++
+  /// Which node test cast() uses. Auto: AVX2 if the processor (AVX2 and
+  /// FMA) and the build have it, else the baseline. Baseline: SSE2 on x86-64, plain C++
   /// elsewhere; for tests and comparisons, the answers are the same.
   enum class NodeTest { Auto, Baseline };
 
@@ -101,6 +104,18 @@ class RayIndex {
   /// The first front face the segment query.start -> query.end crosses
   /// (model placed in the world by query.placement).
   RayHit cast(const RayCastQuery& query) const;
+
+  /// Many casts at once: out[i] = cast({starts[i], ends[i], contentMask,
+  /// placement}) bit for bit (a span of one start or end is used for every
+  /// ray). Faster per ray than a loop of cast() for many rays: they are sorted
+  /// by where they start and which way they point, and with the AVX2 node
+  /// test walked eight at a time (one packet of neighbouring rays shares the
+  /// node visits). Spans of other lengths (not 1 and not out.size()) leave
+  /// `out` untouched; castRayBatch (cmkit/batch.h) checks them and spreads a
+  /// batch over threads. Scratch is on the stack and the heap of the caller's
+  /// thread: safe from any number of threads at once.
+  void castMany(std::span<const Vec3> starts, std::span<const Vec3> ends, std::uint32_t contentMask,
+                const Placement& placement, std::span<RayHit> out) const;
 
   /// Whether cast() tests nodes with AVX2.
   bool usesAvx2() const;

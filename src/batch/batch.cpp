@@ -22,6 +22,9 @@ namespace {
 constexpr std::size_t kChunksPerBatch = 256;
 constexpr std::size_t kMinChunk = 16;
 constexpr std::size_t kMaxChunk = 4096;
+// Ray batches: fewer, larger chunks (see castRayBatch).
+constexpr std::size_t kRayChunksPerBatch = 16;
+constexpr std::size_t kMaxRayChunk = 12288;
 // How often the calling thread looks at the helpers' progress when no
 // notification came (one can be missed between its check and its wait).
 constexpr int kProgressPollMs = 20;
@@ -261,15 +264,17 @@ Status castRayBatch(const RayIndex& index, const RayBatch& batch, std::span<RayH
                     const BatchOptions& options) {
   const auto n = pairedSize(batch.starts.size(), batch.ends.size(), "starts and ends", out.size());
   if (!n) return n.error();
-  return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork&) {
-    RayCastQuery q;
-    q.contentMask = batch.contentMask;
-    q.placement = batch.placement;
-    for (std::size_t i = begin; i < end; ++i) {
-      q.start = pick(batch.starts, i);
-      q.end = pick(batch.ends, i);
-      out[i] = index.cast(q);
-    }
+  // Larger chunks than the other batches': RayIndex::castMany sorts each
+  // chunk's rays into packets, and more rays give more coherent packets.
+  BatchOptions rayOptions = options;
+  if (rayOptions.chunkSize == 0)
+    rayOptions.chunkSize = std::clamp<std::size_t>(*n / kRayChunksPerBatch, kMinChunk, kMaxRayChunk);
+  return runChunks(*n, rayOptions, [&](std::size_t begin, std::size_t end, QueryWork&) {
+    const auto part = [&](std::span<const Vec3> v) {
+      return v.size() == 1 ? v : v.subspan(begin, end - begin);
+    };
+    index.castMany(part(batch.starts), part(batch.ends), batch.contentMask, batch.placement,
+                   out.subspan(begin, end - begin));
   });
 }
 

@@ -257,10 +257,10 @@ int enteredChildren(const Node& n, const detail::Ray& r, float best, float* entr
 #endif
 }
 
-/// Whether this processor runs the AVX2 kernel (and this build has it).
+/// Whether this processor runs the AVX2 kernel (AVX2 and FMA; and this build has it).
 bool avx2Available() {
 #if defined(CMKIT_AVX2_KERNEL) && !defined(CMKIT_NO_SIMD)
-  return __builtin_cpu_supports("avx2");
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 #else
   return false;
 #endif
@@ -395,25 +395,29 @@ namespace detail {
 Crossing castBaseline(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildren); }
 }  // namespace detail
 
-RayHit RayIndex::cast(const RayCastQuery& query) const {
-  const Vec3& worldStart = query.start;
-  const Vec3& worldEnd = query.end;
-  const Placement& placement = query.placement;
-  RayHit result;
-  if (!data_ || data_->nodes.empty() || !worldStart.isFinite() || !worldEnd.isFinite() ||
-      worldStart == worldEnd)
-    return result;
-  const detail::RayIndexData& d = *data_;
-  const bool rotated = !placement.axis.isIdentity();
-  Vec3 start = worldStart - placement.origin, end = worldEnd - placement.origin;
+namespace {
+
+/// The segment worldStart -> worldEnd in the model's space; false when it
+/// cannot hit (non-finite, or no length).
+bool modelSegment(const Vec3& worldStart, const Vec3& worldEnd, const Placement& placement, bool rotated,
+                  Vec3& start, Vec3& end) {
+  if (!worldStart.isFinite() || !worldEnd.isFinite() || worldStart == worldEnd) return false;
+  start = worldStart - placement.origin;
+  end = worldEnd - placement.origin;
   if (rotated) {
     start = placement.axis * start;
     end = placement.axis * end;
   }
-  const Vec3 dir = end - start;
-  if (!dir.isFinite()) return result;
+  return (end - start).isFinite();
+}
 
-  detail::Ray ray;
+/// The model-space ray of the world segment worldStart -> worldEnd with its
+/// per-ray constants; false when it cannot hit.
+bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask, const Placement& placement,
+                bool rotated, detail::Ray& ray, bool rows = true) {
+  Vec3 start, end;
+  if (!modelSegment(worldStart, worldEnd, placement, rotated, start, end)) return false;
+  const Vec3 dir = end - start;
   const Pluecker line = Pluecker::fromRay(start, dir);
   for (int c = 0; c < 6; ++c) ray.line[c] = line[c];
   for (int k = 0; k < 3; ++k) {
@@ -422,16 +426,21 @@ RayHit RayIndex::cast(const RayCastQuery& query) const {
     ray.dir[k] = dir[k];
     ray.inv[k] =
         std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
+    if (!rows) continue;  // the packet walk does not read them
     const bool negative = dir[k] < 0;
     ray.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
                               : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
     ray.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
                              : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
   }
-  ray.mask = query.contentMask;
-  const detail::Arrays arrays{d.nodes.data(), d.leaves.data(), d.polygons.data(), d.edges.data(),
-                              d.details.data()};
-  const detail::Crossing found = d.avx2 ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
+  ray.mask = mask;
+  return true;
+}
+
+/// The hit of a crossing the walk found (in world space).
+RayHit hitOf(const detail::RayIndexData& d, const detail::Crossing& found, const Vec3& worldStart,
+             const Vec3& worldEnd, const Placement& placement, bool rotated) {
+  RayHit result;
   if (found.slot < 0) return result;
   const detail::RayLayout::Polygon& best = d.polygons[std::size_t(found.slot)];
   result.fraction = found.t;
@@ -442,6 +451,163 @@ RayHit RayIndex::cast(const RayCastQuery& query) const {
   result.normal = rotated ? best.normal * placement.axis : best.normal;
   result.dist = best.dist + placement.origin.dot(result.normal);
   return result;
+}
+
+detail::Arrays arraysOf(const detail::RayIndexData& d) {
+  return {d.nodes.data(), d.leaves.data(), d.polygons.data(), d.edges.data(), d.details.data()};
+}
+
+/// Spreads the bits of a 10-bit value to every third bit (a Morton code's axis).
+std::uint32_t spread3(std::uint32_t v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+/// Spreads the bits of a 16-bit value to every second bit.
+std::uint32_t spread2(std::uint32_t v) {
+  v &= 0xffffu;
+  v = (v | (v << 8)) & 0x00ff00ffu;
+  v = (v | (v << 4)) & 0x0f0f0f0fu;
+  v = (v | (v << 2)) & 0x33333333u;
+  v = (v | (v << 1)) & 0x55555555u;
+  return v;
+}
+
+/// Bits of the start cell and of the direction in castMany's sort key.
+constexpr int kStartBitsPerAxis = 4;
+constexpr int kDirectionBitsPerAxis = 8;
+
+/// castMany's sort key: rays with close keys start in the same cell of the
+/// batch's start bounds (a 16^3 grid, Morton order) and point the same way
+/// (the cube face of the direction, then a Morton order on the face), so
+/// that the rays of a packet mostly visit the same nodes.
+std::uint32_t coherenceKey(const Vec3& start, const Vec3& dir, const Vec3& startMin, const Vec3& startScale) {
+  std::uint32_t cell = 0;
+  if (startScale != Vec3{}) {  // (all rays start at one point: one cell)
+    for (int k = 0; k < 3; ++k) {
+      const Real q = (start[k] - startMin[k]) * startScale[k];
+      const auto c = std::uint32_t(std::clamp<Real>(q, 0, (1 << kStartBitsPerAxis) - 1));
+      cell |= spread3(c) << k;
+    }
+  }
+  int major = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(dir[k]) > std::fabs(dir[major])) major = k;
+  const Real m = std::fabs(dir[major]);
+  if (!(m > 0)) return cell << (3 + 2 * kDirectionBitsPerAxis);  // no direction (a zero-length ray)
+  const int a = (major + 1) % 3, b = (major + 2) % 3;
+  constexpr Real kHalfCells = Real(1 << (kDirectionBitsPerAxis - 1));
+  const auto cellOf = [&](Real x) {  // x / m in [-1, 1]
+    return std::uint32_t(std::clamp<Real>((x / m + 1) * kHalfCells, 0, 2 * kHalfCells - 1));
+  };
+  const std::uint32_t face = std::uint32_t(major) * 2 + std::uint32_t(dir[major] < 0);
+  const std::uint32_t onFace = spread2(cellOf(dir[a])) | (spread2(cellOf(dir[b])) << 1);
+  return (cell << (3 + 2 * kDirectionBitsPerAxis)) | (face << (2 * kDirectionBitsPerAxis)) | onFace;
+}
+
+/// Sorts castMany's entries (key in the high half, ray index in the low
+/// half) by key, rays of equal keys in index order: a least-significant-digit
+/// radix sort, three passes of 11 bits (a comparison sort cost more than
+/// walking a packet's nodes).
+void sortByKey(std::vector<std::uint64_t>& entries) {
+  constexpr int kDigitBits = 11;
+  constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
+  std::vector<std::uint64_t> other(entries.size());
+  for (int pass = 0; pass < 3; ++pass) {
+    const int shift = 32 + pass * kDigitBits;
+    std::size_t count[kBuckets] = {};
+    for (const std::uint64_t e : entries) ++count[(e >> shift) & (kBuckets - 1)];
+    std::size_t sum = 0;
+    for (std::size_t& c : count) sum += std::exchange(c, sum);
+    for (const std::uint64_t e : entries) other[count[(e >> shift) & (kBuckets - 1)]++] = e;
+    entries.swap(other);
+  }
+}
+
+/// Rays per castMany block: their indices fit the low half of a sort entry.
+constexpr std::size_t kMaxBlock = std::size_t(1) << 30;
+
+}  // namespace
+
+RayHit RayIndex::cast(const RayCastQuery& query) const {
+  if (!data_ || data_->nodes.empty()) return {};
+  const detail::RayIndexData& d = *data_;
+  const bool rotated = !query.placement.axis.isIdentity();
+  detail::Ray ray;
+  if (!prepareRay(query.start, query.end, query.contentMask, query.placement, rotated, ray)) return {};
+  const detail::Arrays arrays = arraysOf(d);
+  const detail::Crossing found = d.avx2 ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
+  return hitOf(d, found, query.start, query.end, query.placement, rotated);
+}
+
+void RayIndex::castMany(std::span<const Vec3> starts, std::span<const Vec3> ends, std::uint32_t contentMask,
+                        const Placement& placement, std::span<RayHit> out) const {
+  const std::size_t n = out.size();
+  const auto fits = [n](std::size_t size) { return size == 1 || size == n; };
+  if (n == 0 || !fits(starts.size()) || !fits(ends.size())) return;
+  if (n > kMaxBlock) {
+    for (std::size_t first = 0; first < n; first += kMaxBlock) {
+      const std::size_t count = std::min(kMaxBlock, n - first);
+      const auto part = [&](std::span<const Vec3> v) { return v.size() == 1 ? v : v.subspan(first, count); };
+      castMany(part(starts), part(ends), contentMask, placement, out.subspan(first, count));
+    }
+    return;
+  }
+  // Every answer "no hit" first, in order: the hits below are written in
+  // the sorted order, scattered over `out`, and finding its lines in the
+  // cache made a batch of 200 000 rays ~10 % faster.
+  std::fill(out.begin(), out.end(), RayHit{});
+  if (!data_ || data_->nodes.empty()) return;
+  const detail::RayIndexData& d = *data_;
+  const bool rotated = !placement.axis.isIdentity();
+  const auto pick = [](std::span<const Vec3> v, std::size_t i) -> const Vec3& {
+    return v[v.size() == 1 ? 0 : i];
+  };
+
+  // The rays that may hit, sorted by coherenceKey (index in the low half).
+  // The key is taken in world space: coherence does not depend on the frame.
+  std::vector<std::uint64_t> order;
+  order.reserve(n);
+  Bounds startBounds;
+  startBounds.clear();
+  for (const Vec3& p : starts) startBounds.addPoint(p);
+  Vec3 startScale;
+  for (int k = 0; k < 3; ++k) {
+    const Real size = startBounds.max[k] - startBounds.min[k];
+    startScale[k] = size > 0 && std::isfinite(size) ? Real(1 << kStartBitsPerAxis) / size : Real(0);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& start = pick(starts, i);
+    const Vec3 dir = pick(ends, i) - start;
+    if (!start.isFinite() || !dir.isFinite()) continue;  // no hit (as prepareRay says)
+    order.push_back(std::uint64_t(coherenceKey(start, dir, startBounds.min, startScale)) << 32 | i);
+  }
+  sortByKey(order);
+
+  // Packets of consecutive rays of that order (one at a time without AVX2).
+  const detail::Arrays arrays = arraysOf(d);
+  const unsigned packetSize = d.avx2 ? detail::kPacket : 1;
+  detail::Ray packet[detail::kPacket];
+  detail::Crossing found[detail::kPacket];
+  for (std::size_t first = 0; first < order.size();) {
+    std::size_t index[detail::kPacket];
+    unsigned count = 0;
+    for (; first < order.size() && count < packetSize; ++first) {  // skips the rays that cannot hit
+      const auto i = std::size_t(order[first] & 0xffffffffu);
+      if (prepareRay(pick(starts, i), pick(ends, i), contentMask, placement, rotated, packet[count], !d.avx2))
+        index[count++] = i;
+    }
+    if (count == 0) break;
+    if (d.avx2)
+      detail::castPacketAvx2(arrays, packet, count, found);
+    else
+      found[0] = detail::castBaseline(arrays, packet[0]);
+    for (unsigned k = 0; k < count; ++k)
+      out[index[k]] = hitOf(d, found[k], pick(starts, index[k]), pick(ends, index[k]), placement, rotated);
+  }
 }
 
 }  // namespace cmkit

@@ -1,8 +1,11 @@
-// The AVX2 node test of RayIndex: all eight children of a node in one pass.
-// This file is compiled with -mavx2 (src/CMakeLists.txt) and only called
-// when the processor has AVX2 (RayIndex picks it when built); everything it
-// runs is in ray_index_kernel.h, which explains the rules this file keeps:
-// no inline functions of other headers, only intrinsics and builtins.
+// The AVX2 node test of RayIndex: all eight children of a node in one pass
+// (castAvx2), and the packet walk of RayIndex::castMany: eight rays against
+// one child in one pass (castPacketAvx2). This file is compiled with -mavx2
+// -mfma (src/CMakeLists.txt) and only called when the processor has both
+// (RayIndex picks it when built); everything it runs is here or in
+// ray_index_kernel.h, which explains the rules this file keeps: no inline
+// functions of other headers, only intrinsics, builtins and its own
+// internal-linkage code.
 #include "ray/ray_index_kernel.h"
 
 #if defined(CMKIT_AVX2_KERNEL) && !defined(CMKIT_NO_SIMD)
@@ -38,12 +41,206 @@ int enteredChildrenAvx2(const RayLayout::Node& n, const Ray& r, float best, floa
       _mm256_andnot_ps(_mm256_castsi256_ps(noContents), _mm256_cmp_ps(tNear, tFar, _CMP_LE_OQ)));
 }
 
+/// A child waiting on a packet's stack: the rays (lane bits) that enter
+/// it and where each enters (+infinity in the other lanes).
+struct PacketPending {
+  __m256 t;
+  std::uint32_t ref;
+  std::uint32_t lanes;
+};
+
+/// The packet's rays for the slab test of a child box: where a ray meets
+/// the plane x = row is row * inv - start * inv (one fused multiply-add per
+/// plane), the near face the smaller of the two slab distances. This
+/// rounds differently from enteredChildrenAvx2's (row - start) * inv, so a
+/// packet may enter a box a single cast skips or the reverse, only within
+/// the rounding of the slab test, which the node boxes' padding covers
+/// (tol::kRayNodePadding): every box still contains every crossing its
+/// polygons accept, so each ray's answer is the same.
+struct PacketRays {
+  __m256 startTimesInv[3];
+  __m256 inv[3];
+};
+
+/// The plane part of testPolygon for the eight rays of a packet at once:
+/// which rays may cross the polygon before their best crossing (front face,
+/// start not behind, end not in front, crossing not beyond the best) and
+/// where (t), by the same float operations in the same order as
+/// testPolygon, so the rays it passes go on to acceptCrossing with the t
+/// testPolygon would compute. A double build (Real is double) does not
+/// filter: every ray goes to testPolygon.
+class PacketPlanes {
+ public:
+  /// Whether Real is float, so that the lanes compute what testPolygon does.
+  static constexpr bool kFloatLanes = sizeof(Real) == sizeof(float);
+
+  PacketPlanes(const Ray* rays, unsigned count) {
+    if constexpr (kFloatLanes) {
+      for (int a = 0; a < 3; ++a) {
+        alignas(32) float s[kPacket], e[kPacket], d[kPacket];
+        for (unsigned k = 0; k < kPacket; ++k) {
+          const Ray& r = rays[k < count ? k : 0];
+          s[k] = float(r.start[a]);
+          e[k] = float(r.end[a]);
+          d[k] = float(r.dir[a]);
+        }
+        start_[a] = _mm256_load_ps(s);
+        end_[a] = _mm256_load_ps(e);
+        dir_[a] = _mm256_load_ps(d);
+      }
+    }
+  }
+  std::uint32_t candidates(const RayLayout::Polygon& p, const float* bestT, float* tOut) const {
+    if constexpr (!kFloatLanes) {
+      return 0xffu;
+    } else {
+      const __m256 nx = _mm256_set1_ps(float(p.normal.x)), ny = _mm256_set1_ps(float(p.normal.y));
+      const __m256 nz = _mm256_set1_ps(float(p.normal.z)), dist = _mm256_set1_ps(float(p.dist));
+      const auto dot = [&](const __m256* v) {
+        return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, v[0]), _mm256_mul_ps(ny, v[1])),
+                             _mm256_mul_ps(nz, v[2]));
+      };
+      const __m256 zero = _mm256_setzero_ps();
+      const __m256 front = _mm256_cmp_ps(dot(dir_), zero, _CMP_LT_OQ);
+      const __m256 d1 = _mm256_sub_ps(dot(start_), dist);
+      const __m256 d2 = _mm256_sub_ps(dot(end_), dist);
+      const __m256 denom = _mm256_sub_ps(d1, d2);
+      const __m256 t = _mm256_div_ps(d1, denom);
+      _mm256_store_ps(tOut, t);
+      __m256 ok = _mm256_and_ps(front, _mm256_cmp_ps(d1, zero, _CMP_NLT_UQ));        // !(d1 < 0)
+      ok = _mm256_and_ps(ok, _mm256_cmp_ps(d2, zero, _CMP_NGT_UQ));                  // !(d2 > 0)
+      ok = _mm256_and_ps(ok, _mm256_cmp_ps(denom, zero, _CMP_GT_OQ));                // denom > 0
+      ok = _mm256_and_ps(ok, _mm256_cmp_ps(t, _mm256_load_ps(bestT), _CMP_NGT_UQ));  // !(t > best)
+      return std::uint32_t(_mm256_movemask_ps(ok));
+    }
+  }
+
+ private:
+  __m256 start_[3], end_[3], dir_[3];
+};
+
 }  // namespace
 
 Crossing castAvx2(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildrenAvx2); }
 
+void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossing* out) {
+  constexpr int kWidth = RayLayout::kWidth;
+  const std::uint32_t allLanes = (1u << count) - 1;
+  const std::uint32_t mask = rays[0].mask;
+  const PacketPlanes planes(rays, count);
+  PacketRays pr;
+  for (int a = 0; a < 3; ++a) {
+    alignas(32) float s[kPacket], v[kPacket];
+    for (unsigned k = 0; k < kPacket; ++k) {  // lanes past count copy ray 0 (and stay off)
+      const Ray& r = rays[k < count ? k : 0];
+      s[k] = float(r.start[a]);
+      v[k] = r.inv[a];
+    }
+    pr.inv[a] = _mm256_load_ps(v);
+    pr.startTimesInv[a] = _mm256_mul_ps(_mm256_load_ps(s), pr.inv[a]);
+  }
+  Crossing best[kPacket];
+  std::int32_t bestIndex[kPacket];
+  alignas(32) float bestT[kPacket];
+  for (unsigned k = 0; k < kPacket; ++k) {
+    best[k] = Crossing{1, -1};
+    bestIndex[k] = 0x7fffffff;
+    bestT[k] = 1.0f;
+  }
+  const __m256 infinity = _mm256_set1_ps(__builtin_huge_valf());
+  const __m256i maskV = _mm256_set1_epi32(int(mask));
+  // At most kWidth - 1 children wait per level, as in walk().
+  PacketPending stack[(kWidth - 1) * kMaxDepth + kWidth];
+  std::size_t sp = 0;
+  std::uint32_t ref = 0;
+  std::uint32_t lanes = allLanes;
+  for (;;) {
+    if (ref & RayLayout::kLeaf) {
+      const RayLayout::Leaf& leaf = index.leaves[ref & ~RayLayout::kLeaf];
+      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+        if (!(index.polygons[i].contents & mask)) continue;
+        alignas(32) float t[kPacket];
+        for (std::uint32_t l = planes.candidates(index.polygons[i], bestT, t) & lanes; l; l &= l - 1) {
+          const int k = __builtin_ctz(l);
+          if constexpr (PacketPlanes::kFloatLanes)
+            acceptCrossing(index, i, rays[k], t[k], best[k], bestIndex[k]);
+          else
+            testPolygon(index, i, rays[k], best[k], bestIndex[k]);
+          bestT[k] = float(best[k].t);
+        }
+      }
+    } else {
+      const RayLayout::Node& n = index.nodes[ref];
+      const __m256 bestV = _mm256_load_ps(bestT);
+      const __m256i noContents = _mm256_cmpeq_epi32(
+          _mm256_and_si256(_mm256_load_si256(reinterpret_cast<const __m256i*>(n.contents)), maskV),
+          _mm256_setzero_si256());
+      std::uint32_t children = std::uint32_t(~_mm256_movemask_ps(_mm256_castsi256_ps(noContents))) & 0xffu;
+      // The children some ray enters, nearest (smallest entry of any of its
+      // rays) first: up to kWidth, insertion-sorted above the stack's top.
+      PacketPending* order = stack + sp;
+      float key[kWidth];
+      std::size_t found = 0;
+      for (; children; children &= children - 1) {
+        const int c = __builtin_ctz(children);
+        const auto slab = [&](int a, const float(*rows)[kWidth]) {
+          return _mm256_fmsub_ps(_mm256_broadcast_ss(&rows[a][c]), pr.inv[a], pr.startTimesInv[a]);
+        };
+        const __m256 x0 = slab(0, n.min), x1 = slab(0, n.max);
+        const __m256 y0 = slab(1, n.min), y1 = slab(1, n.max);
+        const __m256 z0 = slab(2, n.min), z1 = slab(2, n.max);
+        const __m256 tNear = _mm256_max_ps(_mm256_max_ps(_mm256_min_ps(y0, y1), _mm256_min_ps(x0, x1)),
+                                           _mm256_max_ps(_mm256_min_ps(z0, z1), _mm256_setzero_ps()));
+        const __m256 tFar = _mm256_min_ps(_mm256_min_ps(_mm256_max_ps(y0, y1), _mm256_max_ps(x0, x1)),
+                                          _mm256_min_ps(_mm256_max_ps(z0, z1), bestV));
+        const __m256 enters = _mm256_cmp_ps(tNear, tFar, _CMP_LE_OQ);
+        const std::uint32_t hit = std::uint32_t(_mm256_movemask_ps(enters)) & lanes;
+        if (!hit) continue;
+        // Where each entering ray enters; +infinity in the other lanes.
+        const __m256 t = _mm256_blendv_ps(infinity, tNear, enters);
+        __m128 m = _mm_min_ps(_mm256_castps256_ps128(t), _mm256_extractf128_ps(t, 1));
+        m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+        m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+        const float nearest = _mm_cvtss_f32(m);
+        const PacketPending p{t, n.child[c], hit};
+        std::size_t j = found++;
+        for (; j > 0 && key[j - 1] < nearest; --j) {
+          order[j] = order[j - 1];
+          key[j] = key[j - 1];
+        }
+        order[j] = p;
+        key[j] = nearest;
+      }
+      if (found) {  // farthest first in `order`: all but the nearest wait
+        sp += found - 1;
+        ref = stack[sp].ref;
+        lanes = stack[sp].lanes;
+        continue;
+      }
+    }
+    // Next waiting child that a ray may still cross before its best.
+    for (;;) {
+      if (sp == 0) {
+        for (unsigned k = 0; k < count; ++k) out[k] = best[k];
+        return;
+      }
+      const PacketPending& p = stack[--sp];
+      const std::uint32_t still =
+          std::uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(p.t, _mm256_load_ps(bestT), _CMP_LE_OQ))) & p.lanes;
+      if (still) {
+        ref = p.ref;
+        lanes = still;
+        break;
+      }
+    }
+  }
+}
+
 #else  // no AVX2 kernel in this build: never chosen (RayIndex::usesAvx2() is false)
 Crossing castAvx2(const Arrays& index, const Ray& ray) { return castBaseline(index, ray); }
+void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossing* out) {
+  for (unsigned k = 0; k < count; ++k) out[k] = castBaseline(index, rays[k]);
+}
 #endif
 
 }  // namespace cmkit::detail

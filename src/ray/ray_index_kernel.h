@@ -65,6 +65,19 @@ Crossing castBaseline(const Arrays& index, const Ray& ray);
 /// kernel defines it as castBaseline.
 Crossing castAvx2(const Arrays& index, const Ray& ray);
 
+/// Rays walked together by castPacketAvx2: one per AVX2 float lane.
+constexpr unsigned kPacket = 8;
+/// Walks `count` (1 to kPacket) rays of one content mask together through
+/// the index: a node's children are tested against every ray of the packet
+/// that reached it, a leaf's polygons are tested for each of those rays with
+/// testPolygon. out[k] is what castAvx2(index, rays[k]) returns, bit for
+/// bit: a ray's answer is the first crossing (ties: the lower polygon index)
+/// of all the polygons that accept it, whatever order they are tested in,
+/// and every node test lets through each box holding such a crossing before
+/// the ray's best so far (the boxes are padded beyond the slab tests'
+/// rounding). Only with AVX2 and FMA (as castAvx2).
+void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossing* out);
+
 /// Binary-hierarchy depth the index's builder never exceeds (it sizes the
 /// walk's stack; an 8-wide node spans at least one binary level).
 constexpr int kMaxDepth = 68;
@@ -88,20 +101,13 @@ static inline bool signBit(double x) {
   return (bits >> 63) != 0;
 }
 
-/// Tests one polygon (by slot), keeping `best` the first crossing; equal
-/// crossings go to the lower model polygon index (`bestIndex`).
-static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ray& r, Crossing& best,
-                               std::int32_t& bestIndex) {
+/// The second half of testPolygon: the ray crosses the plane of the
+/// polygon in `slot` at t (front face, start not behind, end not in front);
+/// keeps it as `best` when it is not beyond the best so far and the polygon
+/// accepts it (inside every edge, within the acceptance box).
+static inline void acceptCrossing(const Arrays& index, std::uint32_t slot, const Ray& r, Real t,
+                                  Crossing& best, std::int32_t& bestIndex) {
   const RayLayout::Polygon& p = index.polygons[slot];
-  const Vec3& n = p.normal;
-  if (!(n.x * r.dir[0] + n.y * r.dir[1] + n.z * r.dir[2] < 0)) return;  // only front faces
-  const Real d1 = n.x * r.start[0] + n.y * r.start[1] + n.z * r.start[2] - p.dist;
-  if (d1 < 0) return;  // starts behind
-  const Real d2 = n.x * r.end[0] + n.y * r.end[1] + n.z * r.end[2] - p.dist;
-  if (d2 > 0) return;  // ends in front
-  const Real denom = d1 - d2;
-  if (!(denom > 0)) return;
-  const Real t = d1 / denom;
   if (t > best.t || (t == best.t && p.index > bestIndex)) return;
   const RayLayout::EdgeLine* lines = index.edges + p.firstEdge;
   const Real* ray = r.line;
@@ -118,6 +124,22 @@ static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ra
   best.t = t;
   best.slot = std::int32_t(slot);
   bestIndex = p.index;
+}
+
+/// Tests one polygon (by slot), keeping `best` the first crossing; equal
+/// crossings go to the lower model polygon index (`bestIndex`).
+static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ray& r, Crossing& best,
+                               std::int32_t& bestIndex) {
+  const RayLayout::Polygon& p = index.polygons[slot];
+  const Vec3& n = p.normal;
+  if (!(n.x * r.dir[0] + n.y * r.dir[1] + n.z * r.dir[2] < 0)) return;  // only front faces
+  const Real d1 = n.x * r.start[0] + n.y * r.start[1] + n.z * r.start[2] - p.dist;
+  if (d1 < 0) return;  // starts behind
+  const Real d2 = n.x * r.end[0] + n.y * r.end[1] + n.z * r.end[2] - p.dist;
+  if (d2 > 0) return;  // ends in front
+  const Real denom = d1 - d2;
+  if (!(denom > 0)) return;
+  acceptCrossing(index, slot, r, d1 / denom, best, bestIndex);
 }
 
 /// The walk: front to back, nearest child first, children entered beyond

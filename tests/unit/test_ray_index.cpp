@@ -314,6 +314,72 @@ TEST(RayIndex, BothNodeTestsGiveTheSameAnswers) {
   EXPECT_GT(hits, 2000);
 }
 
+// Every field of two hits, bit for bit.
+void expectSameHit(const RayHit& a, const RayHit& b, std::size_t i) {
+  ASSERT_EQ(a.polygon, b.polygon) << "ray " << i;
+  ASSERT_EQ(std::memcmp(&a.fraction, &b.fraction, sizeof(Real)), 0) << "ray " << i;
+  ASSERT_EQ(std::memcmp(&a.dist, &b.dist, sizeof(Real)), 0) << "ray " << i;
+  ASSERT_EQ(a.point, b.point) << "ray " << i;
+  ASSERT_EQ(a.normal, b.normal) << "ray " << i;
+  ASSERT_EQ(a.material, b.material) << "ray " << i;
+  ASSERT_EQ(a.contents, b.contents) << "ray " << i;
+}
+
+TEST(RayIndex, CastManyGivesWhatEachCastGives) {
+  // castMany sorts the rays and (with AVX2) walks them in packets of eight
+  // with its own slab test: the answers must still be cast()'s, bit for bit.
+  // Sensor-like rays from one point (coherent packets) and rays from
+  // everywhere, the model placed and turned, both node tests.
+  const auto models = test::buildMapModels(bundledLt4());
+  ASSERT_FALSE(models.empty());
+  const CollisionModel& world = *models.front();
+  const Vec3 centre = (world.bounds.min + world.bounds.max) * Real(0.5);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> unit(-1, 1);
+  const std::size_t n = 20000;
+  std::vector<Vec3> oneStart{centre}, starts, ends;
+  for (std::size_t i = 0; i < n; ++i)
+    ends.push_back(centre + Vec3{unit(rng), unit(rng), unit(rng)} * Real(1024));
+  for (const auto& [s, e] : randomSegments(world.bounds, 29, int(n))) starts.push_back(s);
+  ends.push_back(centre);  // the last ray has no length (a miss) in both sets
+  starts.push_back(centre);
+  const std::size_t total = ends.size();
+  Placement placed;
+  placed.origin = {100, -50, 25};
+  placed.axis = Mat3::fromAxisAngle({0, 0, 1}, Real(0.5));
+  for (const RayIndex::NodeTest test : {RayIndex::NodeTest::Auto, RayIndex::NodeTest::Baseline}) {
+    const RayIndex index(world, test);
+    for (const Placement& placement : {Placement{}, placed}) {
+      for (const std::vector<Vec3>* from : {&oneStart, &starts}) {
+        std::vector<RayHit> many(total);
+        index.castMany(*from, ends, contents::kMaskSolid, placement, many);
+        int hits = 0;
+        for (std::size_t i = 0; i < total; ++i) {
+          const Vec3& s = from->size() == 1 ? (*from)[0] : (*from)[i];
+          expectSameHit(many[i], index.cast({s, ends[i], contents::kMaskSolid, placement}), i);
+          if (::testing::Test::HasFatalFailure()) return;
+          hits += many[i].hit();
+        }
+        EXPECT_GT(hits, int(n) / 4);
+        EXPECT_FALSE(many.back().hit());
+      }
+    }
+  }
+}
+
+TEST(RayIndex, CastManyLeavesMismatchedSpansAlone) {
+  const RayIndex index(floorBox());
+  const std::vector<Vec3> two{{0, 0, 8}, {1, 0, 8}}, three{{0, 0, -8}, {1, 0, -8}, {2, 0, -8}};
+  std::vector<RayHit> out(3);
+  out[0].polygon = 77;
+  index.castMany(two, three, kAll, {}, out);  // 2 starts for 3 rays
+  EXPECT_EQ(out[0].polygon, 77);
+  index.castMany(std::vector<Vec3>{{0, 0, 8}}, three, kAll, {}, out);  // one start for all
+  for (const RayHit& h : out) EXPECT_TRUE(h.hit());
+  EXPECT_EQ(out[2].point, (Vec3{1, 0, 0}));  // (0,0,8) -> (2,0,-8) crosses z = 0 halfway
+  index.castMany({}, {}, kAll, {}, {});      // nothing to do
+}
+
 TEST(RayIndex, PointTranslationStopsNoLater) {
   // Wherever the ray crosses a surface, the point trace of the same move
   // (which stops 0.25 in front of surfaces, and also at ones it only comes
