@@ -34,23 +34,19 @@ int runExport(const ExportCliOptions& o) {
     }
     e.contentMask = *mask;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
-  if (!models) {
-    fmt::print(stderr, "cmkit export: {}\n", models.error().toString());
+  auto scene = loadSceneForCli(o.models, o.materials, o.noProc, o.mesh, o.queries, o.results);
+  if (!scene) {
+    fmt::print(stderr, "cmkit export: {}\n", scene.error().toString());
     return kExitBadInput;
   }
-  auto traces = loadTraceRecords(o.queries, o.results);
-  if (!traces) {
-    fmt::print(stderr, "cmkit export: {}\n", traces.error().toString());
-    return kExitBadInput;
-  }
-  e.placements = modelPlacements(o.models, models->size());
-  if (Status s = saveScene(o.output, *models, *traces, e); !s) {
+  e.placements = scene->placements;
+  if (Status s = saveScene(o.output, scene->models, scene->traces, e); !s) {
     fmt::print(stderr, "cmkit export: {}\n", s.error().toString());
     return kExitBadInput;
   }
-  fmt::print("{}: {} model{} and {} trace{}\n", o.output, models->size(), models->size() == 1 ? "" : "s",
-             traces->size(), traces->size() == 1 ? "" : "s");
+  const std::size_t models = scene->models.size(), traces = scene->traces.size();
+  fmt::print("{}: {} model{} and {} trace{}\n", o.output, models, models == 1 ? "" : "s", traces,
+             traces == 1 ? "" : "s");
   return 0;
 }
 

@@ -59,24 +59,20 @@ int runRender(const RenderOptions& o) {
     }
     p.contentMask = *mask;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
-  if (!models) {
-    fmt::print(stderr, "cmkit render: {}\n", models.error().toString());
+  auto scene = loadSceneForCli(o.models, o.materials, o.noProc, o.mesh, o.queries, o.results);
+  if (!scene) {
+    fmt::print(stderr, "cmkit render: {}\n", scene.error().toString());
     return kExitBadInput;
   }
-  auto traces = loadTraceRecords(o.queries, o.results);
-  if (!traces) {
-    fmt::print(stderr, "cmkit render: {}\n", traces.error().toString());
-    return kExitBadInput;
-  }
-  p.placements = modelPlacements(o.models, models->size());
-  const Image image = renderPicture(*models, *traces, p);
+  p.placements = scene->placements;
+  const Image image = renderPicture(scene->models, scene->traces, p);
   if (Status s = savePng(o.output, image); !s) {
     fmt::print(stderr, "cmkit render: {}\n", s.error().toString());
     return kExitBadInput;
   }
-  fmt::print("{}: {}x{} picture of {} model{} and {} trace{}\n", o.output, image.width, image.height,
-             models->size(), models->size() == 1 ? "" : "s", traces->size(), traces->size() == 1 ? "" : "s");
+  const std::size_t models = scene->models.size(), traces = scene->traces.size();
+  fmt::print("{}: {}x{} picture of {} model{} and {} trace{}\n", o.output, image.width, image.height, models,
+             models == 1 ? "" : "s", traces, traces == 1 ? "" : "s");
   return 0;
 }
 

@@ -194,14 +194,9 @@ int runView(const ViewOptions& o) {
                viewerDir.string());
     return kExitBadInput;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh);
-  if (!models) {
-    fmt::print(stderr, "cmkit view: {}\n", models.error().toString());
-    return kExitBadInput;
-  }
-  auto traces = loadTraceRecords(o.queries, o.results);
-  if (!traces) {
-    fmt::print(stderr, "cmkit view: {}\n", traces.error().toString());
+  auto scene = loadSceneForCli(o.models, o.materials, o.noProc, o.mesh, o.queries, o.results);
+  if (!scene) {
+    fmt::print(stderr, "cmkit view: {}\n", scene.error().toString());
     return kExitBadInput;
   }
 
@@ -218,14 +213,15 @@ int runView(const ViewOptions& o) {
   const int stopSignals = openStopSignals();
   const FdGuard closeStopSignals(stopSignals);
   ExportOptions exportOptions;
-  exportOptions.placements = modelPlacements(o.models, models->size());
-  if (Status s = saveScene((sceneDir / kSceneFile).string(), *models, *traces, exportOptions); !s) {
+  exportOptions.placements = scene->placements;
+  if (Status s = saveScene((sceneDir / kSceneFile).string(), scene->models, scene->traces, exportOptions);
+      !s) {
     fmt::print(stderr, "cmkit view: {}\n", s.error().toString());
     return kExitBadInput;
   }
   {
     std::ofstream out(sceneDir / kResultsFile, std::ios::binary);
-    for (const TraceRecord& r : *traces) out << r.queryLine << '\n' << r.resultLine << '\n';
+    for (const TraceRecord& r : scene->traces) out << r.queryLine << '\n' << r.resultLine << '\n';
   }
 
   // Listen on the loopback address only.

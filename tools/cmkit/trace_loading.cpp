@@ -40,4 +40,16 @@ std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_
   return placements;
 }
 
+Result<CliScene> loadSceneForCli(const std::string& modelsPath, const std::string& materialsDir, bool noProc,
+                                 const MeshCliOptions& mesh, const std::string& queriesPath,
+                                 const std::string& resultsPath) {
+  auto models = loadModelsForCli(modelsPath, materialsDir, noProc, mesh);
+  if (!models) return models.error();
+  auto traces = loadTraceRecords(queriesPath, resultsPath);
+  if (!traces) return traces.error();
+  CliScene scene{std::move(*models), std::move(*traces), {}};
+  scene.placements = modelPlacements(modelsPath, scene.models.size());
+  return scene;
+}
+
 }  // namespace cmkit::cli

@@ -8,6 +8,7 @@
 #include "cmkit/query.h"
 #include "cmkit/result.h"
 #include "cmkit/tools/debug_draw.h"
+#include "model_loading.h"
 
 namespace cmkit::cli {
 
@@ -23,5 +24,19 @@ Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath
 /// primitives, each in its entity's frame); for a .cm file, all at the
 /// origin (the file has no placements).
 std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_t numModels);
+
+/// What render, export and view draw: the models of MODELS, the traces of
+/// --queries / --results and where each model is placed.
+struct CliScene {
+  std::vector<ModelPtr> models;
+  std::vector<TraceRecord> traces;
+  std::vector<Placement> placements;  ///< one per model (modelPlacements)
+};
+
+/// Loads a CliScene (loadModelsForCli, loadTraceRecords, modelPlacements);
+/// the first error, naming its file.
+Result<CliScene> loadSceneForCli(const std::string& modelsPath, const std::string& materialsDir, bool noProc,
+                                 const MeshCliOptions& mesh, const std::string& queriesPath,
+                                 const std::string& resultsPath);
 
 }  // namespace cmkit::cli
