@@ -20,6 +20,19 @@ std::string reasonOf(int error) {
   return std::string("cannot open the file: ") + std::strerror(error);
 }
 
+/// Appends the bytes of `f` to `text` until its end or maxBytes in all;
+/// false on a read error (errno says which).
+bool readStream(std::FILE* f, std::size_t maxBytes, std::string& text) {
+  char buffer[1 << 16];
+  while (text.size() < maxBytes) {
+    const std::size_t want = std::min(sizeof buffer, maxBytes - text.size());
+    const std::size_t n = std::fread(buffer, 1, want, f);
+    text.append(buffer, n);
+    if (n < want) break;
+  }
+  return std::ferror(f) == 0;
+}
+
 Result<std::string> readUpTo(const std::string& path, std::size_t maxBytes) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -39,30 +52,37 @@ Result<std::string> readUpTo(const std::string& path, std::size_t maxBytes) {
     }
     text.reserve(std::size_t(std::min<std::uintmax_t>(size, maxBytes)));
   }
-  char buffer[1 << 16];
-  while (text.size() < maxBytes) {
-    const std::size_t want = std::min(sizeof buffer, maxBytes - text.size());
-    const std::size_t n = std::fread(buffer, 1, want, f);
-    text.append(buffer, n);
-    if (n < want) break;
-  }
-  const bool failed = std::ferror(f) != 0;
+  const bool read = readStream(f, maxBytes, text);
   const int readError = errno;
   std::fclose(f);
-  if (failed) return Error(std::string("cannot read the file: ") + std::strerror(readError), path);
+  if (!read) return Error(std::string("cannot read the file: ") + std::strerror(readError), path);
   return text;
+}
+
+template <class Read>
+Result<std::string> neverThrowing(const std::string& name, Read read) {
+  try {
+    return read();
+  } catch (const std::bad_alloc&) {
+    return Error("too large to read into memory", name);
+  } catch (const std::exception& e) {
+    return Error(std::string("cannot read the file: ") + e.what(), name);
+  }
 }
 
 }  // namespace
 
 Result<std::string> readTextFile(const std::string& path, std::size_t maxBytes) {
-  try {
-    return readUpTo(path, maxBytes);
-  } catch (const std::bad_alloc&) {
-    return Error("too large to read into memory", path);
-  } catch (const std::exception& e) {
-    return Error(std::string("cannot read the file: ") + e.what(), path);
-  }
+  return neverThrowing(path, [&] { return readUpTo(path, maxBytes); });
+}
+
+Result<std::string> readStandardInput(std::size_t maxBytes) {
+  return neverThrowing("-", [&]() -> Result<std::string> {
+    std::string text;
+    if (!readStream(stdin, maxBytes, text))
+      return Error(std::string("cannot read standard input: ") + std::strerror(errno), "-");
+    return text;
+  });
 }
 
 }  // namespace cmkit

@@ -84,16 +84,7 @@ Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& ma
 }
 
 Result<std::string> readCliText(const std::string& path) {
-  if (path != kStdinPath) return readTextFile(path);
-  std::string text;
-  char buffer[1 << 16];
-  for (;;) {
-    const std::size_t n = std::fread(buffer, 1, sizeof buffer, stdin);
-    text.append(buffer, n);
-    if (n < sizeof buffer) break;
-  }
-  if (std::ferror(stdin)) return Error("cannot read standard input", "-");
-  return text;
+  return path == kStdinPath ? readStandardInput() : readTextFile(path);
 }
 
 bool looksLikeCm(std::string_view text) {

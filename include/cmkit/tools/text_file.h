@@ -21,4 +21,8 @@ namespace cmkit {
 Result<std::string> readTextFile(const std::string& path,
                                  std::size_t maxBytes = std::numeric_limits<std::size_t>::max());
 
+/// The bytes of standard input up to its end (at most `maxBytes`), or an
+/// Error with "-" as its file; the command-line tools' "-" argument.
+Result<std::string> readStandardInput(std::size_t maxBytes = std::numeric_limits<std::size_t>::max());
+
 }  // namespace cmkit
