@@ -104,6 +104,17 @@ TEST_F(CliConventions, StandardInputAndSniffedFormats) {
         << name;
     EXPECT_EQ(rc, 0) << name;
   }
+  // info reads standard input too (a .map built, a .cm loaded).
+  const std::string fromFile = test::runCapture(cli() + " info " + q(dir_ / "features.cm") + " --json", rc);
+  ASSERT_EQ(rc, 0);
+  for (const char* name : {"features.txt", "features.cm"}) {
+    const std::string fromPipe =
+        test::runCapture("cat " + q(dir_ / name) + " | " + cli() + " info - --json", rc);
+    EXPECT_EQ(rc, 0) << name;
+    const auto totals = [](const std::string& json) { return json.substr(json.find("\"total\"")); };
+    ASSERT_NE(fromPipe.find("\"total\""), std::string::npos) << fromPipe;
+    EXPECT_EQ(totals(fromPipe), totals(fromFile)) << name;
+  }
   // Not both from standard input.
   const std::string both = test::runCapture("true | " + cli() + " query - - 2>&1", rc);
   EXPECT_EQ(rc, 2);

@@ -33,7 +33,9 @@ void registerInfo(CLI::App& app) {
                          "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message).");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "info";
-  cmd->add_option("FILE", req->mapPath, "the .map file, a .cm file (loaded, not built) or a mesh file")
+  cmd->add_option(
+         "FILE", req->mapPath,
+         "the .map file, a .cm file (loaded, not built), a mesh file, or - (standard input: .map or .cm)")
       ->required();
   cmd->add_option("--materials", req->materialsDir,
                   "directory of .mtr material files (searched recursively)");
@@ -42,7 +44,9 @@ void registerInfo(CLI::App& app) {
   addNoProcFlag(cmd, req->noProc);
   addMeshOptions(cmd, req->mesh);
   cmd->callback([req] {
-    if (req->mapPath.size() > 3 && req->mapPath.ends_with(".cm")) {  // a .cm file: load, no build
+    // A .cm file: loaded, not built; standard input: a .cm's models or a
+    // .map built without a .proc, told apart by the first token.
+    if (req->mapPath == kStdinPath || (req->mapPath.size() > 3 && req->mapPath.ends_with(".cm"))) {
       const auto start = std::chrono::steady_clock::now();
       Result<std::vector<ModelPtr>> models = loadModelsForCli(req->mapPath, req->materialsDir);
       if (!models) {
