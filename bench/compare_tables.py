@@ -11,7 +11,8 @@ import math
 import re
 import sys
 
-CELL = re.compile(r"(\d+(?:\.\d+)?) \((\d+)\)")
+# A cell: "NS (QUERIES)", or "-" for a kind the file has no queries of.
+CELL = re.compile(r"(\d+(?:\.\d+)?) \((\d+)\)|(?<!\S)-(?!\S)")
 
 
 def parse(path):
@@ -24,11 +25,11 @@ def parse(path):
                 continue
             if kinds is None or "(skipped" in line:
                 continue
-            cells = CELL.findall(line)
+            cells = list(CELL.finditer(line))
             if len(cells) != len(kinds):
                 continue
-            name = line[: line.index(cells[0][0] + " (")].strip()
-            rows[name] = {k: float(ns) for k, (ns, _n) in zip(kinds, cells)}
+            name = line[: cells[0].start()].strip()
+            rows[name] = {k: float(c.group(1)) for k, c in zip(kinds, cells) if c.group(1) is not None}
     if kinds is None:
         sys.exit(f"compare_tables: {path}: no table (no line starting with 'file')")
     return kinds, rows
@@ -67,8 +68,8 @@ def main():
                 continue
             ratios.append((o / n, f))
             print(f"  {f:<36} {o:>14.0f} {n:>14.0f} {o / n:>8.2f}x")
-        if "all files" in old and "all files" in new:
-            o, n = old["all files"][k], new["all files"][k]
+        o, n = old.get("all files", {}).get(k), new.get("all files", {}).get(k)
+        if o and n:
             print(f"  {'all files':<36} {o:>14.0f} {n:>14.0f} {o / n:>8.2f}x")
         if ratios:
             gm = math.exp(sum(math.log(r) for r, _ in ratios) / len(ratios))

@@ -9,7 +9,10 @@
 // the rows).
 #pragma once
 
+#include <bit>
+#include <cstdint>
 #include <optional>
+#include <type_traits>
 #include <string>
 
 #include "cmkit/result.h"
@@ -59,7 +62,18 @@ struct Mat3 {
   /// The determinant (1 for a rotation).
   constexpr Real determinant() const { return rows[0].dot(rows[1].cross(rows[2])); }
   /// Exactly the identity.
-  constexpr bool isIdentity() const { return *this == identity(); }
+  constexpr bool isIdentity() const {
+    // On the bit patterns, without a branch: queries ask this of every
+    // placement. A diagonal element must be exactly 1; an off-diagonal one
+    // +0 or -0 (the shift drops the sign bit), as `==` would have it.
+    using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+    constexpr Bits kOne = std::bit_cast<Bits>(Real(1));
+    auto off = [](Real v) { return Bits(std::bit_cast<Bits>(v) << 1); };
+    auto one = [](Real v) { return Bits(std::bit_cast<Bits>(v) ^ kOne); };
+    const Vec3 &a = rows[0], &b = rows[1], &c = rows[2];
+    return (one(a.x) | off(a.y) | off(a.z) | off(b.x) | one(b.y) | off(b.z) | off(c.x) | off(c.y) | one(c.z)) ==
+           0;
+  }
   /// Every element is finite.
   bool isFinite() const { return rows[0].isFinite() && rows[1].isFinite() && rows[2].isFinite(); }
 

@@ -110,9 +110,9 @@ QueryStatus guardRotation(RotationQuery& q) {
   return checkCommon(q.start, q.placement, q.trm, q.trmAxis);
 }
 
-bool pointUsable(const Vec3& point, const Placement& placement) {
-  if (checkPoint(point) != QueryStatus::Ok || checkPoint(placement.origin) != QueryStatus::Ok) return false;
-  return placement.axis.isIdentity() || validateAxis(placement.axis).ok();
+bool pointUsable(const Vec3& point, const Placement& placement, bool rotated) {
+  return withinQueryRange(point) && withinQueryRange(placement.origin) &&
+         (!rotated || validateAxis(placement.axis).ok());
 }
 
 TraceResult refusedTrace(const Vec3& start, const Mat3& trmAxis, QueryStatus status) {

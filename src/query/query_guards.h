@@ -6,7 +6,12 @@
 // (identity axes are not examined further).
 #pragma once
 
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
 #include "cmkit/query.h"
+#include "cmkit/tolerances.h"
 
 namespace cmkit::detail {
 
@@ -18,8 +23,20 @@ QueryStatus guardContents(ContentsQuery& q);
 QueryStatus guardContacts(ContactsQuery& q);
 /// Checks (and may normalise) a rotation.
 QueryStatus guardRotation(RotationQuery& q);
-/// True when a point and its placement are usable by pointContents.
-bool pointUsable(const Vec3& point, const Placement& placement);
+/// True when every coordinate's magnitude is within
+/// tol::kMaxQueryCoordinate (false for NaN and infinity), on the bit
+/// patterns: the shift drops the sign, and NaN and infinity have larger
+/// patterns than any finite number. Integer operations, no branch.
+inline bool withinQueryRange(const Vec3& p) {
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+  constexpr Bits kMaxBits = Bits(std::bit_cast<Bits>(tol::kMaxQueryCoordinate) << 1);
+  auto beyond = [](Real v) { return Bits(std::bit_cast<Bits>(v) << 1) > kMaxBits; };
+  return !(beyond(p.x) | beyond(p.y) | beyond(p.z));
+}
+
+/// True when a point and its placement are usable by pointContents;
+/// `rotated`: the placement's axis is not the identity (then it is checked).
+bool pointUsable(const Vec3& point, const Placement& placement, bool rotated);
 
 /// The result of a refused query: fraction 0, endPos = start, endAxis =
 /// trmAxis, no contact.
