@@ -12,8 +12,8 @@
 #include <bit>
 #include <cstdint>
 #include <optional>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 
 #include "cmkit/result.h"
 #include "cmkit/vec3.h"
@@ -71,8 +71,8 @@ struct Mat3 {
     auto off = [](Real v) { return Bits(std::bit_cast<Bits>(v) << 1); };
     auto one = [](Real v) { return Bits(std::bit_cast<Bits>(v) ^ kOne); };
     const Vec3 &a = rows[0], &b = rows[1], &c = rows[2];
-    return (one(a.x) | off(a.y) | off(a.z) | off(b.x) | one(b.y) | off(b.z) | off(c.x) | off(c.y) | one(c.z)) ==
-           0;
+    return (one(a.x) | off(a.y) | off(a.z) | off(b.x) | one(b.y) | off(b.z) | off(c.x) | off(c.y) |
+            one(c.z)) == 0;
   }
   /// Every element is finite.
   bool isFinite() const { return rows[0].isFinite() && rows[1].isFinite() && rows[2].isFinite(); }

@@ -157,7 +157,7 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   const bool rotated = isRotated(placement.axis);
   if (model.nodes.empty() || (rotated && !pointUsable(point, placement, rotated))) return 0;
   Vec3 p = point - placement.origin;
-  if (rotated) p = placement.axis * p;  // world -> model frame
+  if (rotated) p = placement.axis * p;    // world -> model frame
   const Real coord[3] = {p.x, p.y, p.z};  // indexed by split axis below
   const bool prefetchBrushes = model.brushes.size() > kPointContentsCachedBrushes;
 
