@@ -1,6 +1,8 @@
 // Placing the trace model in the model's frame, the one set-up every query
 // kind starts from (translation, position test, rotation), and moving a
 // contact back to the world.
+#include <bit>
+
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
@@ -13,21 +15,29 @@ Vec3 trmCentreInModel(const TraceModel& trm, const Mat3& trmAxis, const Vec3& po
   return c;
 }
 
-void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-              const Placement& placement) {
+void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                      const Placement& placement, std::uint32_t vertices) {
   const bool trmRotated = isRotated(trmAxis);
   const bool modelRotated = isRotated(placement.axis);
-  tw.numVerts = trm.numVertices();
-  tw.numEdges = trm.numEdges();
-  tw.numPolys = trm.numPolygons();
   const Vec3 relative = position - placement.origin;
-  for (int i = 0; i < tw.numVerts; ++i) {
+  for (; vertices; vertices &= vertices - 1) {
+    const int i = std::countr_zero(vertices);
     Vec3 p = trm.vertex(i);
     if (trmRotated) p = p * trmAxis;
     p += relative;
     if (modelRotated) p = placement.axis * p;  // into the model's frame
     tw.vertices[std::size_t(i)].p = p;
   }
+}
+
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+              const Placement& placement, std::uint32_t vertices) {
+  const bool trmRotated = isRotated(trmAxis);
+  const bool modelRotated = isRotated(placement.axis);
+  tw.numVerts = trm.numVertices();
+  tw.numEdges = trm.numEdges();
+  tw.numPolys = trm.numPolygons();
+  placeTrmVertices(tw, trm, trmAxis, position, placement, vertices & allTrmVertices(tw.numVerts));
   tw.start = trmCentreInModel(trm, trmAxis, position, placement);
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];

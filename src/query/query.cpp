@@ -1,6 +1,7 @@
 // The public queries: translate, contents, pointContents, contacts,
 // penetration. Set-up of the trace work (the original's Translation and
 // ContentsTrm) and the transformation of results back to world space.
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -43,49 +44,36 @@ void setupPointTrace(TraceWork& tw) {
 }
 
 // Trace-model translation set-up: the trace model at the start, only the
-// features facing the movement used.
+// features facing the movement used (as masks; only their vertices placed).
 void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
   const TraceModel& trm = *q.trm;
-  placeTrm(tw, trm, q.trmAxis, q.start, q.placement);
+  placeTrm(tw, trm, q.trmAxis, q.start, q.placement, 0);
   tw.end = trmCentreInModel(trm, q.trmAxis, q.end, q.placement);
   tw.dir = q.end - q.start;
   if (isRotated(q.placement.axis)) tw.dir = q.placement.axis * tw.dir;
-  for (int i = 0; i < tw.numVerts; ++i) tw.vertices[std::size_t(i)].used = false;
-  for (int i = 1; i <= tw.numEdges; ++i) tw.edges[std::size_t(i)].used = false;
+  tw.movingPolygons = 0;
+  tw.movingVertices = 0;
+  tw.movingEdges = 0;
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
-    const Vec3& n = wp.plane.normal;
     // Polygons facing the movement (or, for a flat trm, along it) collide.
-    const Real d = n.dot(tw.dir);
-    wp.used = d > 0 || (!trm.isConvex() && d == 0);
-    if (!wp.used) continue;
+    const Real d = wp.plane.normal.dot(tw.dir);
+    if (!(d > 0 || (!trm.isConvex() && d == 0))) continue;
+    tw.movingPolygons |= std::uint32_t(1) << i;
     for (int j = 0; j < wp.numEdges; ++j) {
-      WorkEdge& e = tw.edges[std::size_t(std::abs(wp.edges[std::size_t(j)]))];
-      e.used = true;
-      tw.vertices[std::size_t(e.vertexNum[0])].used = true;
-      tw.vertices[std::size_t(e.vertexNum[1])].used = true;
+      const int e = std::abs(wp.edges[std::size_t(j)]);
+      tw.movingEdges |= std::uint64_t(1) << e;
+      const WorkEdge& we = tw.edges[std::size_t(e)];
+      tw.movingVertices |= (std::uint32_t(1) << we.vertexNum[0]) | (std::uint32_t(1) << we.vertexNum[1]);
     }
   }
+  placeTrmVertices(tw, trm, q.trmAxis, q.start, q.placement, tw.movingVertices);
   tw.size.clear();
-  tw.movingVertices = 0;
-  for (int i = 0; i < tw.numVerts; ++i) {
-    WorkVertex& v = tw.vertices[std::size_t(i)];
-    if (!v.used) continue;
-    tw.movingVertices |= std::uint32_t(1) << i;
+  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+    WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
+    v.used = true;
     tw.size.addPoint(v.p - tw.start);
     v.endp = v.p + tw.dir;
-  }
-  tw.movingEdges = 0;
-  for (int i = 1; i <= tw.numEdges; ++i) {
-    WorkEdge& e = tw.edges[std::size_t(i)];
-    if (!e.used) continue;
-    tw.movingEdges |= std::uint64_t(1) << i;
-  }
-  tw.movingPolygons = 0;
-  for (int i = 0; i < tw.numPolys; ++i) {
-    WorkPolygon& wp = tw.polys[std::size_t(i)];
-    if (!wp.used) continue;
-    tw.movingPolygons |= std::uint32_t(1) << i;
   }
   tw.featuresPlaced = false;  // the paths, edge lines and planes: placeTranslationFeatures
   for (int i = 0; i < 3; ++i) {
@@ -102,9 +90,8 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
   }
   setupTranslationHeartPlanes(tw);
   tw.maxDistFromHeartPlane1 = tw.maxDistFromHeartPlane2 = 0;
-  for (int i = 0; i < tw.numVerts; ++i) {
-    const WorkVertex& v = tw.vertices[std::size_t(i)];
-    if (!v.used) continue;
+  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+    const WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
     tw.maxDistFromHeartPlane1 = std::max(tw.maxDistFromHeartPlane1, std::fabs(tw.heartPlane1.distance(v.p)));
     tw.maxDistFromHeartPlane2 = std::max(tw.maxDistFromHeartPlane2, std::fabs(tw.heartPlane2.distance(v.p)));
   }

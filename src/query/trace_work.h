@@ -365,13 +365,24 @@ void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> 
 Vec3 trmCentreInModel(const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
                       const Placement& placement);
 
+/// The mask of a trace model's vertices 0..numVerts-1.
+inline std::uint32_t allTrmVertices(int numVerts) {
+  return numVerts >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << numVerts) - 1;
+}
+
 /// Places `trm` (turned by trmAxis) at `position` in the model's frame, the
 /// set-up every query kind starts from: tw's feature counts, tw.start (the
-/// centre), the vertices' positions, the edges' vertex numbers, the
-/// polygons' edges and normals. The kinds add what they use (used flags,
-/// edge lines, plane distances, motion).
+/// centre), the positions of the vertices in the mask `vertices` (all by
+/// default; a translation places only those of the polygons facing the
+/// move, with placeTrmVertices), the edges' vertex numbers, the polygons'
+/// edges and normals. The kinds add what they use (used flags, edge lines,
+/// plane distances, motion).
 void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-              const Placement& placement);
+              const Placement& placement, std::uint32_t vertices = ~std::uint32_t(0));
+
+/// The positions of the vertices in the mask `vertices` (as placeTrm).
+void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                      const Placement& placement, std::uint32_t vertices);
 
 /// Sets trace-model edge i's ends and line from tw's placed vertices, marked used.
 WorkEdge& placeTrmEdge(TraceWork& tw, int i);
