@@ -188,6 +188,19 @@ void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, con
   }
 }
 
+// Which side of trace-model edge te's line the path of a model vertex
+// (moving by -dir relative to the trace model) passes: the sign bit of
+// te's line . the path's line, always in this order, so that the edge pair
+// and the vertex tests agree on every vertex. Computed each time: a
+// per-vertex cache cost more (a scattered load and its bookkeeping) than
+// the two products.
+unsigned modelVertexSide(const WorkEdge& te, const Pluecker& path) {
+  return unsigned(signBitSet(te.pl.permutedInnerProduct(path)));
+}
+unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Vec3& dir) {
+  return modelVertexSide(te, Pluecker::fromRay(vertex, -dir));
+}
+
 // Trace-model edge trmEdgeNum against edge i of the polygon, whose line
 // its two vertices pass on different sides.
 void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum, std::size_t i) {
@@ -200,12 +213,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
   // The polygon edge's two vertices must pass the trm edge on different sides.
   const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
   const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
-  const unsigned bit = trmEdgeBit(trmEdgeNum);
-  const unsigned b1 = s.vertexSideBit(
-      v1, bit, [&] { return te.pl.permutedInnerProduct(Pluecker::fromRay(m.vertices[v1], -tw.dir)); });
-  const unsigned b2 = s.vertexSideBit(
-      v2, bit, [&] { return te.pl.permutedInnerProduct(Pluecker::fromRay(m.vertices[v2], -tw.dir)); });
-  if (b1 == b2) return;
+  if (modelVertexSide(te, m.vertices[v1], tw.dir) == modelVertexSide(te, m.vertices[v2], tw.dir)) return;
 
   const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
   const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
@@ -271,9 +279,7 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
   for (int i = 0; i < tp.numEdges; ++i) {
     const int edgeNum = tp.edges[std::size_t(i)];
     const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
-    const unsigned side =
-        s.vertexSideBit(vertexNum, trmEdgeBit(edgeNum), [&] { return pl.permutedInnerProduct(te.pl); });
-    if (unsigned(edgeNum < 0) ^ side) return;
+    if (unsigned(edgeNum < 0) ^ modelVertexSide(te, pl)) return;
   }
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = -tp.plane.normal;
