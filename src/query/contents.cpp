@@ -20,6 +20,14 @@ void placePositionTestFeatures(TraceWork& tw) {
   }
 }
 
+/// Which side of trace-model edge te's line a model edge's line passes: the
+/// sign bit of their product, always in this order (both tests of a
+/// polygon ask it). Computed each time: a per-edge cache cost more (a
+/// scattered load and its bookkeeping) than the product.
+unsigned edgeLineSide(const WorkEdge& te, const Pluecker& modelEdge) {
+  return unsigned(signBitSet(te.pl.permutedInnerProduct(modelEdge)));
+}
+
 }  // namespace
 
 bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
@@ -94,7 +102,7 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
       if (s.isChecked(s.edges[e])) continue;
       for (int j = 0; j < 2; ++j) {
         const std::size_t vn = std::size_t(m.edges[e].vertex[j]);
-        if (s.isChecked(s.vertices[vn])) continue;
+        if (s.vertexChecked[vn] == s.generation) continue;
         const Vec3& p = m.vertices[vn];
         int bestPlane = 0;
         Real bestd = -tol::kBoundsInfinity;
@@ -115,7 +123,7 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
     }
   }
   setPolygonEdgeLines(m, edges, s);
-  for (const std::int32_t edgeNum : edges) s.mark(s.vertices[std::size_t(m.edgeStart(edgeNum))]);
+  for (const std::int32_t edgeNum : edges) s.vertexChecked[std::size_t(m.edgeStart(edgeNum))] = s.generation;
 
   // 2. a trm edge crossing the polygon plane inside all polygon edges.
   int sides[kMaxTrmVertices];
@@ -128,8 +136,7 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
     std::size_t j = 0;
     for (; j < edges.size(); ++j) {
       const std::int32_t edgeNum = edges[j];
-      const unsigned side = s.edgeSideBit(std::size_t(std::abs(edgeNum)), trmEdgeBit(i),
-                                          [&] { return te.pl.permutedInnerProduct(s.polygonEdgeLines[j]); });
+      const unsigned side = edgeLineSide(te, s.polygonEdgeLines[j]);
       if (unsigned(edgeNum < 0) ^ side ^ flip) break;
     }
     if (j >= edges.size()) {
@@ -148,18 +155,15 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
     for (int j = 0; j < tw.numPolys; ++j) {
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
       // side = distance < 0 (not the sign bit: -0 counts as in front)
-      const unsigned s1 = s.vertexSideBit(
-          v1, unsigned(j), [&] { return tp.plane.distance(m.vertices[v1]) < 0 ? Real(-1) : Real(1); });
-      const unsigned s2 = s.vertexSideBit(
-          v2, unsigned(j), [&] { return tp.plane.distance(m.vertices[v2]) < 0 ? Real(-1) : Real(1); });
+      const unsigned s1 = unsigned(tp.plane.distance(m.vertices[v1]) < 0);
+      const unsigned s2 = unsigned(tp.plane.distance(m.vertices[v2]) < 0);
       if (s1 == s2) continue;
       const unsigned flip = s1;
       int k = 0;
       for (; k < tp.numEdges; ++k) {
         const int trmEdgeNum = tp.edges[std::size_t(k)];
         const WorkEdge& te = tw.edges[std::size_t(std::abs(trmEdgeNum))];
-        const unsigned side = s.edgeSideBit(
-            e, trmEdgeBit(trmEdgeNum), [&] { return te.pl.permutedInnerProduct(s.polygonEdgeLines[i]); });
+        const unsigned side = edgeLineSide(te, s.polygonEdgeLines[i]);
         if (unsigned(trmEdgeNum < 0) ^ side ^ flip) break;
       }
       if (k >= tp.numEdges) {

@@ -447,7 +447,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   // culls let that trm edge through (the original marked the model edge
   // tested with the first polygon even when its culls had skipped trm
   // edges, so it depended on polygon order and missed collisions). The
-  // tested pairs are bits of the edge's side cache, unused by rotations.
+  // tested pairs are bits of the edge's scratch entry (testedPairs).
   rw.makeEdgeBoxes(tw);
   // bit trmEdgeBit(j): trm edge j passes this polygon's culls
   std::uint32_t trmEdgesHere =
@@ -463,10 +463,10 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     const CmEdge& edge = m.edges[e];
     if (edge.internal) continue;
-    QueryScratch::Feature& cache = s.touchCache(s.edges[e]);
-    const std::uint32_t todo = trmEdgesHere & ~cache.side;
+    std::uint32_t& tested = s.testedPairs(s.edges[e]);
+    const std::uint32_t todo = trmEdgesHere & ~tested;
     if (!todo) continue;
-    cache.side |= todo;
+    tested |= todo;
     const Vec3& v0 = m.vertices[std::size_t(edge.vertex[0])];
     const Vec3& v1 = m.vertices[std::size_t(edge.vertex[1])];
     Bounds modelEdgeBox = Bounds::ofPoint(v0);

@@ -66,29 +66,23 @@ inline constexpr std::size_t edgeGroups(std::size_t numEdges) {
 /// holds). A mark or cache entry is valid when its generation equals the
 /// current one, so starting a query costs nothing but a counter increment.
 struct QueryScratch {
-  /// Everything a query keeps about one model edge or vertex, together so
-  /// that one cache line serves the mark and the side caches (the marks are
-  /// read for every edge of every polygon met, mostly cache misses on a
-  /// large model). 16 bytes: four to a cache line. Translations use the
-  /// side bits of vertices only (the edge sides are computed per polygon,
-  /// sidesOfPolygonEdges in translate.cpp): a model vertex's side of a
-  /// trace-model edge is computed by two tests with the product's operands
-  /// in different orders, whose float sums can differ in sign near zero, so
-  /// the first one computed must win, as in the original.
+  /// What a query keeps about one model edge: its mark, and for rotations
+  /// the trace-model edges already tested against it (bit trmEdgeBit(j)),
+  /// together so that one cache line serves both. Side tests are computed
+  /// where they are needed, in one operand order per test, not cached: a
+  /// scattered cache entry cost more than the products it saved.
   struct Feature {
-    std::uint32_t checked = 0;   ///< tested this query (== generation)
-    std::uint32_t cacheGen = 0;  ///< side / sideSet valid (== generation)
-    std::uint32_t side = 0;      ///< cached side bits, one per trace-model feature (trmEdgeBit, ...)
-    std::uint32_t sideSet = 0;   ///< which bits of `side` are known
+    std::uint32_t checked = 0;      ///< tested this query (== generation)
+    std::uint32_t pairsGen = 0;     ///< testedPairs valid (== generation)
+    std::uint32_t testedPairs = 0;  ///< rotation: trace-model edges tested against this edge
   };
-  static_assert(kMaxTrmVertices <= 32 && kMaxTrmEdges <= 32 && kMaxTrmPolygons <= 32,
-                "a Feature has one side bit per trace-model vertex, edge or polygon");
+  static_assert(kMaxTrmEdges <= 32, "a Feature has one bit per trace-model edge");
 
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
   std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
   std::vector<Feature> edges;                 ///< per model edge
-  std::vector<Feature> vertices;              ///< per model vertex
+  std::vector<std::uint32_t> vertexChecked;   ///< model vertex tested this query
   std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon
   // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
   // of a group's mask standing for edge kEdgeGroup * group + i.
@@ -127,36 +121,13 @@ struct QueryScratch {
     return false;
   }
   bool isChecked(const Feature& f) const { return f.checked == generation; }
-  void mark(Feature& f) { f.checked = generation; }
-  /// The side bits of a feature for this query (zeroed on first use).
-  Feature& touchCache(Feature& f) {
-    if (f.cacheGen != generation) {
-      f.cacheGen = generation;
-      f.side = f.sideSet = 0;
+  /// The rotation's tested pairs of an edge for this query (zeroed on first use).
+  std::uint32_t& testedPairs(Feature& f) {
+    if (f.pairsGen != generation) {
+      f.pairsGen = generation;
+      f.testedPairs = 0;
     }
-    return f;
-  }
-  /// Returns the cached side bit `bit` of a feature, computing it with
-  /// `product()` (side = sign bit of the product) when not yet known.
-  template <class F>
-  static unsigned sideBit(Feature& f, unsigned bit, F product) {
-    const std::uint32_t m = std::uint32_t(1) << bit;
-    if (!(f.sideSet & m)) {
-      if (signBitSet(product()))
-        f.side |= m;
-      else
-        f.side &= ~m;
-      f.sideSet |= m;
-    }
-    return unsigned(f.side >> bit) & 1u;
-  }
-  template <class F>
-  unsigned edgeSideBit(std::size_t e, unsigned bit, F product) {
-    return sideBit(touchCache(edges[e]), bit, product);
-  }
-  template <class F>
-  unsigned vertexSideBit(std::size_t v, unsigned bit, F product) {
-    return sideBit(touchCache(vertices[v]), bit, product);
+    return f.testedPairs;
   }
 };
 
@@ -338,7 +309,7 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
     if (edge.internal) continue;
     for (int k = 0; k < 2; ++k) {
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
-      if (s.testAndMark(s.vertices[vn])) continue;
+      if (s.testAndMark(s.vertexChecked, vn)) continue;
       const Vec3& p = m.vertices[vn];
       if (insideBox(tw.bounds, p)) f(vn, p);
     }

@@ -30,12 +30,12 @@ void QueryScratch::begin(const CollisionModel& model) {
   grow(polygonChecked, np);
   grow(brushChecked, nb);
   grow(edges, ne);
-  grow(vertices, nv);
+  grow(vertexChecked, nv);
   if (++generation == 0) {  // wrapped: clear every mark once every 2^32 queries
     std::fill(polygonChecked.begin(), polygonChecked.end(), 0u);
     std::fill(brushChecked.begin(), brushChecked.end(), 0u);
     std::fill(edges.begin(), edges.end(), Feature{});
-    std::fill(vertices.begin(), vertices.end(), Feature{});
+    std::fill(vertexChecked.begin(), vertexChecked.end(), 0u);
     generation = 1;
   }
 }
