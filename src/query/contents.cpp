@@ -8,10 +8,12 @@ namespace cmkit::detail {
 
 namespace {
 
-/// The trace model's edge lines and polygon planes for a position test, once.
+/// The trace model's edges, edge lines and polygon planes for a position
+/// test, once (most position tests meet no polygon past its culls).
 void placePositionTestFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
+  placeTrmTopology(tw, *tw.placedTrm, *tw.placedTrmAxis, *tw.placedModel);
   for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, i);
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
@@ -183,14 +185,14 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis
   tw.isConvex = trm.isConvex();
   tw.pointTrace = false;
   tw.quickExit = false;
-  placeTrm(tw, trm, trmAxis, position, placement);
+  placeTrmFrame(tw, trm, trmAxis, position, placement);
+  placeTrmVertices(tw, trm, trmAxis, position, placement, allTrmVertices(tw.numVerts));
+  tw.placedTrm = &trm;  // the edges and polygons: placePositionTestFeatures
+  tw.placedTrmAxis = &trmAxis;
+  tw.placedModel = &placement;
   tw.end = tw.start;
   tw.size.clear();
-  for (int i = 0; i < tw.numVerts; ++i) {
-    WorkVertex& v = tw.vertices[std::size_t(i)];
-    v.used = true;
-    tw.size.addPoint(v.p - tw.start);
-  }
+  for (int i = 0; i < tw.numVerts; ++i) tw.size.addPoint(tw.vertices[std::size_t(i)].p - tw.start);
   tw.featuresPlaced = false;
   for (int i = 0; i < 3; ++i) {
     tw.extents[i] = (std::fabs(tw.size.min[i]) > std::fabs(tw.size.max[i]) ? std::fabs(tw.size.min[i])

@@ -30,15 +30,17 @@ void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis,
   }
 }
 
-void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-              const Placement& placement, std::uint32_t vertices) {
-  const bool trmRotated = isRotated(trmAxis);
-  const bool modelRotated = isRotated(placement.axis);
+void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                   const Placement& placement) {
   tw.numVerts = trm.numVertices();
   tw.numEdges = trm.numEdges();
   tw.numPolys = trm.numPolygons();
-  placeTrmVertices(tw, trm, trmAxis, position, placement, vertices & allTrmVertices(tw.numVerts));
   tw.start = trmCentreInModel(trm, trmAxis, position, placement);
+}
+
+void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Placement& placement) {
+  const bool trmRotated = isRotated(trmAxis);
+  const bool modelRotated = isRotated(placement.axis);
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     e.vertexNum[0] = trm.edge(i).v[0];
@@ -58,6 +60,13 @@ void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const V
       n = placement.axis * n;
     wp.plane.normal = n;
   }
+}
+
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+              const Placement& placement) {
+  placeTrmFrame(tw, trm, trmAxis, position, placement);
+  placeTrmVertices(tw, trm, trmAxis, position, placement, allTrmVertices(tw.numVerts));
+  placeTrmTopology(tw, trm, trmAxis, placement);
 }
 
 WorkEdge& placeTrmEdge(TraceWork& tw, int i) {

@@ -47,7 +47,8 @@ void setupPointTrace(TraceWork& tw) {
 // features facing the movement used (as masks; only their vertices placed).
 void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
   const TraceModel& trm = *q.trm;
-  placeTrm(tw, trm, q.trmAxis, q.start, q.placement, 0);
+  placeTrmFrame(tw, trm, q.trmAxis, q.start, q.placement);
+  placeTrmTopology(tw, trm, q.trmAxis, q.placement);
   tw.end = trmCentreInModel(trm, q.trmAxis, q.end, q.placement);
   tw.dir = q.end - q.start;
   if (isRotated(q.placement.axis)) tw.dir = q.placement.axis * tw.dir;

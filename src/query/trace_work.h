@@ -175,6 +175,12 @@ struct TraceWork {
   std::array<WorkEdge, kMaxTrmEdges + 1>& edges;      ///< scratch.trm.edges
   std::array<WorkPolygon, kMaxTrmPolygons>& polys;    ///< scratch.trm.polys
 
+  /// A position test's trace model and placements (they outlive the
+  /// query), for the parts placed only when a polygon needs them.
+  const TraceModel* placedTrm = nullptr;
+  const Mat3* placedTrmAxis = nullptr;
+  const Placement* placedModel = nullptr;
+
   Vec3 start, end, dir;  ///< of the trace model's centre, model space
   Bounds bounds;         ///< of the whole move, padded
   Bounds size;           ///< trace-model bounds relative to start
@@ -341,19 +347,23 @@ inline std::uint32_t allTrmVertices(int numVerts) {
   return numVerts >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << numVerts) - 1;
 }
 
-/// Places `trm` (turned by trmAxis) at `position` in the model's frame, the
-/// set-up every query kind starts from: tw's feature counts, tw.start (the
-/// centre), the positions of the vertices in the mask `vertices` (all by
-/// default; a translation places only those of the polygons facing the
-/// move, with placeTrmVertices), the edges' vertex numbers, the polygons'
-/// edges and normals. The kinds add what they use (used flags, edge lines,
-/// plane distances, motion).
-void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-              const Placement& placement, std::uint32_t vertices = ~std::uint32_t(0));
-
-/// The positions of the vertices in the mask `vertices` (as placeTrm).
+/// Placing `trm` (turned by trmAxis) at `position` in the model's frame, the
+/// set-up every query kind starts from, in three parts that a kind may
+/// take separately (a translation places only the vertices of the polygons
+/// facing the move; a position test places the edges and polygons only for
+/// a polygon past its culls). The kinds add what they use (used flags, edge
+/// lines, plane distances, motion).
+/// The frame: tw's feature counts and tw.start (the centre).
+void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+                   const Placement& placement);
+/// The positions of the vertices in the mask `vertices`.
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
                       const Placement& placement, std::uint32_t vertices);
+/// The edges' vertex numbers, the polygons' edges and normals.
+void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Placement& placement);
+/// All three, every vertex.
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
+              const Placement& placement);
 
 /// Sets trace-model edge i's ends and line from tw's placed vertices, marked used.
 WorkEdge& placeTrmEdge(TraceWork& tw, int i);
