@@ -1,6 +1,7 @@
 // Position tests (the original's TestTrmVertsInBrush, TestTrmInPolygon and
 // the position-test set-up of ContentsTrm).
 #include <cmath>
+#include <span>
 
 #include "query/trace_work.h"
 
@@ -14,7 +15,7 @@ void placePositionTestFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
   placeTrmTopology(tw, *tw.placedTrm, *tw.placedTrmAxis, *tw.placedModel);
-  for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, i);
+  placeTrmEdges(tw);
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.used = true;
@@ -32,13 +33,11 @@ unsigned edgeLineSide(const WorkEdge& te, const Pluecker& modelEdge) {
 
 }  // namespace
 
-bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
-  QueryScratch& s = tw.scratch;
-  if (s.testAndMark(s.brushChecked, std::size_t(brushNum))) return false;
-  count(s, &QueryStats::brushesMet);
-  const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
-  if (!(b.contents & tw.contentMask)) return false;
-  if (!b.bounds.intersects(tw.bounds)) return false;
+namespace {
+
+// A brush past the culls of testTrmVertsInBrushes: true (stuck) when a
+// trace-model vertex is inside it.
+bool trmVertexInBrush(TraceWork& tw, const CmBrush& b) {
   const auto planes = tw.model.planesOf(b);
   const int numVerts = tw.numVerts;  // a position test always has a trace model (points: pointContents)
   for (int j = 0; j < numVerts; ++j) {
@@ -70,16 +69,11 @@ bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brushNum) {
   return false;
 }
 
-bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
+// A polygon past the culls of testTrmInPolygons: true when the trace model
+// crosses it (stuck).
+bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
-  if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
-  count(s, &QueryStats::polygonsMet);
-  const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
-  if (!(poly.contents & tw.contentMask)) return false;
-  if (!poly.bounds.intersects(tw.bounds)) return false;
-  if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
-    return cull == PlaneCull::Stop;
   count(s, &QueryStats::polygonsTested);
   placePositionTestFeatures(tw);
   const auto edges = m.edgesOf(poly);
@@ -173,6 +167,36 @@ bool testTrmInPolygon(TraceWork& tw, std::int32_t polyNum) {
                      j);
       }
     }
+  }
+  return false;
+}
+
+}  // namespace
+
+bool testTrmVertsInBrushes(TraceWork& tw, std::span<const std::int32_t> brushes) {
+  QueryScratch& s = tw.scratch;
+  for (const std::int32_t brushNum : brushes) {
+    if (s.testAndMark(s.brushChecked, std::size_t(brushNum))) continue;
+    count(s, &QueryStats::brushesMet);
+    const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
+    if (!(b.contents & tw.contentMask) || !b.bounds.intersects(tw.bounds)) continue;
+    if (trmVertexInBrush(tw, b)) return true;
+  }
+  return false;
+}
+
+bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
+  QueryScratch& s = tw.scratch;
+  for (const std::int32_t polyNum : polygons) {
+    if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+    count(s, &QueryStats::polygonsMet);
+    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    if (!(poly.contents & tw.contentMask) || !poly.bounds.intersects(tw.bounds)) continue;
+    if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test) {
+      if (cull == PlaneCull::Stop) return true;
+      continue;
+    }
+    if (trmCrossesPolygon(tw, polyNum, poly)) return true;
   }
   return false;
 }

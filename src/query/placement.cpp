@@ -78,6 +78,10 @@ WorkEdge& placeTrmEdge(TraceWork& tw, int i) {
   return e;
 }
 
+void placeTrmEdges(TraceWork& tw) {
+  for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, i);
+}
+
 void contactToWorld(ContactInfo& c, const Placement& placement) {
   if (isRotated(placement.axis)) {
     c.normal = c.normal * placement.axis;

@@ -249,8 +249,11 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
 
 /// Position tests (contents.cpp); true when stuck.
-bool testTrmVertsInBrush(TraceWork& tw, std::int32_t brush);
-bool testTrmInPolygon(TraceWork& tw, std::int32_t polygon);
+/// testTrmVertsInBrushes: a trace-model vertex inside one of the brushes?
+/// testTrmInPolygons: the trace model crossing one of the polygons? True
+/// (stuck, tw.c set) at the first; items met before in the query are skipped.
+bool testTrmVertsInBrushes(TraceWork& tw, std::span<const std::int32_t> brushes);
+bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 
 /// A box against a plane: the distance of its centre (`centre`) and the
 /// half extent of the box along the plane's normal (`extent`).
@@ -367,6 +370,8 @@ void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const V
 
 /// Sets trace-model edge i's ends and line from tw's placed vertices, marked used.
 WorkEdge& placeTrmEdge(TraceWork& tw, int i);
+/// placeTrmEdge for every edge.
+void placeTrmEdges(TraceWork& tw);
 
 /// Moves a contact from the model's frame to the world.
 void contactToWorld(ContactInfo& c, const Placement& placement);

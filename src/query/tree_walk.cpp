@@ -69,10 +69,8 @@ struct PositionItems {
   static bool has(const CmNode& node) { return node.numPolygonRefs != 0 || node.numBrushRefs != 0; }
   static void test(TraceWork& tw, const CmNode& node) {
     if (tw.fraction == 0) return;  // already stuck
-    for (std::int32_t b : tw.model.brushesAt(node))
-      if (testTrmVertsInBrush(tw, b)) return;
-    for (std::int32_t p : tw.model.polygonsAt(node))
-      if (testTrmInPolygon(tw, p)) return;
+    if (!testTrmVertsInBrushes(tw, tw.model.brushesAt(node)))
+      testTrmInPolygons(tw, tw.model.polygonsAt(node));
   }
   static constexpr bool kStopWhenStuck = true;
 };
