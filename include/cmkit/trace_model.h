@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -37,6 +38,8 @@ inline constexpr int kMaxTrmVertices = 32;
 inline constexpr int kMaxTrmEdges = 32;
 inline constexpr int kMaxTrmPolygons = 16;
 inline constexpr int kMaxTrmPolygonEdges = 16;
+static_assert(kMaxTrmEdges < 64 && kMaxTrmVertices <= 32,
+              "TraceModel::polygonEdgeBits and polygonVertexBits");
 /// The convex hull builder accepts at most this many input points.
 inline constexpr int kMaxTrmHullInputPoints = 256;
 
@@ -160,6 +163,10 @@ class TraceModel {
   std::span<const TrmPolygon> polygons() const { return {polygons_.data(), size_t(numPolygons_)}; }
   /// Polygon i.
   const TrmPolygon& polygon(int i) const { return polygons_[size_t(i)]; }
+  /// The edges of polygon i as bits: bit e for edge number e (1..numEdges()).
+  std::uint64_t polygonEdgeBits(int i) const { return polygonEdgeBits_[size_t(i)]; }
+  /// The vertices of polygon i as bits: bit v for vertex v.
+  std::uint32_t polygonVertexBits(int i) const { return polygonVertexBits_[size_t(i)]; }
   /// Bounds of all vertices.
   const Bounds& bounds() const { return bounds_; }
   /// The shape's centre: the point that follows the trace start and end.
@@ -202,6 +209,10 @@ class TraceModel {
   std::array<Vec3, kMaxTrmVertices> vertices_{};
   std::array<TrmEdge, kMaxTrmEdges + 1> edges_{};
   std::array<TrmPolygon, kMaxTrmPolygons> polygons_{};
+  // Derived from the polygons' edges when the shape is made (a translation
+  // takes the features of the polygons facing the move).
+  std::array<std::uint64_t, kMaxTrmPolygons> polygonEdgeBits_{};
+  std::array<std::uint32_t, kMaxTrmPolygons> polygonVertexBits_{};
 };
 
 inline int TrmPolygon::startVertex(const TraceModel& trm, int i) const {

@@ -58,7 +58,15 @@ TraceModel detail::TraceModelBuilder::finish(const Vec3& offset, bool convex, bo
     }
     p.dist = p.normal.dot(v0);
     p.bounds.clear();
-    for (int j = 0; j < p.numEdges; ++j) p.bounds.addPoint(t.vertices_[size_t(p.startVertex(t, j))]);
+    std::uint64_t edgeBits = 0;
+    std::uint32_t vertexBits = 0;
+    for (int j = 0; j < p.numEdges; ++j) {
+      p.bounds.addPoint(t.vertices_[size_t(p.startVertex(t, j))]);
+      edgeBits |= std::uint64_t(1) << std::abs(p.edges[size_t(j)]);
+      vertexBits |= std::uint32_t(1) << p.startVertex(t, j);
+    }
+    t.polygonEdgeBits_[size_t(i)] = edgeBits;
+    t.polygonVertexBits_[size_t(i)] = vertexBits;
   }
   if (convex) generateEdgeNormals(t);
   return t;

@@ -96,6 +96,14 @@ std::string TraceModel::checkInvariants() const {
       if (!p.bounds.expanded(eps).containsPoint(a)) return fail(name + " bounds do not contain its vertex");
     }
     if (newell.dot(p.normal) <= 0) return fail(name + " edges not counter-clockwise around its normal");
+    std::uint64_t edgeBits = 0;
+    std::uint32_t vertexBits = 0;
+    for (int j = 0; j < p.numEdges; ++j) {
+      edgeBits |= std::uint64_t(1) << std::abs(p.edges[size_t(j)]);
+      vertexBits |= std::uint32_t(1) << p.startVertex(*this, j);
+    }
+    if (edgeBits != polygonEdgeBits_[size_t(i)] || vertexBits != polygonVertexBits_[size_t(i)])
+      return fail(name + " edge or vertex bits differ from its edges");
     if (isConvex_) {
       bool behind = false;
       for (int v = 0; v < numVertices_; ++v) {

@@ -61,12 +61,8 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
     const Real d = wp.plane.normal.dot(tw.dir);
     if (!(d > 0 || (!trm.isConvex() && d == 0))) continue;
     tw.movingPolygons |= std::uint32_t(1) << i;
-    for (int j = 0; j < wp.numEdges; ++j) {
-      const int e = std::abs(wp.edges[std::size_t(j)]);
-      tw.movingEdges |= std::uint64_t(1) << e;
-      const WorkEdge& we = tw.edges[std::size_t(e)];
-      tw.movingVertices |= (std::uint32_t(1) << we.vertexNum[0]) | (std::uint32_t(1) << we.vertexNum[1]);
-    }
+    tw.movingEdges |= trm.polygonEdgeBits(i);
+    tw.movingVertices |= trm.polygonVertexBits(i);
   }
   placeTrmVertices(tw, trm, q.trmAxis, q.start, q.placement, tw.movingVertices);
   tw.size.clear();
