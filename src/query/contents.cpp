@@ -14,7 +14,7 @@ namespace {
 void placePositionTestFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
-  placeTrmTopology(tw, *tw.placedTrm, *tw.placedTrmAxis, *tw.placedModel);
+  placeTrmTopology(tw, *tw.placedTrm, *tw.placedOrientation);
   placeTrmEdges(tw);
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
@@ -201,19 +201,18 @@ bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   return false;
 }
 
-void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                       std::uint32_t mask, const Placement& placement) {
+void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
+                       std::uint32_t mask) {
   tw.fraction = 1;
   tw.c = ContactInfo{};
   tw.contentMask = mask;
   tw.isConvex = trm.isConvex();
   tw.pointTrace = false;
   tw.quickExit = false;
-  placeTrmFrame(tw, trm, trmAxis, position, placement);
-  placeTrmVertices(tw, trm, trmAxis, position, placement, allTrmVertices(tw.numVerts));
+  placeTrmFrame(tw, trm, o, position);
+  placeTrmVertices(tw, trm, o, position, allTrmVertices(tw.numVerts));
   tw.placedTrm = &trm;  // the edges and polygons: placePositionTestFeatures
-  tw.placedTrmAxis = &trmAxis;
-  tw.placedModel = &placement;
+  tw.placedOrientation = &o;
   tw.end = tw.start;
   tw.size.clear();
   for (int i = 0; i < tw.numVerts; ++i) tw.size.addPoint(tw.vertices[std::size_t(i)].p - tw.start);

@@ -7,40 +7,37 @@
 
 namespace cmkit::detail {
 
-Vec3 trmCentreInModel(const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                      const Placement& placement) {
-  Vec3 c = position - placement.origin;
-  c += isRotated(trmAxis) ? trm.offset() * trmAxis : trm.offset();
-  if (isRotated(placement.axis)) c = placement.axis * c;
+Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const Vec3& position) {
+  Vec3 c = position - o.placement->origin;
+  c += o.trmRotated ? trm.offset() * *o.trmAxis : trm.offset();
+  if (o.modelRotated) c = o.placement->axis * c;
   return c;
 }
 
-void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                      const Placement& placement, std::uint32_t vertices) {
-  const bool trmRotated = isRotated(trmAxis);
-  const bool modelRotated = isRotated(placement.axis);
-  const Vec3 relative = position - placement.origin;
+void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
+                      std::uint32_t vertices) {
+  const Vec3 relative = position - o.placement->origin;
   for (; vertices; vertices &= vertices - 1) {
     const int i = std::countr_zero(vertices);
     Vec3 p = trm.vertex(i);
-    if (trmRotated) p = p * trmAxis;
+    if (o.trmRotated) p = p * *o.trmAxis;
     p += relative;
-    if (modelRotated) p = placement.axis * p;  // into the model's frame
+    if (o.modelRotated) p = o.placement->axis * p;  // into the model's frame
     tw.vertices[std::size_t(i)].p = p;
   }
 }
 
-void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                   const Placement& placement) {
+void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position) {
   tw.numVerts = trm.numVertices();
   tw.numEdges = trm.numEdges();
   tw.numPolys = trm.numPolygons();
-  tw.start = trmCentreInModel(trm, trmAxis, position, placement);
+  tw.start = trmCentreInModel(trm, o, position);
 }
 
-void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Placement& placement) {
-  const bool trmRotated = isRotated(trmAxis);
-  const bool modelRotated = isRotated(placement.axis);
+void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o) {
+  const bool trmRotated = o.trmRotated, modelRotated = o.modelRotated;
+  const Mat3& trmAxis = *o.trmAxis;
+  const Placement& placement = *o.placement;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     e.vertexNum[0] = trm.edge(i).v[0];
@@ -62,11 +59,10 @@ void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis,
   }
 }
 
-void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-              const Placement& placement) {
-  placeTrmFrame(tw, trm, trmAxis, position, placement);
-  placeTrmVertices(tw, trm, trmAxis, position, placement, allTrmVertices(tw.numVerts));
-  placeTrmTopology(tw, trm, trmAxis, placement);
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position) {
+  placeTrmFrame(tw, trm, o, position);
+  placeTrmVertices(tw, trm, o, position, allTrmVertices(tw.numVerts));
+  placeTrmTopology(tw, trm, o);
 }
 
 WorkEdge& placeTrmEdge(TraceWork& tw, int i) {
@@ -82,8 +78,8 @@ void placeTrmEdges(TraceWork& tw) {
   for (int i = 1; i <= tw.numEdges; ++i) placeTrmEdge(tw, i);
 }
 
-void contactToWorld(ContactInfo& c, const Placement& placement) {
-  if (isRotated(placement.axis)) {
+void contactToWorld(ContactInfo& c, const Placement& placement, bool rotated) {
+  if (rotated) {
     c.normal = c.normal * placement.axis;
     c.point = c.point * placement.axis;
   }

@@ -45,13 +45,13 @@ void setupPointTrace(TraceWork& tw) {
 
 // Trace-model translation set-up: the trace model at the start, only the
 // features facing the movement used (as masks; only their vertices placed).
-void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
+void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation& o) {
   const TraceModel& trm = *q.trm;
-  placeTrmFrame(tw, trm, q.trmAxis, q.start, q.placement);
-  placeTrmTopology(tw, trm, q.trmAxis, q.placement);
-  tw.end = trmCentreInModel(trm, q.trmAxis, q.end, q.placement);
+  placeTrmFrame(tw, trm, o, q.start);
+  placeTrmTopology(tw, trm, o);
+  tw.end = trmCentreInModel(trm, o, q.end);
   tw.dir = q.end - q.start;
-  if (isRotated(q.placement.axis)) tw.dir = q.placement.axis * tw.dir;
+  if (o.modelRotated) tw.dir = q.placement.axis * tw.dir;
   tw.movingPolygons = 0;
   tw.movingVertices = 0;
   tw.movingEdges = 0;
@@ -64,7 +64,7 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
     tw.movingEdges |= trm.polygonEdgeBits(i);
     tw.movingVertices |= trm.polygonVertexBits(i);
   }
-  placeTrmVertices(tw, trm, q.trmAxis, q.start, q.placement, tw.movingVertices);
+  placeTrmVertices(tw, trm, o, q.start, tw.movingVertices);
   tw.size.clear();
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
     WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
@@ -97,8 +97,8 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q) {
 }
 
 // Runs a translation (start != end) into tw; contacts mode when `out` set.
-void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<ContactInfo>* out,
-                    int maxContacts) {
+void runTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation& o,
+                    std::vector<ContactInfo>* out, int maxContacts) {
   tw.fraction = 1;
   tw.c = ContactInfo{};
   tw.contentMask = q.contentMask;
@@ -110,7 +110,7 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
     tw.start = q.start - q.placement.origin;
     tw.end = q.end - q.placement.origin;
     tw.dir = q.end - q.start;
-    if (isRotated(q.placement.axis)) {
+    if (o.modelRotated) {
       tw.start = q.placement.axis * tw.start;
       tw.end = q.placement.axis * tw.end;
       tw.dir = q.placement.axis * tw.dir;
@@ -119,7 +119,7 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, std::vector<Contac
   } else {
     tw.pointTrace = false;
     tw.isConvex = q.trm->isConvex();
-    setupTrmTranslation(tw, q);
+    setupTrmTranslation(tw, q, o);
   }
   translateThroughModel(tw);
 }
@@ -217,7 +217,8 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& qu
   s.begin(model);
   count(s, &QueryStats::queries);
   TraceWork tw(model, s);
-  setupPositionTest(tw, *q.trm, q.trmAxis, q.position, q.contentMask, q.placement);
+  const Orientation o(q.trmAxis, q.placement);
+  setupPositionTest(tw, *q.trm, o, q.position, q.contentMask);
   positionTestThroughModel(tw);
   r.contents = tw.c.contents;
   r.trace.contact = tw.c;
@@ -245,7 +246,8 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& query
   s.begin(model);
   count(s, &QueryStats::queries);
   TraceWork tw(model, s);
-  runTranslation(tw, q, nullptr, 0);
+  const Orientation o(q.trmAxis, q.placement);
+  runTranslation(tw, q, o, nullptr, 0);
   r.fraction = tw.fraction;
   r.contact = tw.c;
   r.endPos = q.start + (q.end - q.start) * r.fraction;
@@ -253,7 +255,7 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& query
   if (r.fraction < 1) {
     // A tiny fraction whose movement rounds to nothing is no movement.
     if (r.fraction > 0 && r.endPos == q.start) r.fraction = 0;
-    contactToWorld(r.contact, q.placement);
+    contactToWorld(r.contact, q.placement, o.modelRotated);
   }
   return r;
 }
@@ -271,9 +273,10 @@ ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query,
   count(s, &QueryStats::queries);
   TraceWork tw(model, s);
   const TranslationQuery tq{q.trm, q.trmAxis, q.start, end, q.contentMask, q.placement, false};
-  runTranslation(tw, tq, &out, q.maxContacts);
+  const Orientation o(q.trmAxis, q.placement);
+  runTranslation(tw, tq, o, &out, q.maxContacts);
   // Unlike the original, point contacts are moved to world space too.
-  for (ContactInfo& c : out) contactToWorld(c, q.placement);
+  for (ContactInfo& c : out) contactToWorld(c, q.placement, o.modelRotated);
   return result;
 }
 

@@ -102,7 +102,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   } else {
     tw.pointTrace = false;
     tw.isConvex = q.trm->isConvex();
-    placeTrm(tw, *q.trm, q.trmAxis, q.start, q.placement);
+    placeTrm(tw, *q.trm, Orientation(q.trmAxis, q.placement), q.start);
     centre = tw.start;
   }
   rw.centre = turnStart(centre);
@@ -185,7 +185,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
 
   if (rw.maxTan == initialTan) return 1;
   contact = tw.c;
-  contactToWorld(contact, q.placement);
+  contactToWorld(contact, q.placement, isRotated(q.placement.axis));
   const double f = std::fabs(std::atan(rw.maxTan) * 360 / kPi / double(endAngle - startAngle));
   return Real(std::min(f, 1.0));
 }

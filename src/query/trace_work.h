@@ -162,6 +162,8 @@ inline void prefetch(const void* p) {
 /// The side-cache bit of trace-model edge n (signed or not; 1 <= |n| <= 32).
 inline unsigned trmEdgeBit(int n) { return unsigned(std::abs(n) - 1); }
 
+struct Orientation;
+
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
   TraceWork(const CollisionModel& m, QueryScratch& s)
@@ -175,11 +177,10 @@ struct TraceWork {
   std::array<WorkEdge, kMaxTrmEdges + 1>& edges;      ///< scratch.trm.edges
   std::array<WorkPolygon, kMaxTrmPolygons>& polys;    ///< scratch.trm.polys
 
-  /// A position test's trace model and placements (they outlive the
+  /// A position test's trace model and orientations (they outlive the
   /// query), for the parts placed only when a polygon needs them.
   const TraceModel* placedTrm = nullptr;
-  const Mat3* placedTrmAxis = nullptr;
-  const Placement* placedModel = nullptr;
+  const Orientation* placedOrientation = nullptr;
 
   Vec3 start, end, dir;  ///< of the trace model's centre, model space
   Bounds bounds;         ///< of the whole move, padded
@@ -341,47 +342,59 @@ void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> 
 
 // ---- placing the trace model (placement.cpp) ------------------------------
 
+/// True when the axis differs from identity.
+inline bool isRotated(const Mat3& axis) { return !axis.isIdentity(); }
+
+/// A query's two orientations, the trace model's and the model's
+/// placement, with whether each differs from the identity (asked once per
+/// query: the placement functions below and contactToWorld read the flags).
+/// It refers to the query's own axes, which outlive the query's work.
+struct Orientation {
+  Orientation(const Mat3& trm, const Placement& model)
+      : trmAxis(&trm), placement(&model), trmRotated(isRotated(trm)), modelRotated(isRotated(model.axis)) {}
+  const Mat3* trmAxis;
+  const Placement* placement;
+  bool trmRotated;
+  bool modelRotated;
+};
+
 /// The trace model's centre (position + its offset) in the model's frame.
-Vec3 trmCentreInModel(const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                      const Placement& placement);
+Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const Vec3& position);
 
 /// The mask of a trace model's vertices 0..numVerts-1.
 inline std::uint32_t allTrmVertices(int numVerts) {
   return numVerts >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << numVerts) - 1;
 }
 
-/// Placing `trm` (turned by trmAxis) at `position` in the model's frame, the
-/// set-up every query kind starts from, in three parts that a kind may
+/// Placing `trm` (turned by its axis) at `position` in the model's frame,
+/// the set-up every query kind starts from, in three parts that a kind may
 /// take separately (a translation places only the vertices of the polygons
 /// facing the move; a position test places the edges and polygons only for
 /// a polygon past its culls). The kinds add what they use (used flags, edge
 /// lines, plane distances, motion).
 /// The frame: tw's feature counts and tw.start (the centre).
-void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                   const Placement& placement);
+void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position);
 /// The positions of the vertices in the mask `vertices`.
-void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                      const Placement& placement, std::uint32_t vertices);
+void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
+                      std::uint32_t vertices);
 /// The edges' vertex numbers, the polygons' edges and normals.
-void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Placement& placement);
+void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o);
 /// All three, every vertex.
-void placeTrm(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-              const Placement& placement);
+void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position);
 
 /// Sets trace-model edge i's ends and line from tw's placed vertices, marked used.
 WorkEdge& placeTrmEdge(TraceWork& tw, int i);
 /// placeTrmEdge for every edge.
 void placeTrmEdges(TraceWork& tw);
 
-/// Moves a contact from the model's frame to the world.
-void contactToWorld(ContactInfo& c, const Placement& placement);
+/// Moves a contact from the model's frame to the world; `rotated`: the
+/// placement's axis is not the identity.
+void contactToWorld(ContactInfo& c, const Placement& placement, bool rotated);
 
 /// Sets up tw for a position test of `trm` (not a point) at `position`.
-void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Mat3& trmAxis, const Vec3& position,
-                       std::uint32_t mask, const Placement& placement);
-
-/// True when the axis differs from identity.
-inline bool isRotated(const Mat3& axis) { return !axis.isIdentity(); }
+/// `o` must outlive the test (the edges and polygons are placed on demand).
+void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
+                       std::uint32_t mask);
 
 /// True for a missing trace model or one with zero size on every axis.
 inline bool isPointTrm(const TraceModel* trm) {
