@@ -31,7 +31,7 @@
 //   RayIndex (ray_index.h) is about three times faster than translate().
 // THREAD SAFETY
 // - A CollisionModel is immutable; all queries are const functions of it.
-//   Per-query scratch state (visited marks, cached sidedness bits) lives in a
+//   Per-query scratch state (visited marks, the placed trace model) lives in a
 //   QueryWork that the caller owns. Use one QueryWork per thread; reuse it
 //   across queries and models (it grows to the largest model and never
 //   shrinks). Results are deterministic: the same query gives the same bits on

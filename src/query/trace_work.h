@@ -333,8 +333,20 @@ enum class PlaneCull {
   Stop,  ///< in front of a convex model's face: nothing of the model can be hit
 };
 /// The plane test shared by translations, rotations and position tests
-/// (sets tw.quickExit for Stop).
-PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane);
+/// (sets tw.quickExit for Stop): Bounds::planeSide of the trace bounds with
+/// tol::kOnEpsilon, the same arithmetic inline (it runs for most polygons a
+/// query meets).
+inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
+  const auto [centre, extent] = boxPlaneSpan(tw.bounds, plane);
+  if (centre + extent < -tol::kOnEpsilon) return PlaneCull::Skip;  // behind
+  if (!(centre - extent > tol::kOnEpsilon)) return PlaneCull::Test;
+  // in front
+  if (tw.model.isConvex) {
+    tw.quickExit = true;
+    return PlaneCull::Stop;
+  }
+  return PlaneCull::Skip;
+}
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
 /// edges' stored direction).

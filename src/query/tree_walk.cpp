@@ -182,21 +182,6 @@ void walkSegment(TraceWork& tw) {
 
 }  // namespace
 
-PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
-  switch (tw.bounds.planeSide(plane)) {
-    case Side::Cross:
-      return PlaneCull::Test;
-    case Side::Front:
-      if (tw.model.isConvex) {
-        tw.quickExit = true;
-        return PlaneCull::Stop;
-      }
-      return PlaneCull::Skip;
-    default:
-      return PlaneCull::Skip;
-  }
-}
-
 void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
                          detail::QueryScratch& s) {
   if (s.polygonEdgeLines.size() < edges.size()) s.polygonEdgeLines.resize(edges.size());
