@@ -175,30 +175,21 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
 
 bool testTrmVertsInBrushes(TraceWork& tw, std::span<const std::int32_t> brushes) {
   QueryScratch& s = tw.scratch;
-  for (const std::int32_t brushNum : brushes) {
-    if (s.testAndMark(s.brushChecked, std::size_t(brushNum))) continue;
-    count(s, &QueryStats::brushesMet);
+  return forEachNewItem(s, s.brushChecked, &QueryStats::brushesMet, brushes, [&](std::int32_t brushNum) {
     const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
-    if (!(b.contents & tw.contentMask) || !b.bounds.intersects(tw.bounds)) continue;
-    if (trmVertexInBrush(tw, b)) return true;
-  }
-  return false;
+    return (b.contents & tw.contentMask) && b.bounds.intersects(tw.bounds) && trmVertexInBrush(tw, b);
+  });
 }
 
 bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryScratch& s = tw.scratch;
-  for (const std::int32_t polyNum : polygons) {
-    if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-    count(s, &QueryStats::polygonsMet);
+  return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
-    if (!(poly.contents & tw.contentMask) || !poly.bounds.intersects(tw.bounds)) continue;
-    if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test) {
-      if (cull == PlaneCull::Stop) return true;
-      continue;
-    }
-    if (trmCrossesPolygon(tw, polyNum, poly)) return true;
-  }
-  return false;
+    if (!(poly.contents & tw.contentMask) || !poly.bounds.intersects(tw.bounds)) return false;
+    if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
+      return cull == PlaneCull::Stop;
+    return trmCrossesPolygon(tw, polyNum, poly);
+  });
 }
 
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,

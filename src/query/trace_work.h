@@ -144,6 +144,21 @@ inline void count(QueryScratch& s, std::uint64_t QueryStats::*counter, std::uint
   if constexpr (kQueryStats) s.stats.*counter += n;
 }
 
+/// The loop of every item test: for each of `items` (polygon or brush
+/// numbers) not met before in this query, marks it, counts it in `met` and
+/// calls test(item), which returns true when the query is over (stuck or
+/// stopped); returns whether one did.
+template <class Test>
+bool forEachNewItem(QueryScratch& s, std::vector<std::uint32_t>& marks, std::uint64_t QueryStats::*met,
+                    std::span<const std::int32_t> items, Test test) {
+  for (const std::int32_t item : items) {
+    if (s.testAndMark(marks, std::size_t(item))) continue;
+    count(s, met);
+    if (test(item)) return true;
+  }
+  return false;
+}
+
 /// The library's way into a QueryWork (its scratch is private to users).
 struct QueryWorkAccess {
   static QueryScratch& scratch(QueryWork& work) { return *work.scratch_; }

@@ -402,21 +402,17 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
 
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryScratch& s = tw.scratch;
-  for (const std::int32_t polyNum : polygons) {
-    if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-    count(s, &QueryStats::polygonsMet);
+  return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
-    if (!pointMayTouch(tw, poly)) continue;
+    if (!pointMayTouch(tw, poly)) return false;
     count(s, &QueryStats::polygonsTested);
     count(s, &QueryStats::vertexTests);
     const Real before = tw.fraction;
     translatePointThroughPolygon(tw, polyNum, poly);
-    if (tw.fraction != before) {
-      shrinkTraceBounds(tw);
-      if (tw.fraction == 0) return true;
-    }
-  }
-  return false;
+    if (tw.fraction == before) return false;
+    shrinkTraceBounds(tw);
+    return tw.fraction == 0;
+  });
 }
 
 bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
@@ -424,13 +420,10 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
   // The culls' loads, started together (a mispredicted cull would otherwise
   // hold up the next polygon's).
   for (const std::int32_t polyNum : polygons) prefetch(&tw.model.polygons[std::size_t(polyNum)]);
-  for (const std::int32_t polyNum : polygons) {
-    if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-    count(s, &QueryStats::polygonsMet);
+  return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
-    if (mayTouch(tw, poly) && translateTrmThroughPolygon(tw, polyNum, poly)) return true;
-  }
-  return false;
+    return mayTouch(tw, poly) && translateTrmThroughPolygon(tw, polyNum, poly);
+  });
 }
 
 }  // namespace cmkit::detail
