@@ -31,7 +31,7 @@ inline bool withinQueryRange(const Vec3& p) {
   using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
   constexpr Bits kMaxBits = Bits(std::bit_cast<Bits>(tol::kMaxQueryCoordinate) << 1);
   auto beyond = [](Real v) { return Bits(std::bit_cast<Bits>(v) << 1) > kMaxBits; };
-  return !(beyond(p.x) | beyond(p.y) | beyond(p.z));
+  return (int(beyond(p.x)) | int(beyond(p.y)) | int(beyond(p.z))) == 0;
 }
 
 /// True when a point and its placement are usable by pointContents;
