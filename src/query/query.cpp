@@ -134,12 +134,12 @@ constexpr std::size_t kPointContentsCachedBrushes = 1024;
 
 std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
                                   std::uint32_t mask) {
-  // The input check waits for a point found inside something: the walk is
+  // The range check waits for a point found inside something: the walk is
   // safe for any input (NaN goes down the back sides and is inside no brush)
   // and most points are in no brush. A turned model's axis is checked first:
   // an axis that is no rotation would move the point anywhere.
   const bool rotated = isRotated(placement.axis);
-  if (model.nodes.empty() || (rotated && !pointUsable(point, placement, rotated))) return 0;
+  if (model.nodes.empty() || (rotated && !validateAxis(placement.axis).ok())) return 0;
   Vec3 p = point - placement.origin;
   if (rotated) p = placement.axis * p;    // world -> model frame
   const Real coord[3] = {p.x, p.y, p.z};  // indexed by split axis below

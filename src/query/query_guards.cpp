@@ -31,11 +31,9 @@ namespace cmkit::detail {
 namespace {
 
 /// Ok when every coordinate is within tol::kMaxQueryCoordinate; else
-/// NonFinite or OutOfRange. (NaN fails the first comparison, so valid input
-/// pays three comparisons.)
+/// NonFinite or OutOfRange (valid input pays only withinQueryRange).
 QueryStatus checkPoint(const Vec3& p) {
-  constexpr Real kMax = tol::kMaxQueryCoordinate;
-  if (std::fabs(p.x) <= kMax && std::fabs(p.y) <= kMax && std::fabs(p.z) <= kMax) return QueryStatus::Ok;
+  if (withinQueryRange(p)) return QueryStatus::Ok;
   return p.isFinite() ? QueryStatus::OutOfRange : QueryStatus::NonFinite;
 }
 
@@ -108,11 +106,6 @@ QueryStatus guardRotation(RotationQuery& q) {
   if (std::fabs(length - 1) > tol::kAxisDriftEpsilon)
     q.rotation.axis = {Real(a.x / length), Real(a.y / length), Real(a.z / length)};
   return checkCommon(q.start, q.placement, q.trm, q.trmAxis);
-}
-
-bool pointUsable(const Vec3& point, const Placement& placement, bool rotated) {
-  return withinQueryRange(point) && withinQueryRange(placement.origin) &&
-         (!rotated || validateAxis(placement.axis).ok());
 }
 
 TraceResult refusedTrace(const Vec3& start, const Mat3& trmAxis, QueryStatus status) {

@@ -34,10 +34,6 @@ inline bool withinQueryRange(const Vec3& p) {
   return (int(beyond(p.x)) | int(beyond(p.y)) | int(beyond(p.z))) == 0;
 }
 
-/// True when a point and its placement are usable by pointContents;
-/// `rotated`: the placement's axis is not the identity (then it is checked).
-bool pointUsable(const Vec3& point, const Placement& placement, bool rotated);
-
 /// The result of a refused query: fraction 0, endPos = start, endAxis =
 /// trmAxis, no contact.
 TraceResult refusedTrace(const Vec3& start, const Mat3& trmAxis, QueryStatus status);

@@ -64,7 +64,8 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   tw.contentMask = q.contentMask;
   tw.quickExit = false;
 
-  const bool modelRotated = isRotated(q.placement.axis);
+  const Orientation orientation(q.trmAxis, q.placement);
+  const bool modelRotated = orientation.modelRotated;
   const Mat3& modelAxis = q.placement.axis;
   // The axis point in the plane of the trace start, in the model's frame.
   Vec3 start = q.start - q.placement.origin;
@@ -102,7 +103,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   } else {
     tw.pointTrace = false;
     tw.isConvex = q.trm->isConvex();
-    placeTrm(tw, *q.trm, Orientation(q.trmAxis, q.placement), q.start);
+    placeTrm(tw, *q.trm, orientation, q.start);
     centre = tw.start;
   }
   rw.centre = turnStart(centre);
@@ -185,7 +186,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
 
   if (rw.maxTan == initialTan) return 1;
   contact = tw.c;
-  contactToWorld(contact, q.placement, isRotated(q.placement.axis));
+  contactToWorld(contact, q.placement, modelRotated);
   const double f = std::fabs(std::atan(rw.maxTan) * 360 / kPi / double(endAngle - startAngle));
   return Real(std::min(f, 1.0));
 }
