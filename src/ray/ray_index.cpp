@@ -457,28 +457,23 @@ detail::Arrays arraysOf(const detail::RayIndexData& d) {
   return {d.nodes.data(), d.leaves.data(), d.polygons.data(), d.edges.data(), d.details.data()};
 }
 
-/// Spreads the bits of a 10-bit value to every third bit (a Morton code's axis).
-std::uint32_t spread3(std::uint32_t v) {
-  v &= 0x3ffu;
-  v = (v | (v << 16)) & 0x030000ffu;
-  v = (v | (v << 8)) & 0x0300f00fu;
-  v = (v | (v << 4)) & 0x030c30c3u;
-  v = (v | (v << 2)) & 0x09249249u;
-  return v;
-}
-/// Spreads the bits of a 16-bit value to every second bit.
-std::uint32_t spread2(std::uint32_t v) {
-  v &= 0xffffu;
-  v = (v | (v << 8)) & 0x00ff00ffu;
-  v = (v | (v << 4)) & 0x0f0f0f0fu;
-  v = (v | (v << 2)) & 0x33333333u;
-  v = (v | (v << 1)) & 0x55555555u;
-  return v;
-}
-
 /// Bits of the start cell and of the direction in castMany's sort key.
 constexpr int kStartBitsPerAxis = 4;
 constexpr int kDirectionBitsPerAxis = 8;
+
+/// Morton codes' axes: entry v is v with bit i moved to bit i * stride, for
+/// every v below 2^bits (made once, at compile time).
+template <int bits, int stride>
+constexpr std::array<std::uint32_t, (1u << bits)> spreadTable() {
+  std::array<std::uint32_t, (1u << bits)> table{};
+  for (std::uint32_t v = 0; v < table.size(); ++v)
+    for (int i = 0; i < bits; ++i) table[v] |= ((v >> i) & 1u) << (i * stride);
+  return table;
+}
+/// The start cell's axes, three-way interleaved.
+constexpr auto kSpreadStart = spreadTable<kStartBitsPerAxis, 3>();
+/// The direction's two axes on its cube face, two-way interleaved.
+constexpr auto kSpreadDirection = spreadTable<kDirectionBitsPerAxis, 2>();
 
 /// castMany's sort key: rays with close keys start in the same cell of the
 /// batch's start bounds (a 16^3 grid, Morton order) and point the same way
@@ -490,7 +485,7 @@ std::uint32_t coherenceKey(const Vec3& start, const Vec3& dir, const Vec3& start
     for (int k = 0; k < 3; ++k) {
       const Real q = (start[k] - startMin[k]) * startScale[k];
       const auto c = std::uint32_t(std::clamp<Real>(q, 0, (1 << kStartBitsPerAxis) - 1));
-      cell |= spread3(c) << k;
+      cell |= kSpreadStart[c] << k;
     }
   }
   int major = 0;
@@ -504,7 +499,7 @@ std::uint32_t coherenceKey(const Vec3& start, const Vec3& dir, const Vec3& start
     return std::uint32_t(std::clamp<Real>((x / m + 1) * kHalfCells, 0, 2 * kHalfCells - 1));
   };
   const std::uint32_t face = std::uint32_t(major) * 2 + std::uint32_t(dir[major] < 0);
-  const std::uint32_t onFace = spread2(cellOf(dir[a])) | (spread2(cellOf(dir[b])) << 1);
+  const std::uint32_t onFace = kSpreadDirection[cellOf(dir[a])] | (kSpreadDirection[cellOf(dir[b])] << 1);
   return (cell << (3 + 2 * kDirectionBitsPerAxis)) | (face << (2 * kDirectionBitsPerAxis)) | onFace;
 }
 
