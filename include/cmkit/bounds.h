@@ -81,7 +81,16 @@ struct Bounds {
   /// Side of the plane the whole box is on, as the original computes it:
   /// Front if the box is farther than epsilon in front, Back if farther than
   /// epsilon behind, else Cross.
-  Side planeSide(const Plane& plane, Real epsilon = tol::kOnEpsilon) const;
+  /// (Inline: the queries' polygon culls ask it of most polygons they meet.)
+  Side planeSide(const Plane& plane, Real epsilon = tol::kOnEpsilon) const {
+    const Vec3 c = center();
+    const Real d1 = plane.distance(c);
+    const Real d2 = std::fabs((max.x - c.x) * plane.normal.x) + std::fabs((max.y - c.y) * plane.normal.y) +
+                    std::fabs((max.z - c.z) * plane.normal.z);
+    if (d1 - d2 > epsilon) return Side::Front;
+    if (d1 + d2 < -epsilon) return Side::Back;
+    return Side::Cross;
+  }
 
   /// Does the segment start->end touch the box? (slab test, closed box)
   bool intersectsSegment(const Vec3& start, const Vec3& end) const;

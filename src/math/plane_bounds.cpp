@@ -64,16 +64,6 @@ bool Plane::fixDegeneracies(Real distEpsilon) {
   return fixed;
 }
 
-Side Bounds::planeSide(const Plane& plane, Real epsilon) const {
-  const Vec3 c = center();
-  const Real d1 = plane.distance(c);
-  const Real d2 = std::fabs((max.x - c.x) * plane.normal.x) + std::fabs((max.y - c.y) * plane.normal.y) +
-                  std::fabs((max.z - c.z) * plane.normal.z);
-  if (d1 - d2 > epsilon) return Side::Front;
-  if (d1 + d2 < -epsilon) return Side::Back;
-  return Side::Cross;
-}
-
 bool Bounds::intersectsSegment(const Vec3& start, const Vec3& end) const {
   const Real t = rayEntry(start, end - start);
   return t >= 0 && t <= 1;

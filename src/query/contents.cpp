@@ -98,7 +98,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
       if (s.isChecked(s.edges[e])) continue;
       for (int j = 0; j < 2; ++j) {
         const std::size_t vn = std::size_t(m.edges[e].vertex[j]);
-        if (s.vertexChecked[vn] == s.generation) continue;
+        if (s.isChecked(s.vertexChecked, vn)) continue;
         const Vec3& p = m.vertices[vn];
         int bestPlane = 0;
         Real bestd = -tol::kBoundsInfinity;
@@ -119,7 +119,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
     }
   }
   setPolygonEdgeLines(m, edges, s);
-  for (const std::int32_t edgeNum : edges) s.vertexChecked[std::size_t(m.edgeStart(edgeNum))] = s.generation;
+  for (const std::int32_t edgeNum : edges) s.mark(s.vertexChecked, std::size_t(m.edgeStart(edgeNum)));
 
   // 2. a trm edge crossing the polygon plane inside all polygon edges.
   int sides[kMaxTrmVertices];

@@ -110,6 +110,10 @@ struct QueryScratch {
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
 
+  bool isChecked(const std::vector<std::uint32_t>& marks, std::size_t i) const {
+    return marks[i] == generation;
+  }
+  void mark(std::vector<std::uint32_t>& marks, std::size_t i) { marks[i] = generation; }
   bool testAndMark(std::vector<std::uint32_t>& marks, std::size_t i) {
     if (marks[i] == generation) return true;
     marks[i] = generation;
@@ -348,19 +352,20 @@ enum class PlaneCull {
   Stop,  ///< in front of a convex model's face: nothing of the model can be hit
 };
 /// The plane test shared by translations, rotations and position tests
-/// (sets tw.quickExit for Stop): Bounds::planeSide of the trace bounds with
-/// tol::kOnEpsilon, the same arithmetic inline (it runs for most polygons a
-/// query meets).
+/// (sets tw.quickExit for Stop).
 inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
-  const auto [centre, extent] = boxPlaneSpan(tw.bounds, plane);
-  if (centre + extent < -tol::kOnEpsilon) return PlaneCull::Skip;  // behind
-  if (!(centre - extent > tol::kOnEpsilon)) return PlaneCull::Test;
-  // in front
-  if (tw.model.isConvex) {
-    tw.quickExit = true;
-    return PlaneCull::Stop;
+  switch (tw.bounds.planeSide(plane)) {
+    case Side::Cross:
+      return PlaneCull::Test;
+    case Side::Front:
+      if (tw.model.isConvex) {
+        tw.quickExit = true;
+        return PlaneCull::Stop;
+      }
+      return PlaneCull::Skip;
+    default:
+      return PlaneCull::Skip;
   }
-  return PlaneCull::Skip;
 }
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
