@@ -41,6 +41,17 @@ int enteredChildrenAvx2(const RayLayout::Node& n, const Ray& r, float best, floa
       _mm256_andnot_ps(_mm256_castsi256_ps(noContents), _mm256_cmp_ps(tNear, tFar, _CMP_LE_OQ)));
 }
 
+/// One field of the packet's rays as the eight float lanes of a register
+/// (lanes past `count` repeat ray 0, and stay off). Built in registers, not
+/// through an array on the stack: eight scalar stores read back as one
+/// vector miss the store forwarding and wait for the stores to retire, which
+/// cost about a tenth of a packet's walk.
+template <class Field>
+__m256 packetLanes(const Ray* rays, unsigned count, Field field) {
+  const auto lane = [&](unsigned k) { return float(field(rays[k < count ? k : 0])); };
+  return _mm256_setr_ps(lane(0), lane(1), lane(2), lane(3), lane(4), lane(5), lane(6), lane(7));
+}
+
 /// A child waiting on a packet's stack: the rays (lane bits) that enter
 /// it and where each enters (+infinity in the other lanes).
 struct PacketPending {
@@ -66,9 +77,9 @@ struct PacketRays {
 /// which rays may cross the polygon before their best crossing (front face,
 /// start not behind, end not in front, crossing not beyond the best) and
 /// where (t), by the same float operations in the same order as
-/// testPolygon, so the rays it passes go on to acceptCrossing with the t
-/// testPolygon would compute. A double build (Real is double) does not
-/// filter: every ray goes to testPolygon.
+/// testPolygon, so the rays it passes go on with the t testPolygon would
+/// compute; and the edge tests of several rays at once. A double build
+/// (Real is double) does not filter: every ray goes to testPolygon.
 class PacketPlanes {
  public:
   /// Whether Real is float, so that the lanes compute what testPolygon does.
@@ -77,22 +88,20 @@ class PacketPlanes {
   PacketPlanes(const Ray* rays, unsigned count) {
     if constexpr (kFloatLanes) {
       for (int a = 0; a < 3; ++a) {
-        alignas(32) float s[kPacket], e[kPacket], d[kPacket];
-        for (unsigned k = 0; k < kPacket; ++k) {
-          const Ray& r = rays[k < count ? k : 0];
-          s[k] = float(r.start[a]);
-          e[k] = float(r.end[a]);
-          d[k] = float(r.dir[a]);
-        }
-        start_[a] = _mm256_load_ps(s);
-        end_[a] = _mm256_load_ps(e);
-        dir_[a] = _mm256_load_ps(d);
+        start_[a] = packetLanes(rays, count, [a](const Ray& r) { return r.start[a]; });
+        end_[a] = packetLanes(rays, count, [a](const Ray& r) { return r.end[a]; });
+        dir_[a] = packetLanes(rays, count, [a](const Ray& r) { return r.dir[a]; });
       }
+      for (int c = 0; c < 6; ++c)
+        line_[c] = packetLanes(rays, count, [c](const Ray& r) { return r.line[c]; });
     }
   }
-  std::uint32_t candidates(const RayLayout::Polygon& p, const float* bestT, float* tOut) const {
+  /// Of the rays in `lanes`, those that may cross polygon p before their
+  /// best (bestT), with where in tOut (written only when some ray may).
+  std::uint32_t candidates(const RayLayout::Polygon& p, const float* bestT, std::uint32_t lanes,
+                           float* tOut) const {
     if constexpr (!kFloatLanes) {
-      return 0xffu;
+      return lanes;
     } else {
       const __m256 nx = _mm256_set1_ps(float(p.normal.x)), ny = _mm256_set1_ps(float(p.normal.y));
       const __m256 nz = _mm256_set1_ps(float(p.normal.z)), dist = _mm256_set1_ps(float(p.dist));
@@ -105,18 +114,40 @@ class PacketPlanes {
       const __m256 d1 = _mm256_sub_ps(dot(start_), dist);
       const __m256 d2 = _mm256_sub_ps(dot(end_), dist);
       const __m256 denom = _mm256_sub_ps(d1, d2);
+      __m256 ok = _mm256_and_ps(front, _mm256_cmp_ps(d1, zero, _CMP_NLT_UQ));  // !(d1 < 0)
+      ok = _mm256_and_ps(ok, _mm256_cmp_ps(d2, zero, _CMP_NGT_UQ));            // !(d2 > 0)
+      ok = _mm256_and_ps(ok, _mm256_cmp_ps(denom, zero, _CMP_GT_OQ));          // denom > 0
+      // Most polygons of a leaf face away from every ray or are not reached:
+      // the division only when some ray crosses the plane.
+      if (!(std::uint32_t(_mm256_movemask_ps(ok)) & lanes)) return 0;
       const __m256 t = _mm256_div_ps(d1, denom);
       _mm256_store_ps(tOut, t);
-      __m256 ok = _mm256_and_ps(front, _mm256_cmp_ps(d1, zero, _CMP_NLT_UQ));        // !(d1 < 0)
-      ok = _mm256_and_ps(ok, _mm256_cmp_ps(d2, zero, _CMP_NGT_UQ));                  // !(d2 > 0)
-      ok = _mm256_and_ps(ok, _mm256_cmp_ps(denom, zero, _CMP_GT_OQ));                // denom > 0
       ok = _mm256_and_ps(ok, _mm256_cmp_ps(t, _mm256_load_ps(bestT), _CMP_NGT_UQ));  // !(t > best)
-      return std::uint32_t(_mm256_movemask_ps(ok));
+      return std::uint32_t(_mm256_movemask_ps(ok)) & lanes;
     }
+  }
+  /// Of the rays in `lanes`, those passing inside every edge of polygon p:
+  /// insideEdges for eight rays at once (the same products in the same
+  /// order, so the same signs). Float lanes only (kFloatLanes).
+  std::uint32_t insideEdges(const Arrays& index, const RayLayout::Polygon& p, std::uint32_t lanes) const {
+    const RayLayout::EdgeLine* lines = index.edges + p.firstEdge;
+    for (std::uint32_t j = 0; j < p.numEdges && lanes; ++j) {
+      const Real* l = lines[j].p;
+      const auto term = [&](int e, int r) { return _mm256_mul_ps(_mm256_set1_ps(float(l[e])), line_[r]); };
+      __m256 product = _mm256_add_ps(term(0, 4), term(1, 5));
+      product = _mm256_add_ps(product, term(2, 3));
+      product = _mm256_add_ps(product, term(4, 0));
+      product = _mm256_add_ps(product, term(5, 1));
+      product = _mm256_add_ps(product, term(3, 2));
+      const auto negative = std::uint32_t(_mm256_movemask_ps(product));
+      lanes &= lines[j].reversed ? negative : ~negative;  // inside: the sign the edge's use asks
+    }
+    return lanes;
   }
 
  private:
   __m256 start_[3], end_[3], dir_[3];
+  __m256 line_[6];  ///< the rays' Pluecker coordinates (Ray::line)
 };
 
 }  // namespace
@@ -130,14 +161,9 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
   const PacketPlanes planes(rays, count);
   PacketRays pr;
   for (int a = 0; a < 3; ++a) {
-    alignas(32) float s[kPacket], v[kPacket];
-    for (unsigned k = 0; k < kPacket; ++k) {  // lanes past count copy ray 0 (and stay off)
-      const Ray& r = rays[k < count ? k : 0];
-      s[k] = float(r.start[a]);
-      v[k] = r.inv[a];
-    }
-    pr.inv[a] = _mm256_load_ps(v);
-    pr.startTimesInv[a] = _mm256_mul_ps(_mm256_load_ps(s), pr.inv[a]);
+    pr.inv[a] = packetLanes(rays, count, [a](const Ray& r) { return r.inv[a]; });
+    pr.startTimesInv[a] =
+        _mm256_mul_ps(packetLanes(rays, count, [a](const Ray& r) { return r.start[a]; }), pr.inv[a]);
   }
   Crossing best[kPacket];
   std::int32_t bestIndex[kPacket];
@@ -158,15 +184,27 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
     if (ref & RayLayout::kLeaf) {
       const RayLayout::Leaf& leaf = index.leaves[ref & ~RayLayout::kLeaf];
       for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-        if (!(index.polygons[i].contents & mask)) continue;
+        const RayLayout::Polygon& poly = index.polygons[i];
+        if (!(poly.contents & mask)) continue;
         alignas(32) float t[kPacket];
-        for (std::uint32_t l = planes.candidates(index.polygons[i], bestT, t) & lanes; l; l &= l - 1) {
-          const int k = __builtin_ctz(l);
-          if constexpr (PacketPlanes::kFloatLanes)
-            acceptCrossing(index, i, rays[k], t[k], best[k], bestIndex[k]);
-          else
+        std::uint32_t l = planes.candidates(poly, bestT, lanes, t);
+        if constexpr (PacketPlanes::kFloatLanes) {
+          // Several rays: their edge tests at once; one: its own.
+          const bool several = (l & (l - 1)) != 0;
+          if (several) l = planes.insideEdges(index, poly, l);
+          for (; l; l &= l - 1) {
+            const int k = __builtin_ctz(l);
+            if (notBeyondBest(index, i, t[k], best[k], bestIndex[k]) &&
+                (several || insideEdges(index, i, rays[k])))
+              keepCrossing(index, i, rays[k], t[k], best[k], bestIndex[k]);
+            bestT[k] = float(best[k].t);
+          }
+        } else {
+          for (; l; l &= l - 1) {
+            const int k = __builtin_ctz(l);
             testPolygon(index, i, rays[k], best[k], bestIndex[k]);
-          bestT[k] = float(best[k].t);
+            bestT[k] = float(best[k].t);
+          }
         }
       }
     } else {

@@ -69,12 +69,11 @@ Crossing castAvx2(const Arrays& index, const Ray& ray);
 constexpr unsigned kPacket = 8;
 /// Walks `count` (1 to kPacket) rays of one content mask together through
 /// the index: a node's children are tested against every ray of the packet
-/// that reached it, a leaf's polygons are tested for each of those rays with
-/// testPolygon. out[k] is what castAvx2(index, rays[k]) returns, bit for
-/// bit: a ray's answer is the first crossing (ties: the lower polygon index)
-/// of all the polygons that accept it, whatever order they are tested in,
-/// and every node test lets through each box holding such a crossing before
-/// the ray's best so far (the boxes are padded beyond the slab tests'
+/// that reached it, a leaf's polygons against all of those rays (the plane
+/// and edge tests of testPolygon, eight rays per instruction). out[k] is what castAvx2(index, rays[k])
+/// returns, bit for bit: a ray's answer is the first crossing (ties: the lower polygon index) of all the
+/// polygons that accept it, whatever order they are tested in, and every node test lets through each box
+/// holding such a crossing before the ray's best so far (the boxes are padded beyond the slab tests'
 /// rounding). Only with AVX2 and FMA (as castAvx2).
 void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossing* out);
 
@@ -101,29 +100,50 @@ static inline bool signBit(double x) {
   return (bits >> 63) != 0;
 }
 
-/// The second half of testPolygon: the ray crosses the plane of the
-/// polygon in `slot` at t (front face, start not behind, end not in front);
-/// keeps it as `best` when it is not beyond the best so far and the polygon
-/// accepts it (inside every edge, within the acceptance box).
-static inline void acceptCrossing(const Arrays& index, std::uint32_t slot, const Ray& r, Real t,
-                                  Crossing& best, std::int32_t& bestIndex) {
+/// Whether the ray passes inside every edge of the polygon in `slot` (the
+/// sign of each edge line's product with the ray's line).
+static inline bool insideEdges(const Arrays& index, std::uint32_t slot, const Ray& r) {
   const RayLayout::Polygon& p = index.polygons[slot];
-  if (t > best.t || (t == best.t && p.index > bestIndex)) return;
   const RayLayout::EdgeLine* lines = index.edges + p.firstEdge;
   const Real* ray = r.line;
   for (std::uint32_t j = 0; j < p.numEdges; ++j) {
     const Real* l = lines[j].p;
     const Real product =
         l[0] * ray[4] + l[1] * ray[5] + l[2] * ray[3] + l[4] * ray[0] + l[5] * ray[1] + l[3] * ray[2];
-    if (lines[j].reversed ^ std::uint32_t(signBit(product))) return;  // outside this edge
+    if (lines[j].reversed ^ std::uint32_t(signBit(product))) return false;  // outside this edge
   }
+  return true;
+}
+
+/// Whether a crossing at t of the polygon in `slot` may replace `best`: not
+/// beyond it, and at the same t only from a lower polygon index.
+static inline bool notBeyondBest(const Arrays& index, std::uint32_t slot, Real t, const Crossing& best,
+                                 std::int32_t bestIndex) {
+  return !(t > best.t || (t == best.t && index.polygons[slot].index > bestIndex));
+}
+
+/// The last part of acceptCrossing, for a crossing at t inside every edge
+/// of the polygon in `slot` and not beyond the best: keeps it as `best`
+/// when it lies in the polygon's acceptance box.
+static inline void keepCrossing(const Arrays& index, std::uint32_t slot, const Ray& r, Real t, Crossing& best,
+                                std::int32_t& bestIndex) {
   const Bounds& box = index.details[slot].acceptBox;
   const Real x = r.start[0] + r.dir[0] * t, y = r.start[1] + r.dir[1] * t, z = r.start[2] + r.dir[2] * t;
   if (x < box.min.x || y < box.min.y || z < box.min.z || x > box.max.x || y > box.max.y || z > box.max.z)
     return;
   best.t = t;
   best.slot = std::int32_t(slot);
-  bestIndex = p.index;
+  bestIndex = index.polygons[slot].index;
+}
+
+/// The second half of testPolygon: the ray crosses the plane of the
+/// polygon in `slot` at t (front face, start not behind, end not in front);
+/// keeps it as `best` when it is not beyond the best so far and the polygon
+/// accepts it (inside every edge, within the acceptance box).
+static inline void acceptCrossing(const Arrays& index, std::uint32_t slot, const Ray& r, Real t,
+                                  Crossing& best, std::int32_t& bestIndex) {
+  if (notBeyondBest(index, slot, t, best, bestIndex) && insideEdges(index, slot, r))
+    keepCrossing(index, slot, r, t, best, bestIndex);
 }
 
 /// Tests one polygon (by slot), keeping `best` the first crossing; equal
