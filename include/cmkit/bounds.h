@@ -33,14 +33,17 @@ struct Bounds {
   /// True when max < min on some axis (nothing added yet, or inverted).
   constexpr bool isCleared() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
 
-  /// Grows the bounds to hold p.
+  /// Grows the bounds to hold p. (Selects, not branches: the compiler makes
+  /// each a min / max instruction, with the same result for every input,
+  /// NaN included: a coordinate that compares false leaves the corner as it
+  /// was.)
   constexpr void addPoint(const Vec3& p) {
-    if (p.x < min.x) min.x = p.x;
-    if (p.x > max.x) max.x = p.x;
-    if (p.y < min.y) min.y = p.y;
-    if (p.y > max.y) max.y = p.y;
-    if (p.z < min.z) min.z = p.z;
-    if (p.z > max.z) max.z = p.z;
+    min.x = p.x < min.x ? p.x : min.x;
+    max.x = p.x > max.x ? p.x : max.x;
+    min.y = p.y < min.y ? p.y : min.y;
+    max.y = p.y > max.y ? p.y : max.y;
+    min.z = p.z < min.z ? p.z : min.z;
+    max.z = p.z > max.z ? p.z : max.z;
   }
   /// Grows the bounds to hold b.
   constexpr void addBounds(const Bounds& b) {
