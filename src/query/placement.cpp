@@ -67,9 +67,13 @@ void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const 
 
 WorkEdge& placeTrmEdge(TraceWork& tw, int i) {
   WorkEdge& e = tw.edges[std::size_t(i)];
-  e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-  e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-  e.pl = Pluecker::fromLine(e.start, e.end);
+  // From locals: read back through e, the ends would be reloaded after
+  // every store (the compiler must assume the arrays may overlap).
+  const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;
+  const Vec3 end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+  e.start = start;
+  e.end = end;
+  e.pl = Pluecker::fromLine(start, end);
   e.used = true;
   return e;
 }

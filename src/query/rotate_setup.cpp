@@ -112,15 +112,20 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   for (int i = 0; i < tw.numVerts; ++i) {
     WorkVertex& v = tw.vertices[std::size_t(i)];
     RotVertex& rv = rw.vertices[std::size_t(i)];
+    // (Computed in locals, then stored: through the arrays, every store
+    // would have to be read back, since they might overlap.)
     const Vec3 placed = v.p;
-    v.p = turnStart(placed);
-    v.endp = turn(placed, endM);
+    const Vec3 p = turnStart(placed), endp = turn(placed, endM);
+    const Vec3 rotationOrigin = origin + axis * axis.dot(p - origin);
+    const bool used =
+        (p - rotationOrigin).lengthSquared() > tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon;
+    v.p = p;
+    v.endp = endp;
     v.used = true;
-    rv.rotationOrigin = origin + axis * axis.dot(v.p - origin);
-    const Real radiusSq = (v.p - rv.rotationOrigin).lengthSquared();
-    rv.used = radiusSq > tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon;
-    rw.usedVertices |= std::uint32_t(rv.used) << i;
-    const Bounds box = arcBounds(rv.rotationOrigin, axis, v.p, v.endp).expanded(tol::kBoxEpsilon);
+    rv.rotationOrigin = rotationOrigin;
+    rv.used = used;
+    rw.usedVertices |= std::uint32_t(used) << i;
+    const Bounds box = arcBounds(rotationOrigin, axis, p, endp).expanded(tol::kBoxEpsilon);
     rw.vertexBoxes.set(std::size_t(i), box);
     tw.bounds.addBounds(box);
   }

@@ -340,10 +340,12 @@ void placeTranslationFeatures(TraceWork& tw) {
   }
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
     WorkEdge& e = tw.edges[std::size_t(std::countr_zero(moving))];
-    e.start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-    e.end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-    e.pl = Pluecker::fromLine(e.start, e.end);
-    const Vec3 a = e.start - e.end;
+    const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;  // (locals: as placeTrmEdge)
+    const Vec3 end = tw.vertices[std::size_t(e.vertexNum[1])].p;
+    e.start = start;
+    e.end = end;
+    e.pl = Pluecker::fromLine(start, end);
+    const Vec3 a = start - end;
     e.cross = {a[0] * tw.dir[1] - a[1] * tw.dir[0], a[0] * tw.dir[2] - a[2] * tw.dir[0],
                a[1] * tw.dir[2] - a[2] * tw.dir[1]};
   }
