@@ -400,7 +400,7 @@ std::uint32_t boxesTouching(const FeatureBoxes& b, std::uint32_t candidates, con
   std::uint32_t bits = 0;
   for (; candidates; candidates &= candidates - 1) {
     const auto i = std::size_t(std::countr_zero(candidates));
-    bits |= std::uint32_t(b.get(i).intersects(bounds)) << i;
+    bits |= std::uint32_t(boxesTouch(b.get(i), bounds)) << i;  // (no branches: unpredictable)
   }
   return bits;
 }
@@ -415,7 +415,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
 
   // Culls valid for the polygon and everything on it (its edges and vertices).
   if (!(poly.contents & tw.contentMask)) return false;
-  if (!tw.bounds.intersects(poly.bounds)) return false;
+  if (!boxesTouch(tw.bounds, poly.bounds)) return false;
   if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
@@ -486,7 +486,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const Vec3 endp = rw.origin + (p - rw.origin) * rw.backMatrix;
     for (int j = 0; j < tw.numPolys; ++j) {
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
-      if (!tp.used || !rw.polygonBounds(tw, j).containsPoint(p)) continue;
+      if (!tp.used || !insideBox(rw.polygonBounds(tw, j), p)) continue;
       if (backCull && tp.plane.distance(p) < 0) continue;
       rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
     }
