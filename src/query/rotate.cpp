@@ -289,8 +289,28 @@ bool finishPolygon(TraceWork& tw, const RotationWork& rw) {
 
 }  // namespace
 
+/// How far from zero, relative to the size of its terms, the quadratic must
+/// be at both ends of an interval for firstQuadraticRoot to rule out a root
+/// there without solving: a million times the rounding of those sums, so
+/// that the roots computed below (accurate to about 1e-8 relative even for a
+/// near-double root) could not fall inside either.
+constexpr double kNoRootMargin = 1e-9;
+
 bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root) {
   if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
+  // Most calls have no root before hi (the nearest hit so far): the
+  // quadratic keeps one sign on [lo, hi] when it has the same sign, clearly,
+  // at both ends and no extremum between them (its slope a u + b has one
+  // sign). Deciding that takes a few products instead of a square root and
+  // two divisions.
+  if (std::isfinite(hi)) {
+    const double gLo = (a * lo + 2 * b) * lo + c, gHi = (a * hi + 2 * b) * hi + c;
+    const double sizeLo = (std::fabs(a) * lo + 2 * std::fabs(b)) * lo + std::fabs(c);
+    const double sizeHi = (std::fabs(a) * hi + 2 * std::fabs(b)) * hi + std::fabs(c);
+    const bool oneSign = gLo * gHi > 0 && (a * lo + b) * (a * hi + b) > 0;
+    if (oneSign && std::fabs(gLo) > kNoRootMargin * sizeLo && std::fabs(gHi) > kNoRootMargin * sizeHi)
+      return false;
+  }
   double r1, r2;
   if (a == 0) {
     if (b == 0) return false;

@@ -11,6 +11,7 @@
 
 #include "cmkit/query.h"
 #include "model_fixtures.h"
+#include "query/rotate_work.h"  // firstQuadraticRoot
 
 using namespace cmkit;
 using cmkit::test::ModelMaker;
@@ -218,6 +219,52 @@ TEST(Rotation, QuadraticSolverNeverReturnsNaN) {
   EXPECT_TRUE(std::isfinite(r.fraction));
   EXPECT_EQ(r.fraction, 0.0f);
   EXPECT_TRUE(r.endPos.isFinite());
+}
+
+TEST(Rotation, QuadraticSolverFindsTheFirstRootInItsInterval) {
+  // (u - 1)(u - 2) = u^2 + 2 * (-1.5) u + 2.
+  double u = -1;
+  EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 0, 3, u));
+  EXPECT_EQ(u, 1.0);
+  EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 1, 1.5, u));  // a root at lo counts
+  EXPECT_EQ(u, 1.0);
+  EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 0, 1, u));      // not at hi
+  EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 0, 0.99, u));   // both beyond
+  EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 1.2, 1.8, u));  // between the roots
+  EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 1.2, 2.5, u));
+  EXPECT_EQ(u, 2.0);
+  EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 2.5, 9, u));  // both before
+
+  // Random quadratics a (u - r1)(u - r2) and intervals: the root found (or
+  // none) is the first of r1, r2 in [lo, hi), whichever way the solver
+  // decides (solving, or ruling the interval out from the ends' signs).
+  // Intervals with an end within 1e-6 of a root are left out (rounding may
+  // put the root on either side).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> any(-4, 4), scale(-50, 50);
+  int found = 0, none = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double r1 = any(rng), r2 = any(rng), a = scale(rng);
+    if (std::fabs(a) < 1e-3 || std::fabs(r1 - r2) < 1e-3) continue;
+    double lo = std::fabs(any(rng)), hi = std::fabs(any(rng));
+    if (hi < lo) std::swap(lo, hi);
+    const auto nearEnd = [&](double r) { return std::fabs(r - lo) < 1e-6 || std::fabs(r - hi) < 1e-6; };
+    if (nearEnd(r1) || nearEnd(r2)) continue;
+    double expected = std::numeric_limits<double>::infinity();
+    for (const double r : {r1, r2})
+      if (r >= lo && r < hi) expected = std::min(expected, r);
+    double root = 0;
+    const bool ok = cmkit::detail::firstQuadraticRoot(a, -a * (r1 + r2) / 2, a * r1 * r2, lo, hi, root);
+    ASSERT_EQ(ok, std::isfinite(expected)) << a << " " << r1 << " " << r2 << " [" << lo << ", " << hi << ")";
+    if (ok) {
+      EXPECT_NEAR(root, expected, 1e-9 * (1 + std::fabs(expected)));
+      ++found;
+    } else {
+      ++none;
+    }
+  }
+  EXPECT_GT(found, 10000);  // both outcomes are exercised
+  EXPECT_GT(none, 10000);
 }
 
 // ---- the original's rotation bugs ------------------------------------------
