@@ -353,6 +353,28 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
   const Vec3 m1 = (p - ro).cross(axis);
   const Vec3 m2 = (end - ro).cross(axis);
   const Real radiusSq = (p - ro).lengthSquared();
+#ifdef CMKIT_ROTATE_SSE2
+  // The three axes at once, without branches (which axes turn is
+  // unpredictable): the portable loop's arithmetic (#else) in each lane, one square
+  // root instruction for all three, the bounds chosen by masks.
+  const auto lanes = [](const Vec3& v) { return _mm_setr_ps(v.x, v.y, v.z, 0); };
+  const __m128 zero = _mm_setzero_ps(), vm1 = lanes(m1), vm2 = lanes(m2), a = lanes(axis);
+  const __m128 vro = lanes(ro);
+  const __m128 turns = _mm_or_ps(_mm_and_ps(_mm_cmpgt_ps(vm1, zero), _mm_cmplt_ps(vm2, zero)),
+                                 _mm_and_ps(_mm_cmplt_ps(vm1, zero), _mm_cmpgt_ps(vm2, zero)));
+  const __m128 extent = _mm_sqrt_ps(
+      _mm_max_ps(_mm_mul_ps(_mm_set1_ps(radiusSq), _mm_sub_ps(_mm_set1_ps(1), _mm_mul_ps(a, a))), zero));
+  const __m128 up =
+      _mm_cmpgt_ps(_mm_sub_ps(_mm_mul_ps(_mm_set1_ps(0.5f), _mm_add_ps(lanes(p), lanes(end))), vro), zero);
+  const __m128 lo = lanes(b.min), hi = lanes(b.max);
+  const __m128 top = _mm_max_ps(_mm_add_ps(vro, extent), hi);     // std::max(hi, ro + e)
+  const __m128 bottom = _mm_min_ps(_mm_sub_ps(vro, extent), lo);  // std::min(lo, ro - e)
+  const __m128 raise = _mm_and_ps(turns, up), lower = _mm_andnot_ps(up, turns);
+  alignas(16) float outLo[4], outHi[4];
+  _mm_store_ps(outHi, _mm_or_ps(_mm_and_ps(raise, top), _mm_andnot_ps(raise, hi)));
+  _mm_store_ps(outLo, _mm_or_ps(_mm_and_ps(lower, bottom), _mm_andnot_ps(lower, lo)));
+  return {{outLo[0], outLo[1], outLo[2]}, {outHi[0], outHi[1], outHi[2]}};
+#else
   for (int i = 0; i < 3; ++i) {
     // The motion along this axis changes sign: the arc passes the circle's
     // extreme on the side of the chord's midpoint (arcs below 180 degrees).
@@ -365,6 +387,7 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
     }
   }
   return b;
+#endif
 }
 
 std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, const Plane& plane) {
