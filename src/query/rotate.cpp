@@ -15,10 +15,10 @@
 
 #include "query/rotate_work.h"
 
-// SSE2 on x86-64 (boxesCrossing: four feature boxes at a time); any other
-// target, or -DCMKIT_NO_SIMD, uses the portable loop, which does the same
-// arithmetic. The lanes are float: a double build (CMKIT_DOUBLE) uses the
-// portable loop.
+// SSE2 on x86-64 (boxesCrossing, boxesTouching: four feature boxes at a
+// time; arcBounds: its three axes at once); any other target, or
+// -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic.
+// The lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
 #include <emmintrin.h>
 #define CMKIT_ROTATE_SSE2 1
