@@ -390,6 +390,32 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
 #endif
 }
 
+#ifdef CMKIT_ROTATE_SSE2
+namespace {
+/// A box in four lanes, for the box tests of four feature boxes at a time.
+struct BoxLanes {
+  explicit BoxLanes(const Bounds& b)
+      : loX(_mm_set1_ps(b.min.x)),
+        loY(_mm_set1_ps(b.min.y)),
+        loZ(_mm_set1_ps(b.min.z)),
+        hiX(_mm_set1_ps(b.max.x)),
+        hiY(_mm_set1_ps(b.max.y)),
+        hiZ(_mm_set1_ps(b.max.z)) {}
+  /// Lane k: feature box i + k lies apart from this box (Bounds::intersects
+  /// false, by the same comparisons).
+  __m128 apart(const FeatureBoxes& f, std::size_t i) const {
+    return _mm_or_ps(_mm_or_ps(_mm_or_ps(_mm_cmplt_ps(hiX, _mm_load_ps(&f.minX[i])),
+                                         _mm_cmplt_ps(hiY, _mm_load_ps(&f.minY[i]))),
+                               _mm_cmplt_ps(hiZ, _mm_load_ps(&f.minZ[i]))),
+                     _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(loX, _mm_load_ps(&f.maxX[i])),
+                                         _mm_cmpgt_ps(loY, _mm_load_ps(&f.maxY[i]))),
+                               _mm_cmpgt_ps(loZ, _mm_load_ps(&f.maxZ[i]))));
+  }
+  __m128 loX, loY, loZ, hiX, hiY, hiZ;
+};
+}  // namespace
+#endif
+
 std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, const Plane& plane) {
 #ifdef CMKIT_ROTATE_SSE2
   {
@@ -401,10 +427,7 @@ std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, 
     const __m128 nx = _mm_set1_ps(nm.x), ny = _mm_set1_ps(nm.y), nz = _mm_set1_ps(nm.z);
     const __m128 eps = _mm_set1_ps(tol::kOnEpsilon), negEps = _mm_set1_ps(-tol::kOnEpsilon);
     const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-    const __m128 loX = _mm_set1_ps(bounds.min.x), loY = _mm_set1_ps(bounds.min.y),
-                 loZ = _mm_set1_ps(bounds.min.z);
-    const __m128 hiX = _mm_set1_ps(bounds.max.x), hiY = _mm_set1_ps(bounds.max.y),
-                 hiZ = _mm_set1_ps(bounds.max.z);
+    const BoxLanes box(bounds);
     std::uint32_t rejected = 0;
     for (std::size_t i = 0; i < std::size_t(n); i += 4) {
       const __m128 mnX = _mm_load_ps(&b.minX[i]), mnY = _mm_load_ps(&b.minY[i]),
@@ -421,10 +444,7 @@ std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, 
                                    _mm_and_ps(_mm_mul_ps(_mm_sub_ps(mxZ, cz), nz), absMask));
       const __m128 oneSide =
           _mm_or_ps(_mm_cmpgt_ps(_mm_sub_ps(d1, d2), eps), _mm_cmplt_ps(_mm_add_ps(d1, d2), negEps));
-      const __m128 apart = _mm_or_ps(
-          _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(hiX, mnX), _mm_cmplt_ps(hiY, mnY)), _mm_cmplt_ps(hiZ, mnZ)),
-          _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(loX, mxX), _mm_cmpgt_ps(loY, mxY)), _mm_cmpgt_ps(loZ, mxZ)));
-      rejected |= std::uint32_t(_mm_movemask_ps(_mm_or_ps(oneSide, apart))) << i;
+      rejected |= std::uint32_t(_mm_movemask_ps(_mm_or_ps(oneSide, box.apart(b, i)))) << i;
     }
     const std::uint32_t all = n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1;
     return ~rejected & all;
@@ -441,22 +461,11 @@ std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, 
 
 std::uint32_t boxesTouching(const FeatureBoxes& b, std::uint32_t candidates, const Bounds& bounds) {
 #ifdef CMKIT_ROTATE_SSE2
-  // Four boxes at a time, up to the last candidate: boxesTouch's comparisons
-  // in each lane.
-  const __m128 loX = _mm_set1_ps(bounds.min.x), loY = _mm_set1_ps(bounds.min.y),
-               loZ = _mm_set1_ps(bounds.min.z);
-  const __m128 hiX = _mm_set1_ps(bounds.max.x), hiY = _mm_set1_ps(bounds.max.y),
-               hiZ = _mm_set1_ps(bounds.max.z);
+  // Four boxes at a time, up to the last candidate (BoxLanes::apart).
+  const BoxLanes box(bounds);
   std::uint32_t apart = 0;
-  for (std::size_t i = 0; i < 32 && (candidates >> i) != 0; i += 4) {
-    const __m128 out = _mm_or_ps(_mm_or_ps(_mm_or_ps(_mm_cmplt_ps(_mm_load_ps(&b.maxX[i]), loX),
-                                                     _mm_cmplt_ps(_mm_load_ps(&b.maxY[i]), loY)),
-                                           _mm_cmplt_ps(_mm_load_ps(&b.maxZ[i]), loZ)),
-                                 _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(_mm_load_ps(&b.minX[i]), hiX),
-                                                     _mm_cmpgt_ps(_mm_load_ps(&b.minY[i]), hiY)),
-                                           _mm_cmpgt_ps(_mm_load_ps(&b.minZ[i]), hiZ)));
-    apart |= std::uint32_t(_mm_movemask_ps(out)) << i;
-  }
+  for (std::size_t i = 0; i < 32 && (candidates >> i) != 0; i += 4)
+    apart |= std::uint32_t(_mm_movemask_ps(box.apart(b, i))) << i;
   return candidates & ~apart;
 #else
   std::uint32_t bits = 0;
