@@ -203,8 +203,21 @@ bool collisionBetweenEdgeBounds(const RotationWork& rw, const Vec3& s, const Vec
   return w.dot(w) >= double(tol::kRotationAxisEpsilon) * double(tol::kRotationAxisEpsilon);
 }
 
+/// The lines of a model edge that its edge pairs test against (the same
+/// for every trace-model edge, so made once per model edge): the edge, the
+/// edge moved in by the clip and range epsilons (the band's inner side), and
+/// the edge moved out by the clip epsilon.
+struct ModelEdgeLines {
+  ModelEdgeLines(const RotationWork& rw, const CmEdge& edge, const Vec3& c0, const Vec3& d0)
+      : line(rw, c0, d0),
+        lineIn(rw, c0 + edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon),
+               d0 + edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon)),
+        lineEps(rw, c0 + edge.normal * tol::kClipEpsilon, d0 + edge.normal * tol::kClipEpsilon) {}
+  ModelEdgeLine line, lineIn, lineEps;
+};
+
 void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
-                              int trmEdgeNum) {
+                              const ModelEdgeLines& lines, int trmEdgeNum) {
   const CollisionModel& m = tw.model;
   count(tw.scratch, &QueryStats::edgePairs);
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
@@ -216,16 +229,14 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
 
   // Is the trace-model edge line already between the model edge and the
   // edge moved out by the epsilon (plus the range epsilon)?
-  const Vec3 shiftIn = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
-  const ModelEdgeLine line(rw, c0, d0), lineIn(rw, c0 + shiftIn, d0 + shiftIn);
-  const double f1 = line.atStart(turn);
-  const double f2 = lineIn.atStart(turn);
+  const double f1 = lines.line.atStart(turn);
+  const double f2 = lines.lineIn.atStart(turn);
   double u;
   if ((f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0)) {
     // Within the band (on the model edge line included): the side of the
     // epsilon line is the outside, so moving away from it is moving in.
     // away = d|f1|/dt, with sign(f1) = -sign(f2) in the band.
-    const Sinusoid real = line.sinusoid(turn, sign);
+    const Sinusoid real = lines.line.sinusoid(turn, sign);
     const double flip = f2 > 0 ? -1.0 : 1.0;
     const double away = flip * real.v1;
     if (away <= 0) {
@@ -233,12 +244,10 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
     } else {
       const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
-      if (!sinusoidRoot(lineIn.sinusoid(turn, sign), furthest, rw.maxTan, u)) return;
+      if (!sinusoidRoot(lines.lineIn.sinusoid(turn, sign), furthest, rw.maxTan, u)) return;
     }
-  } else {
-    const Vec3 shift = edge.normal * tol::kClipEpsilon;
-    const ModelEdgeLine lineEps(rw, c0 + shift, d0 + shift);
-    if (!sinusoidRoot(lineEps.sinusoid(turn, sign), 0, rw.maxTan, u)) return;
+  } else if (!sinusoidRoot(lines.lineEps.sinusoid(turn, sign), 0, rw.maxTan, u)) {
+    return;
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
@@ -546,8 +555,11 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     const Vec3 shift = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
     modelEdgeBox.addPoint(v0 + shift);
     modelEdgeBox.addPoint(v1 + shift);
-    for (std::uint32_t pairs = boxesTouching(rw.edgeBoxes, todo, modelEdgeBox); pairs; pairs &= pairs - 1)
-      rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, std::countr_zero(pairs) + 1);
+    std::uint32_t pairs = boxesTouching(rw.edgeBoxes, todo, modelEdgeBox);
+    if (!pairs) continue;
+    const ModelEdgeLines lines(rw, edge, v0, v1);
+    for (; pairs; pairs &= pairs - 1)
+      rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, lines, std::countr_zero(pairs) + 1);
   }
 
   // Model vertices through the trace model's polygons (these culls do not
@@ -555,11 +567,16 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
   forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
     const Vec3 ro = rw.origin + rw.axis * rw.axis.dot(p - rw.origin);
     if ((p - ro).lengthSquared() <= tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon) return;
-    const Vec3 endp = rw.origin + (p - rw.origin) * rw.backMatrix;
+    Vec3 endp;  // where the vertex ends: made for the first polygon past the culls (most meet none)
+    bool endpSet = false;
     for (int j = 0; j < tw.numPolys; ++j) {
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
       if (!tp.used || !insideBox(rw.polygonBounds(tw, j), p)) continue;
       if (backCull && tp.plane.distance(p) < 0) continue;
+      if (!endpSet) {
+        endp = rw.origin + (p - rw.origin) * rw.backMatrix;
+        endpSet = true;
+      }
       rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
     }
   });
