@@ -257,6 +257,12 @@ struct ContactsResult {
 /// The original's Contacts: every surface the trace model touches when moved
 /// from start up to start + dir * depth, at most maxContacts of them.
 ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work);
+/// contacts() into the caller's vector: `out` is cleared, then holds the same
+/// contacts in the same order. Its memory is kept, so a caller that asks for
+/// contacts every frame with one vector allocates only the first time.
+/// Returns the status (refused: `out` left empty).
+QueryStatus contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work,
+                     std::vector<ContactInfo>& out);
 
 /// How a trace model overlapping solid can get out.
 struct Penetration {

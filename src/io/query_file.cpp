@@ -284,6 +284,12 @@ ContactsQuery contactsQuery(const ParsedQuery& q) {
 }  // namespace
 
 double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work) {
+  std::vector<ContactInfo> found;
+  return runParsedQueryUnformatted(models, q, work, found);
+}
+
+double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& q, QueryWork& work,
+                                 std::vector<ContactInfo>& found) {
   const CollisionModel& m = *models[q.model];
   const TraceModel* trm = q.trm ? &*q.trm : nullptr;
   switch (q.op) {
@@ -295,7 +301,8 @@ double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQ
     case QueryOp::Contents:
       return contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work).contents;
     case QueryOp::Contacts:
-      return double(contacts(m, contactsQuery(q), work).contacts.size());
+      contacts(m, contactsQuery(q), work, found);
+      return double(found.size());
     case QueryOp::Rotation:
       return rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work)
           .fraction;

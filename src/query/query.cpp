@@ -260,14 +260,13 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& query
   return r;
 }
 
-ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work) {
+QueryStatus contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work,
+                     std::vector<ContactInfo>& out) {
+  out.clear();
   ContactsQuery q = query;
-  ContactsResult result;
-  result.status = guardContacts(q);
-  if (result.status != QueryStatus::Ok) return result;
-  std::vector<ContactInfo>& out = result.contacts;
+  if (const QueryStatus status = guardContacts(q); status != QueryStatus::Ok) return status;
   const Vec3 end = q.start + q.dir * q.depth;
-  if (end == q.start || q.maxContacts <= 0) return result;  // a position test finds no contacts
+  if (end == q.start || q.maxContacts <= 0) return QueryStatus::Ok;  // a position test finds no contacts
   detail::QueryScratch& s = detail::scratchOf(work);
   s.begin(model);
   count(s, &QueryStats::queries);
@@ -277,6 +276,12 @@ ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query,
   runTranslation(tw, tq, o, &out, q.maxContacts);
   // Unlike the original, point contacts are moved to world space too.
   for (ContactInfo& c : out) contactToWorld(c, q.placement, o.modelRotated);
+  return QueryStatus::Ok;
+}
+
+ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work) {
+  ContactsResult result;
+  result.status = contacts(model, query, work, result.contacts);
   return result;
 }
 

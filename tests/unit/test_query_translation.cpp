@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "cmkit/query.h"
 #include "model_fixtures.h"
@@ -327,6 +328,41 @@ TEST(Contacts, AllSurfacesAlongTheMove) {
   EXPECT_EQ(contacts(m, q, work).contacts.size(), 1u);
   q.depth = 0;
   EXPECT_TRUE(contacts(m, q, work).contacts.empty());
+}
+
+TEST(Contacts, IntoTheCallersVectorGivesTheSameContacts) {
+  // contacts(..., out) gives what contacts() returns, contact for contact,
+  // whatever `out` held before; a refused query leaves it empty.
+  const CollisionModel m =
+      ModelMaker().addBox({{-100, -100, -16}, {100, 100, 0}}).addBox({{20, -100, 0}, {40, 100, 100}}).build();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
+  QueryWork work;
+  ContactsQuery q;
+  q.trm = &box;
+  q.maxContacts = 32;
+  std::vector<ContactInfo> out(5);  // stale entries: must be cleared
+  int withContacts = 0;
+  for (int k = 0; k < 40; ++k) {
+    q.start = {Real(-4 + k * 0.25), Real(k % 7), Real(0.1 + (k % 3) * 0.5)};
+    q.dir = {Real(1 - (k % 2)), Real(k % 3 - 1), -1};
+    q.depth = Real(1 + k % 4);
+    const ContactsResult byValue = contacts(m, q, work);
+    ASSERT_EQ(contacts(m, q, work, out), byValue.status);
+    ASSERT_EQ(out.size(), byValue.contacts.size()) << "query " << k;
+    withContacts += !out.empty();
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      EXPECT_EQ(out[i].normal, byValue.contacts[i].normal);
+      EXPECT_EQ(out[i].point, byValue.contacts[i].point);
+      EXPECT_EQ(out[i].dist, byValue.contacts[i].dist);
+      EXPECT_EQ(out[i].type, byValue.contacts[i].type);
+      EXPECT_EQ(out[i].modelFeature, byValue.contacts[i].modelFeature);
+      EXPECT_EQ(out[i].trmFeature, byValue.contacts[i].trmFeature);
+    }
+  }
+  EXPECT_GT(withContacts, 10);  // the moves do touch the floor and the wall
+  q.depth = std::numeric_limits<Real>::quiet_NaN();
+  EXPECT_EQ(contacts(m, q, work, out), QueryStatus::NonFinite);
+  EXPECT_TRUE(out.empty());
 }
 
 TEST(PointContents, SeesBrushesAndHandlesRotation) {

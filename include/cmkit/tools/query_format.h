@@ -57,6 +57,10 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
 /// Returns the fraction (translation, rotation), the contents (contents,
 /// pointcontents) or the number of contacts.
 double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work);
+/// The same, contacts collected in `contacts` (cleared first; its memory kept
+/// from query to query, as a game loop would keep it).
+double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQuery& query, QueryWork& work,
+                                 std::vector<ContactInfo>& contacts);
 
 /// True for lines that hold a query (not blank, not a # comment).
 bool isQueryLine(std::string_view line);
