@@ -303,10 +303,21 @@ TEST(Translation, AnyLengthWorks) {
   EXPECT_NEAR(r.endPos.z, 0.25f, 2e-3f);
 }
 
+namespace {
+
+// A floor (top at z = 0) and a wall (x from 20 to 40), for the contacts tests.
+CollisionModel floorAndWall() {
+  return ModelMaker()
+      .addBox({{-100, -100, -16}, {100, 100, 0}})
+      .addBox({{20, -100, 0}, {40, 100, 100}})
+      .build();
+}
+
+}  // namespace
+
 TEST(Contacts, AllSurfacesAlongTheMove) {
-  // A box in a corner: floor and a wall at x = 20; moving down and into +x.
-  const CollisionModel m =
-      ModelMaker().addBox({{-100, -100, -16}, {100, 100, 0}}).addBox({{20, -100, 0}, {40, 100, 100}}).build();
+  // A box in the corner of the floor and the wall; moving down and into +x.
+  const CollisionModel m = floorAndWall();
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
   QueryWork work;
   ContactsQuery q;
@@ -333,8 +344,7 @@ TEST(Contacts, AllSurfacesAlongTheMove) {
 TEST(Contacts, IntoTheCallersVectorGivesTheSameContacts) {
   // contacts(..., out) gives what contacts() returns, contact for contact,
   // whatever `out` held before; a refused query leaves it empty.
-  const CollisionModel m =
-      ModelMaker().addBox({{-100, -100, -16}, {100, 100, 0}}).addBox({{20, -100, 0}, {40, 100, 100}}).build();
+  const CollisionModel m = floorAndWall();
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
   QueryWork work;
   ContactsQuery q;
