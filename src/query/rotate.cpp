@@ -203,15 +203,16 @@ bool collisionBetweenEdgeBounds(const RotationWork& rw, const Vec3& s, const Vec
   return w.dot(w) >= double(tol::kRotationAxisEpsilon) * double(tol::kRotationAxisEpsilon);
 }
 
-/// The lines of a model edge that its edge pairs test against (the same
-/// for every trace-model edge, so made once per model edge): the edge, the
-/// edge moved in by the clip and range epsilons (the band's inner side), and
-/// the edge moved out by the clip epsilon.
+/// The lines of a model edge c0 -> d0 that its edge pairs test against (the
+/// same for every trace-model edge, so made once per model edge): the edge;
+/// the edge moved out along its normal by the clip plus the range epsilon
+/// (cIn -> dIn: the far side of the band); and moved out by the clip epsilon
+/// alone.
 struct ModelEdgeLines {
-  ModelEdgeLines(const RotationWork& rw, const CmEdge& edge, const Vec3& c0, const Vec3& d0)
+  ModelEdgeLines(const RotationWork& rw, const CmEdge& edge, const Vec3& c0, const Vec3& d0, const Vec3& cIn,
+                 const Vec3& dIn)
       : line(rw, c0, d0),
-        lineIn(rw, c0 + edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon),
-               d0 + edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon)),
+        lineIn(rw, cIn, dIn),
         lineEps(rw, c0 + edge.normal * tol::kClipEpsilon, d0 + edge.normal * tol::kClipEpsilon) {}
   ModelEdgeLine line, lineIn, lineEps;
 };
@@ -553,11 +554,12 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     Bounds modelEdgeBox = Bounds::ofPoint(v0);
     modelEdgeBox.addPoint(v1);
     const Vec3 shift = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
-    modelEdgeBox.addPoint(v0 + shift);
-    modelEdgeBox.addPoint(v1 + shift);
+    const Vec3 v0In = v0 + shift, v1In = v1 + shift;  // the far side of the band
+    modelEdgeBox.addPoint(v0In);
+    modelEdgeBox.addPoint(v1In);
     std::uint32_t pairs = boxesTouching(rw.edgeBoxes, todo, modelEdgeBox);
     if (!pairs) continue;
-    const ModelEdgeLines lines(rw, edge, v0, v1);
+    const ModelEdgeLines lines(rw, edge, v0, v1, v0In, v1In);
     for (; pairs; pairs &= pairs - 1)
       rotateTrmEdgeThroughEdge(tw, rw, poly, edgeNum, lines, std::countr_zero(pairs) + 1);
   }
