@@ -487,18 +487,22 @@ std::uint32_t boxesTouching(const FeatureBoxes& b, std::uint32_t candidates, con
 #endif
 }
 
-bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
+namespace {
+
+// Culls valid for the polygon and everything on it (its edges and vertices)
+// that need nothing but its record: true when it may be touched. Inline in
+// the polygon loop, so that the many polygons they reject cost no call.
+inline bool rotationMayTouch(const TraceWork& tw, const CmPolygon& poly) {
+  return (poly.contents & tw.contentMask) && boxesTouch(tw.bounds, poly.bounds) &&
+         !boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1);
+}
+
+// A polygon past rotationMayTouch: its plane cull, then the tests of its
+// features. True when it blocks completely.
+bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   RotationWork& rw = *tw.rotation;
-  if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) return false;
-  count(s, &QueryStats::polygonsMet);
-  const CmPolygon& poly = m.polygons[std::size_t(polyNum)];
-
-  // Culls valid for the polygon and everything on it (its edges and vertices).
-  if (!(poly.contents & tw.contentMask)) return false;
-  if (!boxesTouch(tw.bounds, poly.bounds)) return false;
-  if (std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) return false;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
 
@@ -583,6 +587,16 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum) {
     }
   });
   return finishPolygon(tw, rw);
+}
+
+}  // namespace
+
+bool rotateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
+  QueryScratch& s = tw.scratch;
+  return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
+    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    return rotationMayTouch(tw, poly) && rotateTrmThroughPolygon(tw, polyNum, poly);
+  });
 }
 
 }  // namespace cmkit::detail

@@ -265,8 +265,9 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
 /// The same for a point trace and a list of polygons (a node's).
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 
-/// Rotation tests of one polygon (rotate.cpp); true when it blocks completely.
-bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polygon);
+/// Rotation tests of a list of polygons (a node's; rotate.cpp); true when
+/// one blocks completely.
+bool rotateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 
 /// Position tests (contents.cpp); true when stuck.
 /// testTrmVertsInBrushes: a trace-model vertex inside one of the brushes?

@@ -79,8 +79,7 @@ struct PositionItems {
 struct RotateItems {
   static bool has(const CmNode& node) { return node.numPolygonRefs != 0; }
   static void test(TraceWork& tw, const CmNode& node) {
-    for (std::int32_t p : tw.model.polygonsAt(node))
-      if (rotateTrmThroughPolygon(tw, p)) return;
+    rotateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
   }
 };
 
