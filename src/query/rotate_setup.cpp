@@ -44,11 +44,45 @@ bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& a
   return true;
 }
 
-/// One part of a rotation (|endAngle - startAngle| < 180). Returns the
-/// fraction of the part turned before the first contact (1: none), the
-/// contact in world space in `contact`.
-Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startAngle, Real endAngle,
-                QueryWork& work, ContactInfo& contact) {
+/// What every part of a rotation shares: the frame (the model's), the
+/// matrices and the tangent of half a part's angle. Every part turns by the
+/// same `step` (see rotate below), so the matrix that turns a part's end
+/// back to its start is the same for all: the inverse (the transpose) of the
+/// rotation by `step`, the first part's end matrix.
+struct RotationFrame {
+  RotationFrame(const RotationQuery& q, Real step)
+      : orientation(q.trmAxis, q.placement), modelRotated(orientation.modelRotated) {
+    const Mat3& modelAxis = q.placement.axis;
+    // The axis point in the plane of the trace start, in the model's frame.
+    start = q.start - q.placement.origin;
+    const Vec3& worldAxis = q.rotation.axis;
+    origin = q.rotation.origin - q.placement.origin;
+    origin = origin + worldAxis * (worldAxis.dot(start) - worldAxis.dot(origin));
+    axis = worldAxis;
+    if (modelRotated) {
+      start = modelAxis * start;
+      origin = modelAxis * origin;
+      axis = modelAxis * axis;
+    }
+    stepMatrix = Rotation(origin, axis, step).matrix();
+    backMatrix = stepMatrix.transposed();
+    partTan = std::fabs(std::tan(double(step) * kPi / 360));
+  }
+  Orientation orientation;
+  bool modelRotated;
+  Vec3 start, origin, axis;
+  Mat3 stepMatrix;  ///< the rotation by one part's angle (the first part's end)
+  Mat3 backMatrix;  ///< a part's end back to its start
+  double partTan;   ///< |tan| of half a part's angle
+};
+
+/// One part of a rotation (|endAngle - startAngle| = |step| < 180):
+/// `startM` turns the query's start to the part's start (null for the first
+/// part), `endM` to its end. Returns the fraction of the part turned before
+/// the first contact (1: none), the contact in world space in `contact`.
+Real rotatePart(const CollisionModel& model, const RotationQuery& q, const RotationFrame& frame,
+                Real startAngle, Real endAngle, const Mat3* startM, const Mat3& endM, QueryWork& work,
+                ContactInfo& contact) {
   QueryScratch& s = scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
@@ -64,30 +98,19 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
   tw.contentMask = q.contentMask;
   tw.quickExit = false;
 
-  const Orientation orientation(q.trmAxis, q.placement);
-  const bool modelRotated = orientation.modelRotated;
-  const Mat3& modelAxis = q.placement.axis;
-  // The axis point in the plane of the trace start, in the model's frame.
-  Vec3 start = q.start - q.placement.origin;
-  const Vec3& worldAxis = q.rotation.axis;
-  Vec3 origin = q.rotation.origin - q.placement.origin;
-  origin = origin + worldAxis * (worldAxis.dot(start) - worldAxis.dot(origin));
-  Vec3 axis = worldAxis;
-  if (modelRotated) {
-    start = modelAxis * start;
-    origin = modelAxis * origin;
-    axis = modelAxis * axis;
-  }
+  const Orientation& orientation = frame.orientation;
+  const bool modelRotated = frame.modelRotated;
+  const Vec3& start = frame.start;
+  const Vec3& origin = frame.origin;
+  const Vec3& axis = frame.axis;
   rw.origin = origin;
   rw.axis = axis;
   rw.sign = endAngle > startAngle ? Real(1) : Real(-1);
-  const Mat3 startM = Rotation(origin, axis, startAngle).matrix();
-  const Mat3 endM = Rotation(origin, axis, endAngle).matrix();
-  rw.backMatrix = Rotation(origin, axis, startAngle - endAngle).matrix();
-  const bool atZero = startAngle == 0;  // skip the (rounding) identity turn
+  rw.backMatrix = frame.backMatrix;
+  const bool atZero = startM == nullptr;
   auto turn = [&](const Vec3& p, const Mat3& m) { return origin + (p - origin) * m; };
-  auto turnStart = [&](const Vec3& p) { return atZero ? p : turn(p, startM); };
-  const double initialTan = std::fabs(std::tan(double(endAngle - startAngle) * kPi / 360));
+  auto turnStart = [&](const Vec3& p) { return atZero ? p : turn(p, *startM); };
+  const double initialTan = frame.partTan;
   rw.maxTan = initialTan;
 
   // The trace model at the start of the rotation (the query's start), model
@@ -139,7 +162,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, Real startA
     for (int i = 0; i < tw.numPolys; ++i) {
       WorkPolygon& wp = tw.polys[std::size_t(i)];
       wp.used = true;
-      if (!atZero) wp.plane.normal = wp.plane.normal * startM;
+      if (!atZero) wp.plane.normal = wp.plane.normal * *startM;
       wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
     }
     rw.axisIntersectsTrm = tw.isConvex && axisThroughConvexTrm(tw, origin, axis);
@@ -238,9 +261,15 @@ TraceResult rotate(const CollisionModel& model, const RotationQuery& query, Quer
   count(scratchOf(work), &QueryStats::queries);
   Real turned = angle;  // no hit: the whole angle
   r.fraction = 1;
+  const RotationFrame frame(q, step);
+  Mat3 startM, endM = frame.stepMatrix;  // a part's start and end matrices
   for (Real a = 0; std::fabs(a) < std::fabs(total); a += step) {
+    if (a != 0) {  // the next part starts where the last one ended
+      startM = endM;
+      endM = Rotation(frame.origin, frame.axis, a + step).matrix();
+    }
     ContactInfo c;
-    const Real f = rotatePart(model, q, a, a + step, work, c);
+    const Real f = rotatePart(model, q, frame, a, a + step, a != 0 ? &startM : nullptr, endM, work, c);
     if (f < 1) {
       turned = a + step * f;
       r.fraction = turned / angle;
