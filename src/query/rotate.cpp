@@ -400,6 +400,86 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
 #endif
 }
 
+Bounds vertexArcBoxes(VertexArcs& arcs, int n, const Vec3& axis, FeatureBoxes& boxes) {
+#ifdef CMKIT_ROTATE_SSE2
+  // Four vertices at a time, one coordinate per register: arcBounds'
+  // arithmetic in each lane (the same operations in the same order, so the
+  // same bits), without its shuffles into and out of vector lanes. The lanes
+  // past n repeat the last vertex (its box again: the union is the same).
+  for (std::size_t i = std::size_t(n); i % 4 != 0; ++i) {
+    const std::size_t last = std::size_t(n - 1);
+    arcs.set(i, {arcs.px[last], arcs.py[last], arcs.pz[last]}, {arcs.ex[last], arcs.ey[last], arcs.ez[last]},
+             {arcs.rx[last], arcs.ry[last], arcs.rz[last]});
+  }
+  const __m128 zero = _mm_setzero_ps(), half = _mm_set1_ps(0.5f), eps = _mm_set1_ps(tol::kBoxEpsilon);
+  const __m128 ax = _mm_set1_ps(axis.x), ay = _mm_set1_ps(axis.y), az = _mm_set1_ps(axis.z);
+  const __m128 one = _mm_set1_ps(1);
+  const __m128 offX = _mm_sub_ps(one, _mm_mul_ps(ax, ax)), offY = _mm_sub_ps(one, _mm_mul_ps(ay, ay));
+  const __m128 offZ = _mm_sub_ps(one, _mm_mul_ps(az, az));
+  __m128 uLoX = _mm_set1_ps(tol::kBoundsInfinity), uLoY = uLoX, uLoZ = uLoX;
+  __m128 uHiX = _mm_set1_ps(-tol::kBoundsInfinity), uHiY = uHiX, uHiZ = uHiX;
+  for (std::size_t i = 0; i < std::size_t(n); i += 4) {
+    const __m128 px = _mm_load_ps(&arcs.px[i]), py = _mm_load_ps(&arcs.py[i]), pz = _mm_load_ps(&arcs.pz[i]);
+    const __m128 ex = _mm_load_ps(&arcs.ex[i]), ey = _mm_load_ps(&arcs.ey[i]), ez = _mm_load_ps(&arcs.ez[i]);
+    const __m128 rx = _mm_load_ps(&arcs.rx[i]), ry = _mm_load_ps(&arcs.ry[i]), rz = _mm_load_ps(&arcs.rz[i]);
+    // (p - ro) x axis and (end - ro) x axis, Vec3::cross term for term.
+    const __m128 dx = _mm_sub_ps(px, rx), dy = _mm_sub_ps(py, ry), dz = _mm_sub_ps(pz, rz);
+    const __m128 fx = _mm_sub_ps(ex, rx), fy = _mm_sub_ps(ey, ry), fz = _mm_sub_ps(ez, rz);
+    const __m128 m1x = _mm_sub_ps(_mm_mul_ps(dy, az), _mm_mul_ps(dz, ay));
+    const __m128 m1y = _mm_sub_ps(_mm_mul_ps(dz, ax), _mm_mul_ps(dx, az));
+    const __m128 m1z = _mm_sub_ps(_mm_mul_ps(dx, ay), _mm_mul_ps(dy, ax));
+    const __m128 m2x = _mm_sub_ps(_mm_mul_ps(fy, az), _mm_mul_ps(fz, ay));
+    const __m128 m2y = _mm_sub_ps(_mm_mul_ps(fz, ax), _mm_mul_ps(fx, az));
+    const __m128 m2z = _mm_sub_ps(_mm_mul_ps(fx, ay), _mm_mul_ps(fy, ax));
+    const __m128 radiusSq =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+    // One axis of arcBounds (its SSE2 form, lanes now vertices).
+    auto axisBox = [&](__m128 m1, __m128 m2, __m128 off, __m128 p, __m128 e, __m128 ro, __m128& loOut,
+                       __m128& hiOut) {
+      const __m128 turns = _mm_or_ps(_mm_and_ps(_mm_cmpgt_ps(m1, zero), _mm_cmplt_ps(m2, zero)),
+                                     _mm_and_ps(_mm_cmplt_ps(m1, zero), _mm_cmpgt_ps(m2, zero)));
+      const __m128 extent = _mm_sqrt_ps(_mm_max_ps(_mm_mul_ps(radiusSq, off), zero));
+      const __m128 up = _mm_cmpgt_ps(_mm_sub_ps(_mm_mul_ps(half, _mm_add_ps(p, e)), ro), zero);
+      const __m128 lo = _mm_min_ps(e, p), hi = _mm_max_ps(e, p);  // Bounds::ofPoint(p).addPoint(e)
+      const __m128 top = _mm_max_ps(_mm_add_ps(ro, extent), hi);
+      const __m128 bottom = _mm_min_ps(_mm_sub_ps(ro, extent), lo);
+      const __m128 raise = _mm_and_ps(turns, up), lower = _mm_andnot_ps(up, turns);
+      hiOut = _mm_add_ps(_mm_or_ps(_mm_and_ps(raise, top), _mm_andnot_ps(raise, hi)), eps);
+      loOut = _mm_sub_ps(_mm_or_ps(_mm_and_ps(lower, bottom), _mm_andnot_ps(lower, lo)), eps);
+    };
+    __m128 lo, hi;
+    axisBox(m1x, m2x, offX, px, ex, rx, lo, hi);
+    _mm_store_ps(&boxes.minX[i], lo), _mm_store_ps(&boxes.maxX[i], hi);
+    uLoX = _mm_min_ps(lo, uLoX), uHiX = _mm_max_ps(hi, uHiX);
+    axisBox(m1y, m2y, offY, py, ey, ry, lo, hi);
+    _mm_store_ps(&boxes.minY[i], lo), _mm_store_ps(&boxes.maxY[i], hi);
+    uLoY = _mm_min_ps(lo, uLoY), uHiY = _mm_max_ps(hi, uHiY);
+    axisBox(m1z, m2z, offZ, pz, ez, rz, lo, hi);
+    _mm_store_ps(&boxes.minZ[i], lo), _mm_store_ps(&boxes.maxZ[i], hi);
+    uLoZ = _mm_min_ps(lo, uLoZ), uHiZ = _mm_max_ps(hi, uHiZ);
+  }
+  auto lowest = [](__m128 v) {
+    v = _mm_min_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_cvtss_f32(_mm_min_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1))));
+  };
+  auto highest = [](__m128 v) {
+    v = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_cvtss_f32(_mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1))));
+  };
+  return {{lowest(uLoX), lowest(uLoY), lowest(uLoZ)}, {highest(uHiX), highest(uHiY), highest(uHiZ)}};
+#else
+  Bounds all;
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const Bounds box = arcBounds({arcs.rx[i], arcs.ry[i], arcs.rz[i]}, axis,
+                                 {arcs.px[i], arcs.py[i], arcs.pz[i]}, {arcs.ex[i], arcs.ey[i], arcs.ez[i]})
+                           .expanded(tol::kBoxEpsilon);
+    boxes.set(i, box);
+    all.addBounds(box);
+  }
+  return all;
+#endif
+}
+
 #ifdef CMKIT_ROTATE_SSE2
 namespace {
 /// A box in four lanes, for the box tests of four feature boxes at a time.

@@ -131,27 +131,32 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   }
   rw.centre = turnStart(centre);
 
-  tw.bounds.clear();
+  // The vertices turned to the start and end of the part and their circle
+  // centres, into arrays by coordinate for the arc boxes (vertexArcBoxes,
+  // four vertices at a time).
+  VertexArcs arcs;
   for (int i = 0; i < tw.numVerts; ++i) {
     WorkVertex& v = tw.vertices[std::size_t(i)];
     RotVertex& rv = rw.vertices[std::size_t(i)];
-    // (Computed in locals, then stored: through the arrays, every store
-    // would have to be read back, since they might overlap.)
     const Vec3 placed = v.p;
     const Vec3 p = turnStart(placed), endp = turn(placed, endM);
     const Vec3 rotationOrigin = origin + axis * axis.dot(p - origin);
     const bool used =
         (p - rotationOrigin).lengthSquared() > tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon;
-    v.p = p;
-    v.endp = endp;
+    arcs.set(std::size_t(i), p, endp, rotationOrigin);
     v.used = true;
-    rv.rotationOrigin = rotationOrigin;
     rv.used = used;
     rw.usedVertices |= std::uint32_t(used) << i;
-    const Bounds box = arcBounds(rotationOrigin, axis, p, endp).expanded(tol::kBoxEpsilon);
-    rw.vertexBoxes.set(std::size_t(i), box);
-    tw.bounds.addBounds(box);
   }
+  // Copied from the arrays in a loop of their own: stored straight from the
+  // loop above, the vectors went through the stack a coordinate at a time
+  // and were read back whole before those stores landed (a stall per vertex).
+  for (std::size_t i = 0; i < std::size_t(tw.numVerts); ++i) {
+    tw.vertices[i].p = {arcs.px[i], arcs.py[i], arcs.pz[i]};
+    tw.vertices[i].endp = {arcs.ex[i], arcs.ey[i], arcs.ez[i]};
+    rw.vertices[i].rotationOrigin = {arcs.rx[i], arcs.ry[i], arcs.rz[i]};
+  }
+  tw.bounds = vertexArcBoxes(arcs, tw.numVerts, axis, rw.vertexBoxes);
   if (!point) {
     for (int i = 1; i <= tw.numEdges; ++i) {
       const WorkEdge& e = placeTrmEdge(tw, i);

@@ -60,6 +60,22 @@ struct FeatureBoxes {
   Bounds get(std::size_t i) const { return {{minX[i], minY[i], minZ[i]}, {maxX[i], maxY[i], maxZ[i]}}; }
 };
 
+/// The arcs of a part's trace-model vertices, one array per coordinate (for
+/// vertexArcBoxes): vertex i turns from p to e about its circle centre r.
+struct VertexArcs {
+  alignas(16) std::array<Real, kMaxTrmVertices> px, py, pz, ex, ey, ez, rx, ry, rz;
+  void set(std::size_t i, const Vec3& p, const Vec3& e, const Vec3& r) {
+    px[i] = p.x, py[i] = p.y, pz[i] = p.z;
+    ex[i] = e.x, ey[i] = e.y, ez[i] = e.z;
+    rx[i] = r.x, ry[i] = r.y, rz[i] = r.z;
+  }
+};
+
+/// The box of each arc 0..n-1 (arcBounds about `axis`, padded by
+/// tol::kBoxEpsilon) into `boxes`; returns their union. (May overwrite arcs
+/// past n, up to a multiple of four.)
+Bounds vertexArcBoxes(VertexArcs& arcs, int n, const Vec3& axis, FeatureBoxes& boxes);
+
 /// Bit i (i < n): box i touches `bounds` (Bounds::intersects) and straddles
 /// `plane` (Bounds::planeSide(plane) == Side::Cross, the same arithmetic).
 std::uint32_t boxesCrossing(const FeatureBoxes& boxes, int n, const Bounds& bounds, const Plane& plane);

@@ -267,6 +267,52 @@ TEST(Rotation, QuadraticSolverFindsTheFirstRootInItsInterval) {
   EXPECT_GT(none, 10000);
 }
 
+TEST(Rotation, ArcBoxesOfManyVerticesAreEachVertexsArcBox) {
+  using cmkit::detail::arcBounds;
+  const cmkit::Real eps = cmkit::tol::kBoxEpsilon;
+  // By hand: about z through the origin, (1,0,0) turned by 135 degrees ends
+  // at (-s, s, 0), s = sqrt(1/2), passing (0,1,0) on the way: the box holds
+  // y = 1. A second vertex on the axis's own circle of radius 2 turns a
+  // quarter, (0,-2,3) to (2,0,3), and passes no extreme.
+  const cmkit::Real s = std::sqrt(cmkit::Real(0.5));
+  cmkit::detail::VertexArcs arcs;
+  arcs.set(0, {1, 0, 0}, {-s, s, 0}, {0, 0, 0});
+  arcs.set(1, {0, -2, 3}, {2, 0, 3}, {0, 0, 3});
+  cmkit::detail::FeatureBoxes boxes;
+  const cmkit::Bounds all = cmkit::detail::vertexArcBoxes(arcs, 2, {0, 0, 1}, boxes);
+  EXPECT_EQ(boxes.get(0), cmkit::Bounds({-s - eps, -eps, -eps}, {1 + eps, 1 + eps, eps}));
+  EXPECT_EQ(boxes.get(1), cmkit::Bounds({-eps, -2 - eps, 3 - eps}, {2 + eps, eps, 3 + eps}));
+  EXPECT_EQ(all, cmkit::Bounds({-s - eps, -2 - eps, -eps}, {2 + eps, 1 + eps, 3 + eps}));
+
+  // Random arcs below 180 degrees about random axes, 1 to 32 vertices: each
+  // box is arcBounds' padded box, bit for bit (the four-lane form does the
+  // same arithmetic), and the union is theirs.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> pos(-300, 300), unit(-1, 1), angle(-179, 179);
+  for (int round = 0; round < 400; ++round) {
+    cmkit::Vec3 axis{unit(rng), unit(rng), unit(rng)};
+    if (axis.length() < cmkit::Real(0.1)) continue;
+    axis.normalize();
+    const cmkit::Vec3 origin{pos(rng), pos(rng), pos(rng)};
+    const cmkit::Mat3 turn = cmkit::Rotation(origin, axis, angle(rng)).matrix();
+    const int n = 1 + round % 32;
+    std::vector<cmkit::Bounds> expected;
+    cmkit::Bounds expectedAll;
+    for (int i = 0; i < n; ++i) {
+      const cmkit::Vec3 p{pos(rng), pos(rng), pos(rng)};
+      const cmkit::Vec3 end = origin + (p - origin) * turn;
+      const cmkit::Vec3 ro = origin + axis * axis.dot(p - origin);
+      arcs.set(std::size_t(i), p, end, ro);
+      expected.push_back(arcBounds(ro, axis, p, end).expanded(eps));
+      expectedAll.addBounds(expected.back());
+    }
+    const cmkit::Bounds got = cmkit::detail::vertexArcBoxes(arcs, n, axis, boxes);
+    for (int i = 0; i < n; ++i)
+      ASSERT_EQ(boxes.get(std::size_t(i)), expected[std::size_t(i)]) << round << " " << i;
+    ASSERT_EQ(got, expectedAll) << round;
+  }
+}
+
 // ---- the original's rotation bugs ------------------------------------------
 
 TEST(RotationRegression, LongArcReachesLeavesItsChordMisses) {
