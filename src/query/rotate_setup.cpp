@@ -206,9 +206,12 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   } else {
     Vec3 from = rw.centre;
     for (int k = 0; k < pieces; ++k) {
-      // A hit before this piece starts cannot be bettered by it.
-      const double pieceStartTan = std::tan(partRadians * 0.5 * double(k) / double(pieces));
-      if (rw.maxTan <= pieceStartTan || tw.fraction == 0 || tw.quickExit) break;
+      // A hit before this piece starts cannot be bettered by it. (Without a
+      // hit, maxTan is the whole part's, beyond every piece's start: no
+      // tangent to take.)
+      if (tw.fraction == 0 || tw.quickExit) break;
+      if (rw.maxTan != initialTan && rw.maxTan <= std::tan(partRadians * 0.5 * double(k) / double(pieces)))
+        break;
       const Real a1 = startAngle + (endAngle - startAngle) * Real(k + 1) / Real(pieces);
       const Vec3 to = turn(centre, Rotation(origin, axis, a1).matrix());
       const Bounds box = arcBounds(centreRo, axis, from, to).expanded(reach + tol::kBoxEpsilon);
