@@ -278,6 +278,7 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
   // Relative to the trace model the model vertex turns the other way.
   if (!rotatePointThroughEpsilonPlane(rw, p, endp, ro, -rw.sign, tp.plane, u, point, dir)) return;
   if (!(u < rw.maxTan)) return;
+  rw.makeEdgeLines(tw);
   if (!rayInsideEdges(point, dir, tp.numEdges, [&](int k, bool& reversed) -> const Pluecker& {
         const int e = tp.edges[std::size_t(k)];
         reversed = e < 0;

@@ -158,12 +158,17 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   }
   tw.bounds = vertexArcBoxes(arcs, tw.numVerts, axis, rw.vertexBoxes);
   if (!point) {
+    // The edges' ends (from the arrays, as above); their lines only when a
+    // model vertex first needs them (RotationWork::makeEdgeLines).
     for (int i = 1; i <= tw.numEdges; ++i) {
-      const WorkEdge& e = placeTrmEdge(tw, i);
-      const bool used =
-          rw.vertices[std::size_t(e.vertexNum[0])].used || rw.vertices[std::size_t(e.vertexNum[1])].used;
-      rw.usedEdges |= std::uint32_t(used) << (i - 1);
+      WorkEdge& e = tw.edges[std::size_t(i)];
+      const std::size_t a = std::size_t(e.vertexNum[0]), b = std::size_t(e.vertexNum[1]);
+      e.start = {arcs.px[a], arcs.py[a], arcs.pz[a]};
+      e.end = {arcs.px[b], arcs.py[b], arcs.pz[b]};
+      e.used = true;
+      rw.usedEdges |= (((rw.usedVertices >> a) | (rw.usedVertices >> b)) & 1u) << (i - 1);
     }
+    rw.edgeLinesSet = false;
     for (int i = 0; i < tw.numPolys; ++i) {
       WorkPolygon& wp = tw.polys[std::size_t(i)];
       wp.used = true;

@@ -142,6 +142,19 @@ struct RotationWork {
     return t;
   }
 
+  bool edgeLinesSet = false;  ///< the trace-model edges' lines (WorkEdge::pl) are made
+
+  /// Makes the trace-model edges' lines (once per part, for the first model
+  /// vertex that reaches a trace-model polygon's plane in time).
+  void makeEdgeLines(TraceWork& tw) {
+    if (edgeLinesSet) return;
+    edgeLinesSet = true;
+    for (int j = 1; j <= tw.numEdges; ++j) {
+      WorkEdge& e = tw.edges[std::size_t(j)];
+      e.pl = Pluecker::fromLine(e.start, e.end);
+    }
+  }
+
   /// Makes edgeBoxes (once per part).
   void makeEdgeBoxes(const TraceWork& tw) {
     if (edgeBoxesSet) return;

@@ -415,9 +415,7 @@ void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o
 /// All three, every vertex.
 void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position);
 
-/// Sets trace-model edge i's ends and line from tw's placed vertices, marked used.
-WorkEdge& placeTrmEdge(TraceWork& tw, int i);
-/// placeTrmEdge for every edge.
+/// Sets every trace-model edge's ends and line from tw's placed vertices, marked used.
 void placeTrmEdges(TraceWork& tw);
 
 /// Moves a contact from the model's frame to the world; `rotated`: the

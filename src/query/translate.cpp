@@ -340,7 +340,7 @@ void placeTranslationFeatures(TraceWork& tw) {
   }
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
     WorkEdge& e = tw.edges[std::size_t(std::countr_zero(moving))];
-    const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;  // (locals: as placeTrmEdge)
+    const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;  // (locals: as placeTrmEdges)
     const Vec3 end = tw.vertices[std::size_t(e.vertexNum[1])].p;
     e.start = start;
     e.end = end;
