@@ -593,7 +593,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
   // The original's back-face culls, for a convex trace model the axis passes
   // through: the whole polygon when the trace-model centre is behind it, a
   // feature when it is behind the polygon's plane.
-  const bool backCull = tw.isConvex && rw.axisIntersectsTrm;
+  const bool backCull = tw.isConvex && rw.axisIntersectsTrm(tw);
   if (backCull && poly.plane.distance(rw.centre) < 0) return false;
   count(s, &QueryStats::polygonsTested);
   std::uint32_t behind = 0;  // bit i: vertex i behind the polygon's plane (back-face cull)

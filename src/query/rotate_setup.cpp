@@ -17,12 +17,9 @@
 #include "query/rotate_work.h"
 
 namespace cmkit::detail {
-namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-// True when the line origin + s * axis passes through the convex trace model
-// (the intersection of its polygons' back half-spaces).
+// (rotate_work.h) Where the line meets each polygon's plane bounds the part
+// of it behind every plane.
 bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& axis) {
   double smin = -std::numeric_limits<double>::infinity();
   double smax = std::numeric_limits<double>::infinity();
@@ -43,6 +40,10 @@ bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& a
   }
   return true;
 }
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
 
 /// What every part of a rotation shares: the frame (the model's), the
 /// matrices and the tangent of half a part's angle. Every part turns by the
@@ -92,6 +93,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   rw.usedVertices = rw.usedEdges = 0;
   rw.polygonBoundsSet = 0;
   rw.edgeTurnSet = 0;
+  rw.axisThroughTrm = -1;
   tw.rotation = &rw;
   tw.fraction = 1;
   tw.c = ContactInfo{};
@@ -175,7 +177,6 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
       if (!atZero) wp.plane.normal = wp.plane.normal * *startM;
       wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
     }
-    rw.axisIntersectsTrm = tw.isConvex && axisThroughConvexTrm(tw, origin, axis);
   }
 
   // Heart plane: the plane of the rotation through the centre; nothing of

@@ -92,15 +92,20 @@ struct RotPolygon {
   Bounds bounds;  ///< union of its edges' boxes (RotationWork::polygonBounds)
 };
 
+/// True when the line origin + s * axis passes through the convex trace
+/// model (the intersection of its polygons' back half-spaces).
+bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& axis);
+
 /// One part of a rotation, in the model's frame.
 struct RotationWork {
   Vec3 origin;        ///< a point of the axis (model frame)
   Vec3 axis;          ///< unit axis (model frame)
   Real sign = 1;      ///< +1 for a positive angle, -1 for a negative one
   double maxTan = 0;  ///< tangent of half the angle still free (lowered by every hit)
-  /// The axis line passes through the (convex) trace model: the original's
-  /// per-feature back-face culls apply.
-  bool axisIntersectsTrm = false;
+  /// Whether the axis line passes through the (convex) trace model, when the
+  /// original's per-feature back-face culls apply: -1 not known yet (made
+  /// when a polygon first needs it, axisIntersectsTrm), 0 no, 1 yes.
+  int axisThroughTrm = -1;
   Vec3 centre;  ///< trace-model centre at the start of the part
   /// Turns model points by minus the part's angle (v * backMatrix about
   /// origin): where a model vertex ends relative to the trace model.
@@ -153,6 +158,13 @@ struct RotationWork {
       WorkEdge& e = tw.edges[std::size_t(j)];
       e.pl = Pluecker::fromLine(e.start, e.end);
     }
+  }
+
+  /// True when the axis line passes through the (convex) trace model: the
+  /// original's per-feature back-face culls apply.
+  bool axisIntersectsTrm(const TraceWork& tw) {
+    if (axisThroughTrm < 0) axisThroughTrm = tw.isConvex && axisThroughConvexTrm(tw, origin, axis);
+    return axisThroughTrm != 0;
   }
 
   /// Makes edgeBoxes (once per part).
