@@ -108,8 +108,10 @@ void walkBox(TraceWork& tw, std::int32_t nodeNum, const Bounds& box) {
 template <class Items>
 void walkSegment(TraceWork& tw) {
   using Segment = detail::QueryScratch::WalkSegment;
+  // (Indexed by hand: the vector only grows, by resize, when a deeper tree
+  // needs it; push_back's out-of-line growth path cost a call per split.)
   std::vector<Segment>& pending = tw.scratch.walkStack;
-  pending.clear();
+  std::size_t numPending = 0;
   Segment cur{0, 0, 1, tw.start, tw.end};
   for (;;) {
     std::int32_t nodeNum = cur.node;
@@ -162,20 +164,20 @@ void walkSegment(TraceWork& tw) {
       }
       const Vec3 p1 = cur.p1, p2 = cur.p2;
       frac2 = std::clamp(frac2, Real(0), Real(1));
-      pending.push_back(
-          {node.children[side ^ 1],
-           cur.p1f + (cur.p2f - cur.p1f) * frac2,
-           cur.p2f,
-           {p1.x + frac2 * (p2.x - p1.x), p1.y + frac2 * (p2.y - p1.y), p1.z + frac2 * (p2.z - p1.z)},
-           p2});
+      if (numPending == pending.size()) pending.resize(2 * numPending + 32);
+      pending[numPending++] =
+          Segment{node.children[side ^ 1],
+                  cur.p1f + (cur.p2f - cur.p1f) * frac2,
+                  cur.p2f,
+                  {p1.x + frac2 * (p2.x - p1.x), p1.y + frac2 * (p2.y - p1.y), p1.z + frac2 * (p2.z - p1.z)},
+                  p2};
       frac = std::clamp(frac, Real(0), Real(1));
       cur.p2f = cur.p1f + (cur.p2f - cur.p1f) * frac;
       cur.p2 = {p1.x + frac * (p2.x - p1.x), p1.y + frac * (p2.y - p1.y), p1.z + frac * (p2.z - p1.z)};
       nodeNum = node.children[side];
     }
-    if (pending.empty()) return;
-    cur = pending.back();
-    pending.pop_back();
+    if (numPending == 0) return;
+    cur = pending[--numPending];
   }
 }
 
