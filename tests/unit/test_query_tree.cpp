@@ -62,6 +62,26 @@ TEST(PointContents, SeesTheBrushInTheLeafOfADeepTree) {
   }
 }
 
+TEST(Contents, SeesTheBrushInTheLeafOfADeepTree) {
+  // A position test walks both sides of every split it stands on: on the
+  // 300-deep chain the walk keeps a far side waiting at every node (more
+  // than the walk's stack starts with, so it grows on the way).
+  const TraceModel box = *TraceModel::box({{-2, -2, -2}, {2, 2, 2}});
+  QueryWork work;
+  for (const int depth : {10, 300}) {
+    const ModelPtr m = deepChain(depth);
+    ASSERT_TRUE(m);
+    ContentsQuery q;
+    q.trm = &box;
+    q.position = {1005, 5, 5};
+    EXPECT_EQ(contentsTest(*m, q, work).contents, contents::kSolid) << "depth " << depth;
+    q.position = {1005, 5, 15};
+    EXPECT_EQ(contentsTest(*m, q, work).contents, 0u) << "depth " << depth;
+    q.position = {5, 5, 5};
+    EXPECT_EQ(contentsTest(*m, q, work).contents, 0u) << "depth " << depth;
+  }
+}
+
 /// penetration() as a scan of every brush in index order (the deepest brush
 /// wins, the first one on equal depths), written independently of the tree.
 Penetration everyBrush(const CollisionModel& m, const TraceModel& trm, const Mat3& trmAxis,
