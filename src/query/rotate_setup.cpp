@@ -210,6 +210,14 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   if (pieces == 1) {
     rotateThroughBox(tw, tw.bounds);
   } else {
+    // The pieces' ends: the centre turned by k pieces' angle, in double, the
+    // cosine and sine of k pieces' angle from the last ones' (no function
+    // call per piece; the rounding stays far inside the boxes' padding).
+    const double pieceRadians = partRadians / double(pieces);
+    const double pieceCos = std::cos(pieceRadians), pieceSin = double(rw.sign) * std::sin(pieceRadians);
+    const DVec a(axis), o(origin), v = DVec(rw.centre) - DVec(origin);
+    const DVec along = a * a.dot(v), across = v - along, turned = a.cross(across);
+    double cosK = 1, sinK = 0;
     Vec3 from = rw.centre;
     for (int k = 0; k < pieces; ++k) {
       // A hit before this piece starts cannot be bettered by it. (Without a
@@ -218,8 +226,10 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
       if (tw.fraction == 0 || tw.quickExit) break;
       if (rw.maxTan != initialTan && rw.maxTan <= std::tan(partRadians * 0.5 * double(k) / double(pieces)))
         break;
-      const Real a1 = startAngle + (endAngle - startAngle) * Real(k + 1) / Real(pieces);
-      const Vec3 to = turn(centre, Rotation(origin, axis, a1).matrix());
+      const double cosNext = cosK * pieceCos - sinK * pieceSin;
+      sinK = sinK * pieceCos + cosK * pieceSin;
+      cosK = cosNext;
+      const Vec3 to = (o + along + across * cosK - turned * sinK).toVec3();  // as rotateByTanHalf
       const Bounds box = arcBounds(centreRo, axis, from, to).expanded(reach + tol::kBoxEpsilon);
       from = to;
       rotateThroughBox(tw, box.intersection(tw.bounds));
