@@ -201,7 +201,9 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   const Real reach = std::sqrt(reachSq);
   const Vec3 centreRo = origin + axis * axis.dot(rw.centre - origin);
   const double partRadians = std::fabs(double(endAngle - startAngle)) * kPi / 180;
-  const double centreArc = double((rw.centre - centreRo).length()) * partRadians;
+  // (A plain square root: the original's approximate one, which Vec3::length
+  // reproduces, costs more and the pieces are cmkit's own.)
+  const double centreArc = std::sqrt(double((rw.centre - centreRo).lengthSquared())) * partRadians;
   const double pieceLength = std::max(double(tol::kCircleApproximationLength), 2 * double(reach));
   // (A NaN ratio, from a trace model too large for its arithmetic, walks
   // once: the comparison is false.)
