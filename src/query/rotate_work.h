@@ -171,11 +171,19 @@ struct RotationWork {
   void makeEdgeBoxes(const TraceWork& tw) {
     if (edgeBoxesSet) return;
     edgeBoxesSet = true;
+    // The union of two boxes, a coordinate at a time (Bounds::addBounds'
+    // selects; a box's own max cannot lower its min, nor its min raise its max).
+    const FeatureBoxes& v = vertexBoxes;
     for (int j = 1; j <= tw.numEdges; ++j) {
       const WorkEdge& e = tw.edges[std::size_t(j)];
-      Bounds b = vertexBoxes.get(std::size_t(e.vertexNum[0]));
-      b.addBounds(vertexBoxes.get(std::size_t(e.vertexNum[1])));
-      edgeBoxes.set(std::size_t(j - 1), b);
+      const std::size_t a = std::size_t(e.vertexNum[0]), b = std::size_t(e.vertexNum[1]),
+                        k = std::size_t(j - 1);
+      edgeBoxes.minX[k] = v.minX[b] < v.minX[a] ? v.minX[b] : v.minX[a];
+      edgeBoxes.minY[k] = v.minY[b] < v.minY[a] ? v.minY[b] : v.minY[a];
+      edgeBoxes.minZ[k] = v.minZ[b] < v.minZ[a] ? v.minZ[b] : v.minZ[a];
+      edgeBoxes.maxX[k] = v.maxX[b] > v.maxX[a] ? v.maxX[b] : v.maxX[a];
+      edgeBoxes.maxY[k] = v.maxY[b] > v.maxY[a] ? v.maxY[b] : v.maxY[a];
+      edgeBoxes.maxZ[k] = v.maxZ[b] > v.maxZ[a] ? v.maxZ[b] : v.maxZ[a];
     }
   }
   /// Box around trace-model polygon j's sweep (the union of its edges' boxes;
