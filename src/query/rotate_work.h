@@ -193,9 +193,19 @@ struct RotationWork {
     if (!(polygonBoundsSet >> j & 1u)) {
       polygonBoundsSet |= std::uint32_t(1) << j;
       const WorkPolygon& wp = tw.polys[std::size_t(j)];
-      rp.bounds.clear();
-      for (int k = 0; k < wp.numEdges; ++k)
-        rp.bounds.addBounds(edgeBoxes.get(std::size_t(std::abs(wp.edges[std::size_t(k)]) - 1)));
+      // (As makeEdgeBoxes: a coordinate at a time from the arrays.)
+      const FeatureBoxes& e = edgeBoxes;
+      Bounds b;
+      for (int k = 0; k < wp.numEdges; ++k) {
+        const std::size_t i = std::size_t(std::abs(wp.edges[std::size_t(k)]) - 1);
+        b.min.x = e.minX[i] < b.min.x ? e.minX[i] : b.min.x;
+        b.min.y = e.minY[i] < b.min.y ? e.minY[i] : b.min.y;
+        b.min.z = e.minZ[i] < b.min.z ? e.minZ[i] : b.min.z;
+        b.max.x = e.maxX[i] > b.max.x ? e.maxX[i] : b.max.x;
+        b.max.y = e.maxY[i] > b.max.y ? e.maxY[i] : b.max.y;
+        b.max.z = e.maxZ[i] > b.max.z ? e.maxZ[i] : b.max.z;
+      }
+      rp.bounds = b;
     }
     return rp.bounds;
   }
