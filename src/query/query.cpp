@@ -65,13 +65,17 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
     tw.movingVertices |= trm.polygonVertexBits(i);
   }
   placeTrmVertices(tw, trm, o, q.start, tw.movingVertices);
-  tw.size.clear();
+  // (In locals: through tw, the size would go to memory and back at every
+  // vertex, since the vertices' stores might overlap it.)
+  const Vec3 start = tw.start, dir = tw.dir;
+  Bounds size;
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
     WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
     v.used = true;
-    tw.size.addPoint(v.p - tw.start);
-    v.endp = v.p + tw.dir;
+    size.addPoint(v.p - start);
+    v.endp = v.p + dir;
   }
+  tw.size = size;
   tw.featuresPlaced = false;  // the paths, edge lines and planes: placeTranslationFeatures
   for (int i = 0; i < 3; ++i) {
     if (tw.start[i] < tw.end[i]) {
