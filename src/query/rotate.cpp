@@ -16,7 +16,7 @@
 #include "query/rotate_work.h"
 
 // SSE2 on x86-64 (boxesCrossing, boxesTouching: four feature boxes at a
-// time; arcBounds: its three axes at once); any other target, or
+// time; vertexArcBoxes: four vertices' arc boxes at once); any other target, or
 // -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic.
 // The lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
@@ -364,28 +364,6 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
   const Vec3 m1 = (p - ro).cross(axis);
   const Vec3 m2 = (end - ro).cross(axis);
   const Real radiusSq = (p - ro).lengthSquared();
-#ifdef CMKIT_ROTATE_SSE2
-  // The three axes at once, without branches (which axes turn is
-  // unpredictable): the portable loop's arithmetic (#else) in each lane, one square
-  // root instruction for all three, the bounds chosen by masks.
-  const auto lanes = [](const Vec3& v) { return _mm_setr_ps(v.x, v.y, v.z, 0); };
-  const __m128 zero = _mm_setzero_ps(), vm1 = lanes(m1), vm2 = lanes(m2), a = lanes(axis);
-  const __m128 vro = lanes(ro);
-  const __m128 turns = _mm_or_ps(_mm_and_ps(_mm_cmpgt_ps(vm1, zero), _mm_cmplt_ps(vm2, zero)),
-                                 _mm_and_ps(_mm_cmplt_ps(vm1, zero), _mm_cmpgt_ps(vm2, zero)));
-  const __m128 extent = _mm_sqrt_ps(
-      _mm_max_ps(_mm_mul_ps(_mm_set1_ps(radiusSq), _mm_sub_ps(_mm_set1_ps(1), _mm_mul_ps(a, a))), zero));
-  const __m128 up =
-      _mm_cmpgt_ps(_mm_sub_ps(_mm_mul_ps(_mm_set1_ps(0.5f), _mm_add_ps(lanes(p), lanes(end))), vro), zero);
-  const __m128 lo = lanes(b.min), hi = lanes(b.max);
-  const __m128 top = _mm_max_ps(_mm_add_ps(vro, extent), hi);     // std::max(hi, ro + e)
-  const __m128 bottom = _mm_min_ps(_mm_sub_ps(vro, extent), lo);  // std::min(lo, ro - e)
-  const __m128 raise = _mm_and_ps(turns, up), lower = _mm_andnot_ps(up, turns);
-  alignas(16) float outLo[4], outHi[4];
-  _mm_store_ps(outHi, _mm_or_ps(_mm_and_ps(raise, top), _mm_andnot_ps(raise, hi)));
-  _mm_store_ps(outLo, _mm_or_ps(_mm_and_ps(lower, bottom), _mm_andnot_ps(lower, lo)));
-  return {{outLo[0], outLo[1], outLo[2]}, {outHi[0], outHi[1], outHi[2]}};
-#else
   for (int i = 0; i < 3; ++i) {
     // The motion along this axis changes sign: the arc passes the circle's
     // extreme on the side of the chord's midpoint (arcs below 180 degrees).
@@ -398,15 +376,14 @@ Bounds arcBounds(const Vec3& ro, const Vec3& axis, const Vec3& p, const Vec3& en
     }
   }
   return b;
-#endif
 }
 
 Bounds vertexArcBoxes(VertexArcs& arcs, int n, const Vec3& axis, FeatureBoxes& boxes) {
 #ifdef CMKIT_ROTATE_SSE2
   // Four vertices at a time, one coordinate per register: arcBounds'
   // arithmetic in each lane (the same operations in the same order, so the
-  // same bits), without its shuffles into and out of vector lanes. The lanes
-  // past n repeat the last vertex (its box again: the union is the same).
+  // same bits; the choices of its branches made by masks). The lanes past n
+  // repeat the last vertex (its box again: the union is the same).
   for (std::size_t i = std::size_t(n); i % 4 != 0; ++i) {
     const std::size_t last = std::size_t(n - 1);
     arcs.set(i, {arcs.px[last], arcs.py[last], arcs.pz[last]}, {arcs.ex[last], arcs.ey[last], arcs.ez[last]},
@@ -434,7 +411,7 @@ Bounds vertexArcBoxes(VertexArcs& arcs, int n, const Vec3& axis, FeatureBoxes& b
     const __m128 m2z = _mm_sub_ps(_mm_mul_ps(fx, ay), _mm_mul_ps(fy, ax));
     const __m128 radiusSq =
         _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-    // One axis of arcBounds (its SSE2 form, lanes now vertices).
+    // One axis of arcBounds, for four vertices.
     auto axisBox = [&](__m128 m1, __m128 m2, __m128 off, __m128 p, __m128 e, __m128 ro, __m128& loOut,
                        __m128& hiOut) {
       const __m128 turns = _mm_or_ps(_mm_and_ps(_mm_cmpgt_ps(m1, zero), _mm_cmplt_ps(m2, zero)),

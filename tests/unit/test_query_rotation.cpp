@@ -285,8 +285,8 @@ TEST(Rotation, ArcBoxesOfManyVerticesAreEachVertexsArcBox) {
   EXPECT_EQ(all, cmkit::Bounds({-s - eps, -2 - eps, -eps}, {2 + eps, 1 + eps, 3 + eps}));
 
   // Random arcs below 180 degrees about random axes, 1 to 32 vertices: each
-  // box is arcBounds' padded box, bit for bit (the four-lane form does the
-  // same arithmetic), and the union is theirs.
+  // box is the scalar arcBounds' padded box, bit for bit (the four-lane form
+  // does the same arithmetic), and the union is theirs.
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> pos(-300, 300), unit(-1, 1), angle(-179, 179);
   for (int round = 0; round < 400; ++round) {
