@@ -313,6 +313,15 @@ CollisionModel floorAndWall() {
       .build();
 }
 
+/// A contacts query of `trm` collecting up to 32 contacts (start, direction
+/// and depth for the test to set).
+ContactsQuery contactsOf(const TraceModel& trm) {
+  ContactsQuery q;
+  q.trm = &trm;
+  q.maxContacts = 32;
+  return q;
+}
+
 }  // namespace
 
 TEST(Contacts, AllSurfacesAlongTheMove) {
@@ -320,12 +329,10 @@ TEST(Contacts, AllSurfacesAlongTheMove) {
   const CollisionModel m = floorAndWall();
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
   QueryWork work;
-  ContactsQuery q;
-  q.trm = &box;
+  ContactsQuery q = contactsOf(box);
   q.start = {3.9f, 0, 0.1f};
   q.dir = {1, 0, -1};
   q.depth = 1;
-  q.maxContacts = 32;
   const std::vector<ContactInfo> found = contacts(m, q, work).contacts;
   ASSERT_FALSE(found.empty());
   bool floor = false, wall = false;
@@ -347,9 +354,7 @@ TEST(Contacts, IntoTheCallersVectorGivesTheSameContacts) {
   const CollisionModel m = floorAndWall();
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 32}});
   QueryWork work;
-  ContactsQuery q;
-  q.trm = &box;
-  q.maxContacts = 32;
+  ContactsQuery q = contactsOf(box);
   std::vector<ContactInfo> out(5);  // stale entries: must be cleared
   int withContacts = 0;
   for (int k = 0; k < 40; ++k) {
