@@ -58,6 +58,16 @@ struct FeatureBoxes {
     maxX[i] = b.max.x, maxY[i] = b.max.y, maxZ[i] = b.max.z;
   }
   Bounds get(std::size_t i) const { return {{minX[i], minY[i], minZ[i]}, {maxX[i], maxY[i], maxZ[i]}}; }
+  /// Grows `b` by box i, a coordinate at a time from the arrays (the selects
+  /// of Bounds::addBounds, with no Bounds made of box i).
+  void uniteInto(Bounds& b, std::size_t i) const {
+    b.min.x = minX[i] < b.min.x ? minX[i] : b.min.x;
+    b.min.y = minY[i] < b.min.y ? minY[i] : b.min.y;
+    b.min.z = minZ[i] < b.min.z ? minZ[i] : b.min.z;
+    b.max.x = maxX[i] > b.max.x ? maxX[i] : b.max.x;
+    b.max.y = maxY[i] > b.max.y ? maxY[i] : b.max.y;
+    b.max.z = maxZ[i] > b.max.z ? maxZ[i] : b.max.z;
+  }
 };
 
 /// The arcs of a part's trace-model vertices, one array per coordinate (for
@@ -171,19 +181,11 @@ struct RotationWork {
   void makeEdgeBoxes(const TraceWork& tw) {
     if (edgeBoxesSet) return;
     edgeBoxesSet = true;
-    // The union of two boxes, a coordinate at a time (Bounds::addBounds'
-    // selects; a box's own max cannot lower its min, nor its min raise its max).
-    const FeatureBoxes& v = vertexBoxes;
     for (int j = 1; j <= tw.numEdges; ++j) {
       const WorkEdge& e = tw.edges[std::size_t(j)];
-      const std::size_t a = std::size_t(e.vertexNum[0]), b = std::size_t(e.vertexNum[1]),
-                        k = std::size_t(j - 1);
-      edgeBoxes.minX[k] = v.minX[b] < v.minX[a] ? v.minX[b] : v.minX[a];
-      edgeBoxes.minY[k] = v.minY[b] < v.minY[a] ? v.minY[b] : v.minY[a];
-      edgeBoxes.minZ[k] = v.minZ[b] < v.minZ[a] ? v.minZ[b] : v.minZ[a];
-      edgeBoxes.maxX[k] = v.maxX[b] > v.maxX[a] ? v.maxX[b] : v.maxX[a];
-      edgeBoxes.maxY[k] = v.maxY[b] > v.maxY[a] ? v.maxY[b] : v.maxY[a];
-      edgeBoxes.maxZ[k] = v.maxZ[b] > v.maxZ[a] ? v.maxZ[b] : v.maxZ[a];
+      Bounds b = vertexBoxes.get(std::size_t(e.vertexNum[0]));
+      vertexBoxes.uniteInto(b, std::size_t(e.vertexNum[1]));
+      edgeBoxes.set(std::size_t(j - 1), b);
     }
   }
   /// Box around trace-model polygon j's sweep (the union of its edges' boxes;
@@ -193,18 +195,9 @@ struct RotationWork {
     if (!(polygonBoundsSet >> j & 1u)) {
       polygonBoundsSet |= std::uint32_t(1) << j;
       const WorkPolygon& wp = tw.polys[std::size_t(j)];
-      // (As makeEdgeBoxes: a coordinate at a time from the arrays.)
-      const FeatureBoxes& e = edgeBoxes;
       Bounds b;
-      for (int k = 0; k < wp.numEdges; ++k) {
-        const std::size_t i = std::size_t(std::abs(wp.edges[std::size_t(k)]) - 1);
-        b.min.x = e.minX[i] < b.min.x ? e.minX[i] : b.min.x;
-        b.min.y = e.minY[i] < b.min.y ? e.minY[i] : b.min.y;
-        b.min.z = e.minZ[i] < b.min.z ? e.minZ[i] : b.min.z;
-        b.max.x = e.maxX[i] > b.max.x ? e.maxX[i] : b.max.x;
-        b.max.y = e.maxY[i] > b.max.y ? e.maxY[i] : b.max.y;
-        b.max.z = e.maxZ[i] > b.max.z ? e.maxZ[i] : b.max.z;
-      }
+      for (int k = 0; k < wp.numEdges; ++k)
+        edgeBoxes.uniteInto(b, std::size_t(std::abs(wp.edges[std::size_t(k)]) - 1));
       rp.bounds = b;
     }
     return rp.bounds;
