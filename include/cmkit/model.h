@@ -33,6 +33,10 @@
 
 namespace cmkit {
 
+namespace detail {
+struct QueryData;  // model/query_data.h
+}
+
 /// An edge between two model vertices.
 struct CmEdge {
   /// Indices of its two vertices.
@@ -139,6 +143,15 @@ struct CollisionModel {
   /// Statistics of the build (or load).
   ModelStats stats;
 
+  /// What the queries derive from the arrays above once instead of per query
+  /// (the lines of every polygon's edges, laid out for SIMD), made by
+  /// prepareQueries(): the compiler, the .cm reader and the conversions call
+  /// it. Not part of the .cm format. It serves only the model whose arrays it
+  /// was made from: a copy, or a model whose arrays changed size, is queried
+  /// without it (the same results, a little slower) until prepareQueries()
+  /// is called on it.
+  std::shared_ptr<const detail::QueryData> queryData;
+
   /// The signed edge numbers of a polygon.
   std::span<const std::int32_t> edgesOf(const CmPolygon& p) const {
     return {polygonEdges.data() + p.firstEdge, p.numEdges};
@@ -197,6 +210,11 @@ ModelPtr collisionModelFromTraceModel(const TraceModel& trm, std::uint32_t conte
 /// polygon), or exceeds the trace model limits (vertices, edges, polygons,
 /// edges per polygon).
 Result<TraceModel> traceModelFromCollisionModel(const CollisionModel& model);
+
+/// Makes model.queryData from the model as it is now. Call it on a model
+/// made or changed by hand (after validate(): edge and vertex numbers in
+/// range) for the queries' full speed; they are right without it.
+void prepareQueries(CollisionModel& model);
 
 /// A polygon's vertex loop, in edge order.
 std::vector<Vec3> polygonWinding(const CollisionModel& model, std::size_t polygon);

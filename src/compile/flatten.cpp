@@ -147,6 +147,7 @@ void ModelBuilder::finishModel(CollisionModel& model) const {
   model.stats.containedPolygonsRemoved = counters_.numRemovedPolys;
   model.stats.procPolygonsRemoved = counters_.numProcRemovedPolys;
   model.stats.polygonsMerged = counters_.numMergedPolys;
+  prepareQueries(model);
 }
 
 }  // namespace cmkit::detail

@@ -255,6 +255,7 @@ struct ModelReader {
     model.stats.sharpEdges = detail::computeEdgeNormals(model);
     for (std::size_t i = 1; i < model.edges.size(); ++i) model.stats.internalEdges += model.edges[i].internal;
     detail::computeModelBoundsAndContents(model);
+    prepareQueries(model);
   }
 };
 

@@ -47,6 +47,7 @@ ModelPtr collisionModelFromTraceModel(const TraceModel& trm, std::uint32_t conte
   for (std::size_t i = 0; i < m->polygons.size(); ++i) m->polygonRefs.push_back(std::int32_t(i));
   m->bounds = trm.bounds();
   m->contents = m->polygons.empty() ? 0 : contents;
+  prepareQueries(*m);
   return m;
 }
 

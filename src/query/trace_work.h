@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cmkit/query.h"
+#include "model/query_data.h"
 
 namespace cmkit::detail {
 
@@ -91,8 +92,9 @@ struct QueryScratch {
   std::vector<std::uint64_t> vertexEdgeSides;
   std::vector<std::uint64_t> edgesReversed;  ///< per group: edges used backwards (negative edge number)
   std::vector<std::uint64_t> edgesToTest;    ///< per group: edges to test against the trace-model edges
-  /// One group's edge lines, one array per Plücker coordinate (SIMD loads).
-  alignas(16) std::array<std::array<Real, kEdgeGroup>, 6> edgeLineCoords;
+  /// The current polygon's edge lines in blocks (model/query_data.h), for a
+  /// model without CollisionModel::queryData.
+  std::vector<Real> edgeLineBlocks;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
     std::int32_t node;
@@ -186,9 +188,16 @@ struct Orientation;
 /// The state of one translation / position test / contacts query.
 struct TraceWork {
   TraceWork(const CollisionModel& m, QueryScratch& s)
-      : model(m), scratch(s), vertices(s.trm.vertices), edges(s.trm.edges), polys(s.trm.polys) {}
+      : model(m),
+        queryData(queryDataOf(m)),
+        scratch(s),
+        vertices(s.trm.vertices),
+        edges(s.trm.edges),
+        polys(s.trm.polys) {}
 
   const CollisionModel& model;
+  /// The model's derived data, when made for it (else null: computed per polygon).
+  const QueryData* queryData;
   QueryScratch& scratch;
 
   int numVerts = 0, numEdges = 0, numPolys = 0;

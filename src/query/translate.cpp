@@ -82,15 +82,25 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
   if (tw.gettingContacts()) tw.addContact();
 }
 
-// Which side of each edge line of the current polygon the path of every
-// moving trace-model vertex passes, and which edges are used backwards (see
-// the masks in QueryScratch). A side is the sign bit of (edge i's line,
-// stored direction) . (vertex v's line), the product the original caches per
-// model edge. It depends only on the edge and the vertex, so computing all of
-// a polygon's at once gives the same bits as the cache, without its branches
-// and scattered memory.
-void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
-  const CollisionModel& m = tw.model;
+// The lines of a polygon's edges in blocks (model/query_data.h): the model's
+// prepared ones, or computed into the scratch for a model without them.
+const Real* polygonLineBlocks(TraceWork& tw, std::int32_t polyNum, std::span<const std::int32_t> edges) {
+  if (tw.queryData) return tw.queryData->polygonLines(std::size_t(polyNum));
+  std::vector<Real>& blocks = tw.scratch.edgeLineBlocks;
+  const std::size_t size = lineBlocks(edges.size()) * kLineBlockSize;
+  if (blocks.size() < size) blocks.resize(size);
+  writeEdgeLineBlocks(tw.model, edges, blocks.data());
+  return blocks.data();
+}
+
+// Which side of each edge line of the current polygon (`lines`, its blocks)
+// the path of every moving trace-model vertex passes, and which edges are
+// used backwards (see the masks in QueryScratch). A side is the sign bit of
+// (edge i's line, stored direction) . (vertex v's line), the product the
+// original caches per model edge. It depends only on the edge and the
+// vertex, so computing all of a polygon's at once gives the same bits as the
+// cache, without its branches and scattered memory.
+void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, const Real* lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
@@ -98,37 +108,35 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
     s.edgesReversed.resize(groups);
     s.edgesToTest.resize(groups);
   }
-  auto& c = s.edgeLineCoords;
+  static_assert(kEdgeGroup % kLineBlock == 0);
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
     std::uint64_t reversed = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      const Pluecker l = modelEdgeLine(m, std::size_t(std::abs(edges[first + i])));
-      for (int k = 0; k < 6; ++k) c[std::size_t(k)][i] = l[k];
-      reversed |= std::uint64_t(edges[first + i] < 0) << i;
-    }
+    for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges[first + i] < 0) << i;
     s.edgesReversed[g] = reversed;
     const std::uint64_t valid = count == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << count) - 1;
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
+    const Real* groupLines = lines + (first / kLineBlock) * kLineBlockSize;
 #ifdef CMKIT_SIDES_SSE2
-    // Four edges at a time: the same products (IEEE single precision in each
-    // lane, the same order of operations), so the same sign bits. The lanes
-    // past `count` (at most three, inside the arrays) are masked off.
-    static_assert(kEdgeGroup % 4 == 0);
+    // A block's four edges at a time: the same products (IEEE single
+    // precision in each lane, the same order of operations), so the same
+    // sign bits. The lanes past `count` (zero lines) are masked off.
+    static_assert(kLineBlock == 4);
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
       const int v = std::countr_zero(moving);
       const Pluecker& r = tw.vertices[std::size_t(v)].pl;
       const __m128 r0 = _mm_set1_ps(r[0]), r1 = _mm_set1_ps(r[1]), r2 = _mm_set1_ps(r[2]);
       const __m128 r3 = _mm_set1_ps(r[3]), r4 = _mm_set1_ps(r[4]), r5 = _mm_set1_ps(r[5]);
       std::uint64_t bits = 0;
-      for (std::size_t i = 0; i < count; i += 4) {
-        __m128 p = _mm_mul_ps(_mm_load_ps(&c[0][i]), r4);
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[1][i]), r5));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[2][i]), r3));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[4][i]), r0));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[5][i]), r1));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(&c[3][i]), r2));
+      const Real* b = groupLines;
+      for (std::size_t i = 0; i < count; i += kLineBlock, b += kLineBlockSize) {
+        __m128 p = _mm_mul_ps(_mm_loadu_ps(b), r4);
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 4), r5));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 8), r3));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 16), r0));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 20), r1));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 12), r2));
         bits |= std::uint64_t(_mm_movemask_ps(p)) << i;
       }
       sides[v] = bits & valid;
@@ -140,8 +148,10 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges) {
       std::uint64_t bits = 0;
       for (std::size_t i = 0; i < count; ++i) {
         // Pluecker::permutedInnerProduct, term for term in the same order.
-        const Real product = c[0][i] * r[4] + c[1][i] * r[5] + c[2][i] * r[3] + c[4][i] * r[0] +
-                             c[5][i] * r[1] + c[3][i] * r[2];
+        const Real* c = groupLines + (i / kLineBlock) * kLineBlockSize + i % kLineBlock;
+        constexpr std::size_t k = kLineBlock;
+        const Real product =
+            c[0] * r[4] + c[k] * r[5] + c[2 * k] * r[3] + c[4 * k] * r[0] + c[5 * k] * r[1] + c[3 * k] * r[2];
         bits |= std::uint64_t(signBitSet(product)) << i;
       }
       sides[v] = bits & valid;
@@ -205,7 +215,8 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
 
 // Trace-model edge trmEdgeNum against edge i of the polygon, whose line
 // its two vertices pass on different sides.
-void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum, std::size_t i) {
+void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Real* lines, int trmEdgeNum,
+                                 std::size_t i) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   count(s, &QueryStats::edgePairs);
@@ -220,8 +231,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
   const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
   const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
   Real f1;
-  if (!translateEdgeThroughEdge(te.cross, te.pl, modelEdgeLine(m, std::size_t(std::abs(edgeNum))), f1))
-    return;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, blockLine(lines, i), f1)) return;
   if (f1 < 0) return;  // moving away from the edge
   // The same against the edge moved out along its normal by the clip epsilon.
   const Pluecker epsPl =
@@ -256,7 +266,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, int trmEd
 
 // Trace-model edge trmEdgeNum against the polygon edges to test, in their
 // order: those whose line its two vertices pass on different sides.
-void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int trmEdgeNum) {
+void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, const Real* lines, int trmEdgeNum) {
   const QueryScratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::size_t groups = edgeGroups(poly.numEdges);
@@ -265,7 +275,7 @@ void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, int tr
     std::uint64_t crossing =
         (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & s.edgesToTest[g];
     for (; crossing; crossing &= crossing - 1)
-      translateTrmEdgeThroughEdge(tw, poly, trmEdgeNum,
+      translateTrmEdgeThroughEdge(tw, poly, lines, trmEdgeNum,
                                   g * kEdgeGroup + std::size_t(std::countr_zero(crossing)));
   }
 }
@@ -369,7 +379,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const auto edges = m.edgesOf(poly);
-  sidesOfPolygonEdges(tw, edges);
+  const Real* lines = polygonLineBlocks(tw, polyNum, edges);
+  sidesOfPolygonEdges(tw, edges, lines);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
   // after the edge tests, so these masks hold for every trace-model edge).
@@ -389,7 +400,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   translateTrmVerticesThroughPolygon(tw, polyNum, poly);
   if (anyToTest)
     for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1)
-      translateTrmEdgeThroughPolygon(tw, poly, std::countr_zero(moving));
+      translateTrmEdgeThroughPolygon(tw, poly, lines, std::countr_zero(moving));
   // Model vertices through the trace model's front polygons.
   forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
     const Vec3 endp = p - tw.dir;

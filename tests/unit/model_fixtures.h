@@ -81,6 +81,7 @@ class ModelMaker {
       m.contents |= p.contents;
     }
     detail::computeEdgeNormals(m);
+    prepareQueries(m);
     return m;
   }
 

@@ -11,6 +11,7 @@
 #include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
+#include "model/query_data.h"
 #include "model_fixtures.h"
 #include "test_support.h"
 
@@ -233,6 +234,59 @@ TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsGeneratedScene) {
     hits += one[i].find("type=none") == std::string::npos;
   }
   EXPECT_GT(hits, 1000);
+}
+
+// The queries' derived data (CollisionModel::queryData) only saves work: a
+// copy of a model (queried without it, computing the lines per polygon)
+// answers every query with the same bits as the prepared model.
+void expectPreparedAndBareAlike(const std::vector<ModelPtr>& prepared) {
+  std::vector<ModelPtr> bare;
+  for (const ModelPtr& m : prepared) {
+    ASSERT_NE(detail::queryDataOf(*m), nullptr) << m->name;
+    auto copy = std::make_shared<CollisionModel>(*m);
+    EXPECT_EQ(detail::queryDataOf(*copy), nullptr) << "a copy must not use the original's lines";
+    bare.push_back(std::move(copy));
+  }
+  const auto lines = generatedQueries(prepared[0]->bounds, 6000);
+  const auto a = answerAll(prepared, lines, 1);
+  const auto b = answerAll(bare, lines, 1);
+  int hits = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i], b[i]) << lines[i];
+    hits += a[i].find("type=none") == std::string::npos;
+  }
+  EXPECT_GT(hits, 600);
+}
+
+TEST(QueryData, PreparedAndBareModelsAnswerAlikeGeneratedScene) {
+  expectPreparedAndBareAlike({std::make_shared<const CollisionModel>(generatedScene())});
+}
+
+TEST(QueryData, PreparedAndBareModelsAnswerAlikeBundledLt4) {
+  expectPreparedAndBareAlike(
+      test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map"));
+}
+
+TEST(QueryData, PreparedLinesAreTheEdgeLines) {
+  const CollisionModel m = generatedScene();
+  const detail::QueryData* d = detail::queryDataOf(m);
+  ASSERT_NE(d, nullptr);
+  for (std::size_t p = 0; p < m.polygons.size(); ++p) {
+    const auto edges = m.edgesOf(m.polygons[p]);
+    for (std::size_t j = 0; j < edges.size(); ++j) {
+      const CmEdge& e = m.edges[std::size_t(std::abs(edges[j]))];
+      const Pluecker want =
+          Pluecker::fromLine(m.vertices[std::size_t(e.vertex[0])], m.vertices[std::size_t(e.vertex[1])]);
+      const Pluecker got = detail::blockLine(d->polygonLines(p), j);
+      for (int k = 0; k < 6; ++k) ASSERT_EQ(got[k], want[k]) << "polygon " << p << " edge " << j;
+    }
+  }
+  // A model whose arrays grew after prepareQueries is queried without its data.
+  CollisionModel grown = m;
+  prepareQueries(grown);
+  ASSERT_NE(detail::queryDataOf(grown), nullptr);
+  grown.vertices.push_back({0, 0, 0});
+  EXPECT_EQ(detail::queryDataOf(grown), nullptr);
 }
 
 TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsLt4) {

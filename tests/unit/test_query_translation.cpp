@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cmkit/query.h"
+#include "model/query_data.h"
 #include "model_fixtures.h"
 
 using namespace cmkit;
@@ -442,10 +443,7 @@ TraceResult dropBox(const CollisionModel& m, Real x, Real y) {
   return translate(m, q, work);
 }
 
-}  // namespace
-
-TEST(Translation, PolygonWithMoreThan64Edges) {
-  const CollisionModel m = hundredEdgeFloor();
+void expectHundredEdgeFloorStops(const CollisionModel& m) {
   ASSERT_GT(m.polygons[0].numEdges, 64u);
   // Over the middle and half over the lower-left side: the vertices inside
   // stop 0.25 above the floor.
@@ -471,4 +469,17 @@ TEST(Translation, PolygonWithMoreThan64Edges) {
   const TraceResult r = translate(m, q, work);
   EXPECT_NEAR(r.fraction, 127.75f / 300, 1e-5f);
   expectVecNear(r.contact.normal, {-1, 0, 0}, 1e-5f);
+}
+
+}  // namespace
+
+TEST(Translation, PolygonWithMoreThan64Edges) {
+  // Without the model's derived lines (computed per polygon) and with them.
+  for (const bool prepared : {false, true}) {
+    SCOPED_TRACE(prepared ? "prepared" : "bare");
+    CollisionModel m = hundredEdgeFloor();
+    if (prepared) prepareQueries(m);
+    ASSERT_EQ(detail::queryDataOf(m) != nullptr, prepared);
+    expectHundredEdgeFloorStops(m);
+  }
 }
