@@ -30,6 +30,10 @@ void prepareQueries(CollisionModel& model) {
   d->numEdges = model.edges.size();
   d->numPolygonEdges = model.polygonEdges.size();
   d->numPolygons = model.polygons.size();
+  d->nodes = model.nodes.data();
+  d->polygonRefs = model.polygonRefs.data();
+  d->numNodes = model.nodes.size();
+  d->numPolygonRefs = model.polygonRefs.size();
   d->firstLine.resize(model.polygons.size());
   std::size_t total = 0;
   for (std::size_t p = 0; p < model.polygons.size(); ++p) {
@@ -39,6 +43,27 @@ void prepareQueries(CollisionModel& model) {
   d->lines.resize(total);
   for (std::size_t p = 0; p < model.polygons.size(); ++p)
     detail::writeEdgeLineBlocks(model, model.edgesOf(model.polygons[p]), d->lines.data() + d->firstLine[p]);
+  d->firstCullBlock.reserve(model.nodes.size() + 1);
+  for (const CmNode& node : model.nodes) {
+    d->firstCullBlock.push_back(d->cullBlocks.size());
+    const auto polygons = model.polygonsAt(node);
+    for (std::size_t first = 0; first < polygons.size(); first += detail::kCullBlock) {
+      detail::PolygonCullBlock b{};
+      std::fill(std::begin(b.polygon), std::end(b.polygon), -1);
+      for (std::size_t j = 0; j < detail::kCullBlock && first + j < polygons.size(); ++j) {
+        const CmPolygon& p = model.polygons[std::size_t(polygons[first + j])];
+        for (int k = 0; k < 3; ++k) {
+          b.min[k][j] = p.bounds.min[k];
+          b.max[k][j] = p.bounds.max[k];
+          b.normal[k][j] = p.plane.normal[k];
+        }
+        b.contents[j] = p.contents;
+        b.polygon[j] = polygons[first + j];
+      }
+      d->cullBlocks.push_back(b);
+    }
+  }
+  d->firstCullBlock.push_back(d->cullBlocks.size());
   model.queryData = std::move(d);
 }
 

@@ -81,6 +81,7 @@ struct QueryScratch {
 
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
+  std::vector<std::uint32_t> polygonMet;      ///< polygon counted as met (QueryStats builds only)
   std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
   std::vector<Feature> edges;                 ///< per model edge
   std::vector<std::uint32_t> vertexChecked;   ///< model vertex tested this query
@@ -271,6 +272,8 @@ void rotateThroughBox(TraceWork& tw, const Bounds& box);
 /// Translation tests of a list of polygons (a node's) for a trace model;
 /// true when one blocks completely.
 bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
+/// The same for a node's polygons (from the model's query data when it has it).
+bool translateTrmThroughNode(TraceWork& tw, const CmNode& node);
 /// The same for a point trace and a list of polygons (a node's).
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 

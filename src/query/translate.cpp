@@ -8,10 +8,10 @@
 
 #include "query/trace_work.h"
 
-// SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time); any
-// other target, or -DCMKIT_NO_SIMD, uses the portable loop, which does the
-// same arithmetic. The lanes are float: a double build (CMKIT_DOUBLE) uses the
-// portable loop.
+// SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time;
+// blockMayTouch: four polygons' culls at a time); any other target, or
+// -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic. The
+// lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
 #include <emmintrin.h>
 #define CMKIT_SIDES_SSE2 1
@@ -428,6 +428,96 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
     shrinkTraceBounds(tw);
     return tw.fraction == 0;
   });
+}
+
+#ifdef CMKIT_SIDES_SSE2
+// boxBeyondPlane in four lanes (boxes given by their centres and half sizes).
+inline __m128 boxesBeyondPlane(const __m128 centre[3], const __m128 reach[3], const Plane& plane,
+                               Real maxDist) {
+  const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 signMask = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000u)));
+  const __m128 nx = _mm_set1_ps(plane.normal.x), ny = _mm_set1_ps(plane.normal.y);
+  const __m128 nz = _mm_set1_ps(plane.normal.z);
+  const __m128 d1 = _mm_sub_ps(
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, centre[0]), _mm_mul_ps(ny, centre[1])), _mm_mul_ps(nz, centre[2])),
+      _mm_set1_ps(plane.dist));
+  const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_mul_ps(reach[0], nx), absMask),
+                                          _mm_and_ps(_mm_mul_ps(reach[1], ny), absMask)),
+                               _mm_and_ps(_mm_mul_ps(reach[2], nz), absMask));
+  const __m128 limit = _mm_set1_ps(maxDist);
+  return _mm_or_ps(_mm_cmpgt_ps(_mm_sub_ps(d1, d2), limit),
+                   _mm_cmpgt_ps(_mm_xor_ps(_mm_add_ps(d1, d2), signMask), limit));
+}
+
+// Which polygons of a cull block pass mayTouch's culls (bit j for lane j):
+// mayTouch's arithmetic in each lane, operation for operation, so the same
+// answers.
+unsigned blockMayTouch(const TraceWork& tw, const PolygonCullBlock& b) {
+  const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
+  const __m128i noContents =
+      _mm_cmpeq_epi32(_mm_and_si128(contents, _mm_set1_epi32(int(tw.contentMask))), _mm_setzero_si128());
+  __m128 culled = _mm_castsi128_ps(noContents);
+  __m128 min[3], max[3];
+  for (int k = 0; k < 3; ++k) {
+    min[k] = _mm_load_ps(b.min[k]);
+    max[k] = _mm_load_ps(b.max[k]);
+    // boxesTouch(tw.bounds, polygon bounds)
+    culled = _mm_or_ps(culled, _mm_cmplt_ps(max[k], _mm_set1_ps(tw.bounds.min[k])));
+    culled = _mm_or_ps(culled, _mm_cmpgt_ps(min[k], _mm_set1_ps(tw.bounds.max[k])));
+  }
+  // Most blocks stop here (as most polygons fail mayTouch's first tests).
+  if (_mm_movemask_ps(culled) == 0xF) return 0;
+  // Back faces: normal . dir > 0.
+  const __m128 facing = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.normal[0]), _mm_set1_ps(tw.dir.x)),
+                                              _mm_mul_ps(_mm_load_ps(b.normal[1]), _mm_set1_ps(tw.dir.y))),
+                                   _mm_mul_ps(_mm_load_ps(b.normal[2]), _mm_set1_ps(tw.dir.z)));
+  culled = _mm_or_ps(culled, _mm_cmpgt_ps(facing, _mm_setzero_ps()));
+  // The heart planes (boxPlaneSpan: the box's centre and half size).
+  const __m128 half = _mm_set1_ps(Real(0.5));
+  __m128 centre[3], reach[3];
+  for (int k = 0; k < 3; ++k) {
+    centre[k] = _mm_mul_ps(_mm_add_ps(min[k], max[k]), half);
+    reach[k] = _mm_sub_ps(max[k], centre[k]);
+  }
+  culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1));
+  culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2));
+  return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
+}
+
+// translateTrmThroughPolygons on a node's cull blocks: four polygons' culls
+// at once, then the polygons past them in list order. Only those are
+// marked: a polygon culled here and listed at another node is culled there
+// again (the culls only get stricter as the bounds shrink), so the polygons
+// tested, and their order, are those of translateTrmThroughPolygons.
+bool translateTrmThroughCullBlocks(TraceWork& tw, std::span<const PolygonCullBlock> blocks) {
+  QueryScratch& s = tw.scratch;
+  for (const PolygonCullBlock& b : blocks) {
+    if constexpr (kQueryStats) {  // polygons met for the first time (their own marks)
+      for (std::size_t j = 0; j < kCullBlock; ++j)
+        if (b.polygon[j] >= 0 && !s.testAndMark(s.polygonMet, std::size_t(b.polygon[j])))
+          count(s, &QueryStats::polygonsMet);
+    }
+    unsigned pass = blockMayTouch(tw, b);
+    while (pass) {
+      const std::int32_t polyNum = b.polygon[std::countr_zero(pass)];
+      pass &= pass - 1;
+      if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+      const Real before = tw.fraction;
+      if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+      if (tw.fraction != before) pass &= blockMayTouch(tw, b);  // the bounds may have shrunk
+    }
+  }
+  return false;
+}
+#endif
+
+bool translateTrmThroughNode(TraceWork& tw, const CmNode& node) {
+#ifdef CMKIT_SIDES_SSE2
+  if (tw.queryData)
+    return translateTrmThroughCullBlocks(
+        tw, tw.queryData->nodeCullBlocks(std::size_t(&node - tw.model.nodes.data())));
+#endif
+  return translateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
 }
 
 bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {

@@ -28,11 +28,13 @@ void QueryScratch::begin(const CollisionModel& model) {
   const std::size_t np = model.polygons.size(), nb = model.brushes.size();
   const std::size_t ne = model.edges.size(), nv = model.vertices.size();
   grow(polygonChecked, np);
+  if constexpr (kQueryStats) grow(polygonMet, np);
   grow(brushChecked, nb);
   grow(edges, ne);
   grow(vertexChecked, nv);
   if (++generation == 0) {  // wrapped: clear every mark once every 2^32 queries
     std::fill(polygonChecked.begin(), polygonChecked.end(), 0u);
+    std::fill(polygonMet.begin(), polygonMet.end(), 0u);
     std::fill(brushChecked.begin(), brushChecked.end(), 0u);
     std::fill(edges.begin(), edges.end(), Feature{});
     std::fill(vertexChecked.begin(), vertexChecked.end(), 0u);
@@ -48,9 +50,7 @@ namespace {
 /// A trace model's translation: the node's polygons.
 struct TranslateTrmItems {
   static bool has(const CmNode& node) { return node.numPolygonRefs != 0; }
-  static void test(TraceWork& tw, const CmNode& node) {
-    translateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
-  }
+  static void test(TraceWork& tw, const CmNode& node) { translateTrmThroughNode(tw, node); }
   static constexpr bool kStopWhenStuck = false;
 };
 
