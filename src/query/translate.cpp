@@ -280,14 +280,16 @@ void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, const 
   }
 }
 
+// (The vertex's path line only for a trace-model polygon it reaches in time:
+// most reach none.)
 void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
-                                      std::size_t vertexNum, const Vec3& p, const Vec3& endp,
-                                      const Pluecker& pl) {
+                                      std::size_t vertexNum, const Vec3& p, const Vec3& endp) {
   QueryScratch& s = tw.scratch;
   count(s, &QueryStats::vertexTests);
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   const Real f = translationPlaneFraction(tp.plane, p, endp);
   if (!(f < tw.fraction)) return;
+  const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
   for (int i = 0; i < tp.numEdges; ++i) {
     const int edgeNum = tp.edges[std::size_t(i)];
     const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
@@ -404,9 +406,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   // Model vertices through the trace model's front polygons.
   forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
     const Vec3 endp = p - tw.dir;
-    const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
     for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1)
-      translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp, pl);
+      translateVertexThroughTrmPolygon(tw, poly, std::countr_zero(moving), vn, p, endp);
   });
 
   shrinkTraceBounds(tw);
