@@ -144,7 +144,8 @@ struct CollisionModel {
   ModelStats stats;
 
   /// What the queries derive from the arrays above once instead of per query
-  /// (the lines of every polygon's edges, laid out for SIMD), made by
+  /// (the polygons' edge lines and what the culls read of them, laid out for
+  /// SIMD: less memory than the arrays above), made by
   /// prepareQueries(): the compiler, the .cm reader and the conversions call
   /// it. Not part of the .cm format. It serves only the model whose arrays it
   /// was made from: a copy, or a model whose arrays changed size, is queried

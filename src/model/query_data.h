@@ -1,9 +1,13 @@
 // Internal: what the queries derive from a built model once instead of per
-// query (CollisionModel::queryData, made by prepareQueries): the lines of
-// every polygon's edges, four edges to a block in the order the translation
-// tests read them (one array per Plücker coordinate within a block, for SIMD
-// loads), and every node's polygons with what a translation's culls read,
-// four polygons to a block (one array per number).
+// query (CollisionModel::queryData, made by prepareQueries), in blocks of
+// kLanes entries with one array per number, for SIMD loads:
+//  - the line of every polygonEdges entry's edge (a polygon's edge lines are
+//    the entries firstEdge .. firstEdge + numEdges - 1);
+//  - the bounds, normal and contents of every polygonRefs entry's polygon (a
+//    node's polygons are the entries firstPolygonRef ..), for a
+//    translation's culls.
+// Entry i is lane i % kLanes of block i / kLanes: the arrays hold about 24
+// and 40 bytes per entry, in the order the queries read them.
 #pragma once
 
 #include <cstddef>
@@ -15,41 +19,46 @@
 
 namespace cmkit::detail {
 
-/// Edges per line block.
-inline constexpr std::size_t kLineBlock = 4;
-/// Numbers per line block: coordinate k of the block's edge j is at k * kLineBlock + j.
-inline constexpr std::size_t kLineBlockSize = 6 * kLineBlock;
-/// Line blocks a polygon of numEdges edges takes.
-inline constexpr std::size_t lineBlocks(std::size_t numEdges) {
-  return (numEdges + kLineBlock - 1) / kLineBlock;
+/// Entries per block (SIMD lanes).
+inline constexpr std::size_t kLanes = 4;
+/// Blocks that entries first .. first + count - 1 touch.
+inline constexpr std::size_t blocksSpanned(std::size_t first, std::size_t count) {
+  return count == 0 ? 0 : (first + count - 1) / kLanes - first / kLanes + 1;
 }
 
-/// Writes the lines of a polygon's edges (each in its edge's stored
-/// direction, Pluecker::fromLine of vertex[0] -> vertex[1]) into
-/// lineBlocks(edges.size()) blocks at `out`; the lanes past the last edge are 0.
-void writeEdgeLineBlocks(const CollisionModel& m, std::span<const std::int32_t> edges, Real* out);
+/// The lines of kLanes polygonEdges entries' edges, each in its edge's stored
+/// direction (Pluecker::fromLine of vertex[0] -> vertex[1]): coordinate k of
+/// lane j at c[k][j].
+struct alignas(16) LineBlock {
+  Real c[6][kLanes];
+};
 
-/// Line j of a polygon whose blocks start at `blocks`.
-inline Pluecker blockLine(const Real* blocks, std::size_t j) {
-  const Real* b = blocks + (j / kLineBlock) * kLineBlockSize + j % kLineBlock;
+/// The line of entry i of an array of line blocks.
+inline Pluecker blockLine(const LineBlock* blocks, std::size_t i) {
+  const LineBlock& b = blocks[i / kLanes];
   Pluecker l;
-  for (std::size_t k = 0; k < 6; ++k) l.p[k] = b[k * kLineBlock];
+  for (std::size_t k = 0; k < 6; ++k) l.p[k] = b.c[k][i % kLanes];
   return l;
 }
 
-/// Polygons per cull block.
-inline constexpr std::size_t kCullBlock = 4;
+/// The line of model edge e (unsigned number) in its stored direction.
+inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) {
+  const CmEdge& edge = m.edges[e];
+  return Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
+}
 
-/// kCullBlock polygons of a node's list, in list order, with what a
-/// translation's culls read of them: lane j of each array is polygon j.
-/// Lanes past the end of the list have contents 0 (no content mask keeps them)
-/// and polygon number -1.
-struct alignas(16) PolygonCullBlock {
-  Real min[3][kCullBlock];     ///< bounds.min, per axis
-  Real max[3][kCullBlock];     ///< bounds.max, per axis
-  Real normal[3][kCullBlock];  ///< plane.normal, per axis
-  std::uint32_t contents[kCullBlock];
-  std::int32_t polygon[kCullBlock];  ///< polygon numbers
+/// Writes the lines of `edges` (signed edge numbers) as entries 0 ..
+/// edges.size() - 1 of the blocks at `out` (blocksSpanned(0, edges.size())
+/// of them; the lanes past the last are 0).
+void writeEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, LineBlock* out);
+
+/// What a translation's culls read of kLanes polygonRefs entries' polygons:
+/// lane j of each array is entry j's (lanes past the last entry are 0).
+struct alignas(16) CullBlock {
+  Real min[3][kLanes];     ///< bounds.min, per axis
+  Real max[3][kLanes];     ///< bounds.max, per axis
+  Real normal[3][kLanes];  ///< plane.normal, per axis
+  std::uint32_t contents[kLanes];
 };
 
 struct QueryData {
@@ -62,22 +71,11 @@ struct QueryData {
   const std::int32_t* polygonRefs = nullptr;
   std::size_t numVertices = 0, numEdges = 0, numPolygonEdges = 0, numPolygons = 0, numNodes = 0,
               numPolygonRefs = 0;
-  /// Per polygon: the index in `lines` of its first block.
-  std::vector<std::size_t> firstLine;
-  /// The line blocks of every polygon, in polygon order.
-  std::vector<Real> lines;
 
-  /// Per node and one past the last: the index in `cullBlocks` of its first block.
-  std::vector<std::size_t> firstCullBlock;
-  /// The cull blocks of every node, in node order.
-  std::vector<PolygonCullBlock> cullBlocks;
-
-  /// The blocks of polygon p.
-  const Real* polygonLines(std::size_t p) const { return lines.data() + firstLine[p]; }
-  /// The cull blocks of node n.
-  std::span<const PolygonCullBlock> nodeCullBlocks(std::size_t n) const {
-    return {cullBlocks.data() + firstCullBlock[n], firstCullBlock[n + 1] - firstCullBlock[n]};
-  }
+  /// Per polygonEdges entry: its edge's line.
+  std::vector<LineBlock> lines;
+  /// Per polygonRefs entry: its polygon's culls.
+  std::vector<CullBlock> culls;
 };
 
 /// model.queryData when it was made from this model's arrays (not a copy's,

@@ -93,9 +93,9 @@ struct QueryScratch {
   std::vector<std::uint64_t> vertexEdgeSides;
   std::vector<std::uint64_t> edgesReversed;  ///< per group: edges used backwards (negative edge number)
   std::vector<std::uint64_t> edgesToTest;    ///< per group: edges to test against the trace-model edges
-  /// The current polygon's edge lines in blocks (model/query_data.h), for a
-  /// model without CollisionModel::queryData.
-  std::vector<Real> edgeLineBlocks;
+  /// The current polygon's edge lines (model/query_data.h), for a model
+  /// without CollisionModel::queryData.
+  std::vector<LineBlock> edgeLines;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
     std::int32_t node;
@@ -327,12 +327,6 @@ inline bool boxesTouch(const Bounds& a, const Bounds& b) {
 inline bool insideBox(const Bounds& b, const Vec3& p) {
   return !((p.x < b.min.x) | (p.y < b.min.y) | (p.z < b.min.z) | (p.x > b.max.x) | (p.y > b.max.y) |
            (p.z > b.max.z));
-}
-
-/// The line of model edge e (unsigned number) in its stored direction.
-inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) {
-  const CmEdge& edge = m.edges[e];
-  return Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
 }
 
 /// Calls f(vertex number, position) for the vertices of a polygon's edges

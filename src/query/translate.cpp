@@ -82,25 +82,32 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
   if (tw.gettingContacts()) tw.addContact();
 }
 
-// The lines of a polygon's edges in blocks (model/query_data.h): the model's
-// prepared ones, or computed into the scratch for a model without them.
-const Real* polygonLineBlocks(TraceWork& tw, std::int32_t polyNum, std::span<const std::int32_t> edges) {
-  if (tw.queryData) return tw.queryData->polygonLines(std::size_t(polyNum));
-  std::vector<Real>& blocks = tw.scratch.edgeLineBlocks;
-  const std::size_t size = lineBlocks(edges.size()) * kLineBlockSize;
+// A polygon's edge lines: edge i's at entry first + i of `blocks`.
+struct PolygonLines {
+  const LineBlock* blocks;
+  std::size_t first;
+  Pluecker line(std::size_t i) const { return blockLine(blocks, first + i); }
+};
+
+// The lines of a polygon's edges: the model's (query data), or computed
+// into the scratch for a model without them.
+PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly, std::span<const std::int32_t> edges) {
+  if (tw.queryData) return {tw.queryData->lines.data(), poly.firstEdge};
+  std::vector<LineBlock>& blocks = tw.scratch.edgeLines;
+  const std::size_t size = blocksSpanned(0, edges.size());
   if (blocks.size() < size) blocks.resize(size);
-  writeEdgeLineBlocks(tw.model, edges, blocks.data());
-  return blocks.data();
+  writeEdgeLines(tw.model, edges, blocks.data());
+  return {blocks.data(), 0};
 }
 
-// Which side of each edge line of the current polygon (`lines`, its blocks)
-// the path of every moving trace-model vertex passes, and which edges are
-// used backwards (see the masks in QueryScratch). A side is the sign bit of
-// (edge i's line, stored direction) . (vertex v's line), the product the
-// original caches per model edge. It depends only on the edge and the
-// vertex, so computing all of a polygon's at once gives the same bits as the
-// cache, without its branches and scattered memory.
-void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, const Real* lines) {
+// Which side of each edge line of the current polygon the path of every
+// moving trace-model vertex passes, and which edges are used backwards (see
+// the masks in QueryScratch). A side is the sign bit of (edge i's line,
+// stored direction) . (vertex v's line), the product the original caches per
+// model edge. It depends only on the edge and the vertex, so computing all of
+// a polygon's at once gives the same bits as the cache, without its branches
+// and scattered memory.
+void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, const PolygonLines& lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
@@ -108,7 +115,6 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, con
     s.edgesReversed.resize(groups);
     s.edgesToTest.resize(groups);
   }
-  static_assert(kEdgeGroup % kLineBlock == 0);
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
@@ -117,27 +123,34 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, con
     s.edgesReversed[g] = reversed;
     const std::uint64_t valid = count == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << count) - 1;
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
-    const Real* groupLines = lines + (first / kLineBlock) * kLineBlockSize;
+    const std::size_t entry = lines.first + first;  // the group's first edge
 #ifdef CMKIT_SIDES_SSE2
-    // A block's four edges at a time: the same products (IEEE single
+    // A block's four entries at a time: the same products (IEEE single
     // precision in each lane, the same order of operations), so the same
-    // sign bits. The lanes past `count` (zero lines) are masked off.
-    static_assert(kLineBlock == 4);
+    // sign bits, shifted into place (the group may start at any lane of its
+    // first block; lanes outside the group are masked off).
+    static_assert(kLanes == 4);
+    const LineBlock* blocks = lines.blocks + entry / kLanes;
+    const std::size_t numBlocks = blocksSpanned(entry, count);
+    const std::size_t lane = entry % kLanes;
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
       const int v = std::countr_zero(moving);
       const Pluecker& r = tw.vertices[std::size_t(v)].pl;
       const __m128 r0 = _mm_set1_ps(r[0]), r1 = _mm_set1_ps(r[1]), r2 = _mm_set1_ps(r[2]);
       const __m128 r3 = _mm_set1_ps(r[3]), r4 = _mm_set1_ps(r[4]), r5 = _mm_set1_ps(r[5]);
       std::uint64_t bits = 0;
-      const Real* b = groupLines;
-      for (std::size_t i = 0; i < count; i += kLineBlock, b += kLineBlockSize) {
-        __m128 p = _mm_mul_ps(_mm_loadu_ps(b), r4);
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 4), r5));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 8), r3));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 16), r0));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 20), r1));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_loadu_ps(b + 12), r2));
-        bits |= std::uint64_t(_mm_movemask_ps(p)) << i;
+      // Block k's lane 0 is the group's edge kLanes * k - lane (the shift
+      // stays below 64: 17 blocks only when lane > 0).
+      for (std::size_t k = 0; k < numBlocks; ++k) {
+        const LineBlock& b = blocks[k];
+        __m128 p = _mm_mul_ps(_mm_load_ps(b.c[0]), r4);
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[1]), r5));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[2]), r3));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[4]), r0));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[5]), r1));
+        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[3]), r2));
+        const std::uint64_t signs = std::uint64_t(_mm_movemask_ps(p));
+        bits |= k == 0 ? signs >> lane : signs << (kLanes * k - lane);
       }
       sides[v] = bits & valid;
     }
@@ -148,10 +161,9 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, con
       std::uint64_t bits = 0;
       for (std::size_t i = 0; i < count; ++i) {
         // Pluecker::permutedInnerProduct, term for term in the same order.
-        const Real* c = groupLines + (i / kLineBlock) * kLineBlockSize + i % kLineBlock;
-        constexpr std::size_t k = kLineBlock;
+        const Pluecker c = blockLine(lines.blocks, entry + i);
         const Real product =
-            c[0] * r[4] + c[k] * r[5] + c[2 * k] * r[3] + c[4 * k] * r[0] + c[5 * k] * r[1] + c[3 * k] * r[2];
+            c[0] * r[4] + c[1] * r[5] + c[2] * r[3] + c[4] * r[0] + c[5] * r[1] + c[3] * r[2];
         bits |= std::uint64_t(signBitSet(product)) << i;
       }
       sides[v] = bits & valid;
@@ -215,8 +227,8 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
 
 // Trace-model edge trmEdgeNum against edge i of the polygon, whose line
 // its two vertices pass on different sides.
-void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Real* lines, int trmEdgeNum,
-                                 std::size_t i) {
+void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines,
+                                 int trmEdgeNum, std::size_t i) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   count(s, &QueryStats::edgePairs);
@@ -231,7 +243,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Rea
   const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
   const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
   Real f1;
-  if (!translateEdgeThroughEdge(te.cross, te.pl, blockLine(lines, i), f1)) return;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, lines.line(i), f1)) return;
   if (f1 < 0) return;  // moving away from the edge
   // The same against the edge moved out along its normal by the clip epsilon.
   const Pluecker epsPl =
@@ -266,7 +278,8 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Rea
 
 // Trace-model edge trmEdgeNum against the polygon edges to test, in their
 // order: those whose line its two vertices pass on different sides.
-void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, const Real* lines, int trmEdgeNum) {
+void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines,
+                                    int trmEdgeNum) {
   const QueryScratch& s = tw.scratch;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::size_t groups = edgeGroups(poly.numEdges);
@@ -381,7 +394,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const auto edges = m.edgesOf(poly);
-  const Real* lines = polygonLineBlocks(tw, polyNum, edges);
+  const PolygonLines lines = polygonLines(tw, poly, edges);
   sidesOfPolygonEdges(tw, edges, lines);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
@@ -453,7 +466,7 @@ inline __m128 boxesBeyondPlane(const __m128 centre[3], const __m128 reach[3], co
 // Which polygons of a cull block pass mayTouch's culls (bit j for lane j):
 // mayTouch's arithmetic in each lane, operation for operation, so the same
 // answers.
-unsigned blockMayTouch(const TraceWork& tw, const PolygonCullBlock& b) {
+unsigned blockMayTouch(const TraceWork& tw, const CullBlock& b) {
   const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
   const __m128i noContents =
       _mm_cmpeq_epi32(_mm_and_si128(contents, _mm_set1_epi32(int(tw.contentMask))), _mm_setzero_si128());
@@ -485,22 +498,28 @@ unsigned blockMayTouch(const TraceWork& tw, const PolygonCullBlock& b) {
   return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
 }
 
-// translateTrmThroughPolygons on a node's cull blocks: four polygons' culls
-// at once, then the polygons past them in list order. Only those are
-// marked: a polygon culled here and listed at another node is culled there
-// again (the culls only get stricter as the bounds shrink), so the polygons
-// tested, and their order, are those of translateTrmThroughPolygons.
-bool translateTrmThroughCullBlocks(TraceWork& tw, std::span<const PolygonCullBlock> blocks) {
+// translateTrmThroughPolygons for a node of a model with query data: the
+// culls four polygons at a time from the cull blocks of the node's entries
+// of polygonRefs (the first and last block may hold other nodes' entries:
+// those lanes are masked off), then the polygons past them in list order.
+// Only those are marked: a polygon culled here and listed at another node is
+// culled there again (the culls only get stricter as the bounds shrink), so
+// the polygons tested, and their order, are those of
+// translateTrmThroughPolygons.
+bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
   QueryScratch& s = tw.scratch;
-  for (const PolygonCullBlock& b : blocks) {
-    if constexpr (kQueryStats) {  // polygons met for the first time (their own marks)
-      for (std::size_t j = 0; j < kCullBlock; ++j)
-        if (b.polygon[j] >= 0 && !s.testAndMark(s.polygonMet, std::size_t(b.polygon[j])))
-          count(s, &QueryStats::polygonsMet);
-    }
-    unsigned pass = blockMayTouch(tw, b);
+  const std::size_t first = node.firstPolygonRef, end = first + node.numPolygonRefs;
+  if constexpr (kQueryStats) {  // polygons met for the first time (their own marks)
+    for (const std::int32_t polyNum : tw.model.polygonsAt(node))
+      if (!s.testAndMark(s.polygonMet, std::size_t(polyNum))) count(s, &QueryStats::polygonsMet);
+  }
+  for (std::size_t entry = first - first % kLanes; entry < end; entry += kLanes) {
+    const CullBlock& b = d.culls[entry / kLanes];
+    const unsigned from = unsigned(std::max(first, entry) - entry),
+                   to = unsigned(std::min(end - entry, kLanes));
+    unsigned pass = blockMayTouch(tw, b) & ((1u << to) - (1u << from));
     while (pass) {
-      const std::int32_t polyNum = b.polygon[std::countr_zero(pass)];
+      const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
       pass &= pass - 1;
       if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
       const Real before = tw.fraction;
@@ -514,9 +533,7 @@ bool translateTrmThroughCullBlocks(TraceWork& tw, std::span<const PolygonCullBlo
 
 bool translateTrmThroughNode(TraceWork& tw, const CmNode& node) {
 #ifdef CMKIT_SIDES_SSE2
-  if (tw.queryData)
-    return translateTrmThroughCullBlocks(
-        tw, tw.queryData->nodeCullBlocks(std::size_t(&node - tw.model.nodes.data())));
+  if (tw.queryData) return translateTrmThroughCullBlocks(tw, *tw.queryData, node);
 #endif
   return translateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
 }

@@ -267,7 +267,7 @@ TEST(QueryData, PreparedAndBareModelsAnswerAlikeBundledLt4) {
       test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map"));
 }
 
-TEST(QueryData, PreparedLinesAreTheEdgeLines) {
+TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
   const CollisionModel m = generatedScene();
   const detail::QueryData* d = detail::queryDataOf(m);
   ASSERT_NE(d, nullptr);
@@ -277,9 +277,21 @@ TEST(QueryData, PreparedLinesAreTheEdgeLines) {
       const CmEdge& e = m.edges[std::size_t(std::abs(edges[j]))];
       const Pluecker want =
           Pluecker::fromLine(m.vertices[std::size_t(e.vertex[0])], m.vertices[std::size_t(e.vertex[1])]);
-      const Pluecker got = detail::blockLine(d->polygonLines(p), j);
+      const Pluecker got = detail::blockLine(d->lines.data(), m.polygons[p].firstEdge + j);
       for (int k = 0; k < 6; ++k) ASSERT_EQ(got[k], want[k]) << "polygon " << p << " edge " << j;
     }
+  }
+  // What the culls read of every node's polygons, entry by entry of polygonRefs.
+  for (std::size_t r = 0; r < m.polygonRefs.size(); ++r) {
+    const CmPolygon& p = m.polygons[std::size_t(m.polygonRefs[r])];
+    const detail::CullBlock& b = d->culls[r / detail::kLanes];
+    const std::size_t j = r % detail::kLanes;
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(b.min[k][j], p.bounds.min[k]);
+      ASSERT_EQ(b.max[k][j], p.bounds.max[k]);
+      ASSERT_EQ(b.normal[k][j], p.plane.normal[k]);
+    }
+    ASSERT_EQ(b.contents[j], p.contents);
   }
   // A model whose arrays grew after prepareQueries is queried without its data.
   CollisionModel grown = m;
