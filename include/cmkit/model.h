@@ -217,6 +217,15 @@ Result<TraceModel> traceModelFromCollisionModel(const CollisionModel& model);
 /// range) for the queries' full speed; they are right without it.
 void prepareQueries(CollisionModel& model);
 
+/// The memory a model takes in cmkit, in bytes: its arrays (vertices, edges,
+/// polygon edges, polygons, brush planes, brushes, nodes, polygon and brush
+/// references; not names, materials or spare capacity) and its query data.
+struct ModelMemory {
+  std::size_t arrays = 0;
+  std::size_t queryData = 0;
+};
+ModelMemory modelMemory(const CollisionModel& model);
+
 /// A polygon's vertex loop, in edge order.
 std::vector<Vec3> polygonWinding(const CollisionModel& model, std::size_t polygon);
 

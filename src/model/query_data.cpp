@@ -48,4 +48,14 @@ void prepareQueries(CollisionModel& model) {
   model.queryData = std::move(d);
 }
 
+ModelMemory modelMemory(const CollisionModel& model) {
+  const auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  ModelMemory m;
+  m.arrays = bytes(model.vertices) + bytes(model.edges) + bytes(model.polygonEdges) + bytes(model.polygons) +
+             bytes(model.brushPlanes) + bytes(model.brushes) + bytes(model.nodes) + bytes(model.polygonRefs) +
+             bytes(model.brushRefs);
+  if (const detail::QueryData* d = model.queryData.get()) m.queryData = bytes(d->lines) + bytes(d->culls);
+  return m;
+}
+
 }  // namespace cmkit

@@ -301,6 +301,24 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
   EXPECT_EQ(detail::queryDataOf(grown), nullptr);
 }
 
+// The query data adds less memory than the model's own arrays (the speed
+// issue's limit: the model with its query data within twice the model).
+TEST(QueryData, SmallerThanTheModelsArrays) {
+  const auto lt4 = test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map");
+  std::vector<ModelPtr> models(lt4.begin(), lt4.end());
+  models.push_back(std::make_shared<const CollisionModel>(generatedScene()));
+  for (const ModelPtr& m : models) {
+    const ModelMemory memory = modelMemory(*m);
+    EXPECT_GT(memory.queryData, 0u) << m->name;
+    EXPECT_LE(memory.queryData, memory.arrays) << m->name;
+  }
+  // A copy without it.
+  CollisionModel bare = *models.front();
+  bare.queryData.reset();
+  EXPECT_EQ(modelMemory(bare).queryData, 0u);
+  EXPECT_EQ(modelMemory(bare).arrays, modelMemory(*models.front()).arrays);
+}
+
 TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsLt4) {
   CMKIT_REQUIRE_SHARED();
   const auto models = buildMap("lt4/lt4.map");

@@ -88,6 +88,17 @@ std::string countsJson(const ModelCounts& c) {
       c.sharpEdges, c.containedPolygonsRemoved, c.polygonsMerged, c.totalBytes);
 }
 
+// The memory the models take in cmkit (modelMemory), summed.
+ModelMemory cmkitMemory(std::span<const ModelPtr> models) {
+  ModelMemory sum;
+  for (const ModelPtr& m : models) {
+    const ModelMemory one = modelMemory(*m);
+    sum.arrays += one.arrays;
+    sum.queryData += one.queryData;
+  }
+  return sum;
+}
+
 }  // namespace
 
 ModelCounts& ModelCounts::operator+=(const ModelCounts& o) {
@@ -150,6 +161,10 @@ void printStatsText(std::FILE* out, std::span<const ModelPtr> models, const Stat
   printCounts(out, total);
   if (context.milliseconds >= 0) fmt::print(out, "{} msec to build collision data.\n", context.milliseconds);
   fmt::print(out, "proc BSP used for pruning: {}\n", context.procFile.empty() ? "no" : "yes");
+  const ModelMemory memory = cmkitMemory(models);
+  fmt::print(out, "in cmkit: {} KB of model arrays, {} KB of query data beside them ({:.2f}x)\n",
+             memory.arrays >> 10, memory.queryData >> 10,
+             memory.arrays == 0 ? 0.0 : double(memory.queryData) / double(memory.arrays));
   if (context.entities >= 0) fmt::print(out, "entities: {}\n", context.entities);
   if (!context.perModel) return;
   int index = 0;
@@ -183,7 +198,10 @@ std::string statsJson(std::span<const ModelPtr> models, const StatsContext& cont
     s += fmt::format("  \"proc\": {{\"file\": {}, \"polygonsDropped\": {}}},\n", jsonString(context.procFile),
                      models.empty() ? 0 : models.front()->stats.procPolygonsRemoved);
   }
-  s += fmt::format("  \"total\": {{\"models\": {}, {}}},\n", models.size(), countsJson(total));
+  const ModelMemory memory = cmkitMemory(models);
+  s += fmt::format(
+      "  \"total\": {{\"models\": {}, {}, \"cmkitArrayBytes\": {}, \"cmkitQueryDataBytes\": {}}},\n",
+      models.size(), countsJson(total), memory.arrays, memory.queryData);
   s += "  \"models\": [\n" + modelsJson + (modelsJson.empty() ? "" : "\n") + "  ]\n}\n";
   return s;
 }
