@@ -218,6 +218,29 @@ TEST(BuildReference, CliReportEqualsTheOriginalsText) {
   }
 }
 
+// --memory adds one line after the original's text: the memory the models
+// take in cmkit (arrays, and the query data no larger than them).
+TEST(BuildReference, CliInfoMemoryLine) {
+  CMKIT_REQUIRE_CLI();
+  int status = 0;
+  const std::string out = test::runCapture(std::string(CMKIT_CLI_PATH) + " info '" + CMKIT_SOURCE_DIR +
+                                               "/data/maps/lt4/lt4.map' --quiet --memory 2>/dev/null",
+                                           status);
+  EXPECT_EQ(status, 0);
+  const auto at = out.find("in cmkit: ");
+  ASSERT_NE(at, std::string::npos) << out;
+  long arraysKb = 0, queryDataKb = 0;
+  double ratio = 0;
+  ASSERT_EQ(std::sscanf(out.c_str() + at,
+                        "in cmkit: %ld KB of model arrays, %ld KB of query data beside them (%lfx)",
+                        &arraysKb, &queryDataKb, &ratio),
+            3)
+      << out;
+  EXPECT_GT(arraysKb, 1000);  // lt4: about 3.5 MB
+  EXPECT_GT(queryDataKb, 0);
+  EXPECT_LE(ratio, 1.0);
+}
+
 TEST(BuildReference, CliRejectsBrokenMapsWithFileAndLine) {
   CMKIT_REQUIRE_CLI();
   const fs::path dir = fs::temp_directory_path() / "cmkit_build_cli_test";

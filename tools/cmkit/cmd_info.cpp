@@ -15,24 +15,24 @@
 namespace cmkit::cli {
 
 void registerInfo(CLI::App& app) {
-  auto* cmd =
-      app.add_subcommand("info",
-                         "Print the statistics of the collision models of FILE without writing anything:\n"
-                         "for a .map, the models are built as by 'cmkit compile' (per model: bounds,\n"
-                         "contents, vertices, edges, polygons, brushes, nodes, references, internal and\n"
-                         "sharp edges, contained polygons removed, polygons merged, memory as the\n"
-                         "original counts it; then the memory the models take in cmkit: their arrays\n"
-                         "and the query data made beside them for faster queries); a .cm\n"
-                         "file is loaded instead; a mesh file (.obj, .gltf, .glb, .ase, .lwo, ...) is\n"
-                         "converted into one model as by 'cmkit compile' (--up, --scale, --contents).\n"
-                         "NAME.proc beside a .map prunes the world model as in the original\n"
-                         "(--no-proc: not).\n\n"
-                         "Examples:\n"
-                         "  cmkit info maps/lt4.map\n"
-                         "  cmkit info maps/lt4.map --quiet          totals only\n"
-                         "  cmkit info maps/lt4.cm\n"
-                         "  cmkit info maps/lt4.map --json | jq '.total.polygons'\n\n"
-                         "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message).");
+  auto* cmd = app.add_subcommand(
+      "info",
+      "Print the statistics of the collision models of FILE without writing anything:\n"
+      "for a .map, the models are built as by 'cmkit compile' (per model: bounds,\n"
+      "contents, vertices, edges, polygons, brushes, nodes, references, internal and\n"
+      "sharp edges, contained polygons removed, polygons merged, memory as the\n"
+      "original counts it: the original's text, line for line); a .cm\n"
+      "file is loaded instead; a mesh file (.obj, .gltf, .glb, .ase, .lwo, ...) is\n"
+      "converted into one model as by 'cmkit compile' (--up, --scale, --contents).\n"
+      "NAME.proc beside a .map prunes the world model as in the original\n"
+      "(--no-proc: not).\n\n"
+      "Examples:\n"
+      "  cmkit info maps/lt4.map\n"
+      "  cmkit info maps/lt4.map --quiet          totals only\n"
+      "  cmkit info maps/lt4.cm --quiet --memory  and the memory the models take in cmkit\n"
+      "  cmkit info maps/lt4.cm\n"
+      "  cmkit info maps/lt4.map --json | jq '.total.polygons'\n\n"
+      "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message).");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "info";
   cmd->add_option(
@@ -43,6 +43,9 @@ void registerInfo(CLI::App& app) {
                   "directory of .mtr material files (searched recursively)");
   cmd->add_flag("--json", req->json, "print the statistics as JSON (for scripts)");
   cmd->add_flag("-q,--quiet", req->quiet, "print only the totals, not every model");
+  cmd->add_flag("--memory", req->memory,
+                "also print the memory the models take in cmkit: their arrays and the query data made beside "
+                "them (always in --json)");
   addNoProcFlag(cmd, req->noProc);
   addMeshOptions(cmd, req->mesh);
   cmd->callback([req] {
@@ -61,6 +64,7 @@ void registerInfo(CLI::App& app) {
           std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start)
               .count();
       context.perModel = !req->quiet;
+      context.cmkitMemory = req->memory;
       if (req->json) {
         fmt::print("{}", statsJson(*models, context));
       } else {

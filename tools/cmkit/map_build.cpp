@@ -100,6 +100,7 @@ int runMeshBuild(const MapBuildRequest& request, const MaterialTable& materials)
   context.source = request.mapPath;
   context.milliseconds = std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count();
   context.perModel = !request.quiet;
+  context.cmkitMemory = request.memory;
   if (request.json) {
     fmt::print("{}", statsJson(models, context));
   } else {
@@ -175,6 +176,7 @@ int runMapBuild(const MapBuildRequest& request) {
   context.milliseconds = std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count();
   context.entities = static_cast<long long>(map->entities.size());
   context.perModel = !request.quiet;
+  context.cmkitMemory = request.memory;
   if (proc->bsp) context.procFile = proc->path;
   if (request.json) {
     fmt::print(report, "{}", statsJson(*models, context));

@@ -15,6 +15,7 @@ struct MapBuildRequest {
   std::string materialsDir;  ///< .mtr files; empty: the default rules
   bool json = false;         ///< statistics as JSON instead of text
   bool quiet = false;        ///< no per-model statistics (totals only)
+  bool memory = false;       ///< info: also the memory the models take in cmkit
   std::string command;       ///< for messages ("compile", "info")
   bool noProc = false;       ///< ignore NAME.proc beside the map
   std::string entity;        ///< compile only this entity ("name" value or #N); needs outPath

@@ -162,9 +162,10 @@ void printStatsText(std::FILE* out, std::span<const ModelPtr> models, const Stat
   if (context.milliseconds >= 0) fmt::print(out, "{} msec to build collision data.\n", context.milliseconds);
   fmt::print(out, "proc BSP used for pruning: {}\n", context.procFile.empty() ? "no" : "yes");
   const ModelMemory memory = cmkitMemory(models);
-  fmt::print(out, "in cmkit: {} KB of model arrays, {} KB of query data beside them ({:.2f}x)\n",
-             memory.arrays >> 10, memory.queryData >> 10,
-             memory.arrays == 0 ? 0.0 : double(memory.queryData) / double(memory.arrays));
+  if (context.cmkitMemory)
+    fmt::print(out, "in cmkit: {} KB of model arrays, {} KB of query data beside them ({:.2f}x)\n",
+               memory.arrays >> 10, memory.queryData >> 10,
+               memory.arrays == 0 ? 0.0 : double(memory.queryData) / double(memory.arrays));
   if (context.entities >= 0) fmt::print(out, "entities: {}\n", context.entities);
   if (!context.perModel) return;
   int index = 0;

@@ -47,6 +47,7 @@ struct StatsContext {
   long long milliseconds = -1;  ///< time to build or load; < 0: not printed
   long long entities = -1;      ///< entities in the map; < 0: not printed
   bool perModel = true;         ///< also print every model
+  bool cmkitMemory = false;     ///< text: also the memory the models take in cmkit
   std::string procFile;         ///< the .proc that pruned the world; empty: none
 };
 
