@@ -118,7 +118,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
       }
     }
   }
-  setPolygonEdgeLines(m, edges, s);
+  setPolygonEdgeLines(tw, poly);
   for (const std::int32_t edgeNum : edges) s.mark(s.vertexChecked, std::size_t(m.edgeStart(edgeNum)));
 
   // 2. a trm edge crossing the polygon plane inside all polygon edges.

@@ -158,7 +158,7 @@ void rotateTrmVertexThroughPolygon(TraceWork& tw, RotationWork& rw, std::int32_t
   const auto edges = tw.model.edgesOf(poly);
   QueryScratch& s = tw.scratch;
   if (!edgeLinesSet) {
-    setPolygonEdgeLines(tw.model, edges, s);
+    setPolygonEdgeLines(tw, poly);
     edgeLinesSet = true;
   }
   if (!rayInsideEdges(point, dir, int(edges.size()), [&](int k, bool& reversed) -> const Pluecker& {

@@ -85,7 +85,7 @@ struct QueryScratch {
   std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
   std::vector<Feature> edges;                 ///< per model edge
   std::vector<std::uint32_t> vertexChecked;   ///< model vertex tested this query
-  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon
+  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon (setPolygonEdgeLines)
   // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
   // of a group's mask standing for edge kEdgeGroup * group + i.
   /// Bit i of vertexEdgeSides[group * kMaxTrmVertices + v]: the path of
@@ -375,9 +375,20 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
   }
 }
 
-/// Fills scratch.polygonEdgeLines with the lines of a polygon's edges (in the
-/// edges' stored direction).
-void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, QueryScratch& s);
+/// A polygon's edge lines (each in its edge's stored direction): edge i's at
+/// entry first + i of `blocks` (model/query_data.h).
+struct PolygonLines {
+  const LineBlock* blocks;
+  std::size_t first;
+  Pluecker line(std::size_t i) const { return blockLine(blocks, first + i); }
+};
+/// The lines of a polygon's edges: the model's (query data), or made in the
+/// scratch (edgeLines) for a model without them, valid until the next call.
+PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly);
+/// Fills scratch.polygonEdgeLines with the lines of a polygon's edges, one
+/// Pluecker each (for the loops that read a polygon's lines many times):
+/// copied from the query data, or made.
+void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly);
 
 // ---- placing the trace model (placement.cpp) ------------------------------
 

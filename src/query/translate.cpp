@@ -82,24 +82,6 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
   if (tw.gettingContacts()) tw.addContact();
 }
 
-// A polygon's edge lines: edge i's at entry first + i of `blocks`.
-struct PolygonLines {
-  const LineBlock* blocks;
-  std::size_t first;
-  Pluecker line(std::size_t i) const { return blockLine(blocks, first + i); }
-};
-
-// The lines of a polygon's edges: the model's (query data), or computed
-// into the scratch for a model without them.
-PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly, std::span<const std::int32_t> edges) {
-  if (tw.queryData) return {tw.queryData->lines.data(), poly.firstEdge};
-  std::vector<LineBlock>& blocks = tw.scratch.edgeLines;
-  const std::size_t size = blocksSpanned(0, edges.size());
-  if (blocks.size() < size) blocks.resize(size);
-  writeEdgeLines(tw.model, edges, blocks.data());
-  return {blocks.data(), 0};
-}
-
 // Which side of each edge line of the current polygon the path of every
 // moving trace-model vertex passes, and which edges are used backwards (see
 // the masks in QueryScratch). A side is the sign bit of (edge i's line,
@@ -394,7 +376,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const auto edges = m.edgesOf(poly);
-  const PolygonLines lines = polygonLines(tw, poly, edges);
+  const PolygonLines lines = polygonLines(tw, poly);
   sidesOfPolygonEdges(tw, edges, lines);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,

@@ -183,11 +183,27 @@ void walkSegment(TraceWork& tw) {
 
 }  // namespace
 
-void setPolygonEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges,
-                         detail::QueryScratch& s) {
-  if (s.polygonEdgeLines.size() < edges.size()) s.polygonEdgeLines.resize(edges.size());
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    s.polygonEdgeLines[i] = modelEdgeLine(m, std::size_t(std::abs(edges[i])));
+PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly) {
+  if (tw.queryData) return {tw.queryData->lines.data(), poly.firstEdge};
+  const auto edges = tw.model.edgesOf(poly);
+  std::vector<LineBlock>& blocks = tw.scratch.edgeLines;
+  const std::size_t size = blocksSpanned(0, edges.size());
+  if (blocks.size() < size) blocks.resize(size);
+  writeEdgeLines(tw.model, edges, blocks.data());
+  return {blocks.data(), 0};
+}
+
+void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {
+  std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
+  if (lines.size() < poly.numEdges) lines.resize(poly.numEdges);
+  const auto edges = tw.model.edgesOf(poly);
+  if (tw.queryData) {
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      lines[i] = blockLine(tw.queryData->lines.data(), poly.firstEdge + i);
+  } else {
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      lines[i] = modelEdgeLine(tw.model, std::size_t(std::abs(edges[i])));
+  }
 }
 
 void translateThroughModel(TraceWork& tw) {
