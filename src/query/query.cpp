@@ -10,18 +10,33 @@
 
 namespace cmkit::detail {
 
-namespace {
+namespace {}  // namespace
 
-// Heart planes: two planes containing the movement, for culling polygons far
-// to the side of the swept volume.
-void setupTranslationHeartPlanes(TraceWork& tw) {
+void makeTranslationHeartPlanes(TraceWork& tw) {
+  tw.heartPlanesMade = true;
   Vec3 dir = tw.dir;
   dir.normalize();
   Vec3 n1, n2;
   normalVectors(dir, n1, n2);
   tw.heartPlane1 = Plane{n1, n1.dot(tw.start)};
   tw.heartPlane2 = Plane{n2, n2.dot(tw.start)};
+  if (tw.pointTrace) {
+    tw.maxDistFromHeartPlane1 = tol::kBoxEpsilon;
+    tw.maxDistFromHeartPlane2 = tol::kBoxEpsilon;
+    return;
+  }
+  // The farthest moving vertex from each.
+  Real max1 = 0, max2 = 0;
+  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
+    const WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
+    max1 = std::max(max1, std::fabs(tw.heartPlane1.distance(v.p)));
+    max2 = std::max(max2, std::fabs(tw.heartPlane2.distance(v.p)));
+  }
+  tw.maxDistFromHeartPlane1 = max1 + tol::kBoxEpsilon;
+  tw.maxDistFromHeartPlane2 = max2 + tol::kBoxEpsilon;
 }
+
+namespace {
 
 // Point trace set-up (no trace model).
 void setupPointTrace(TraceWork& tw) {
@@ -31,9 +46,7 @@ void setupPointTrace(TraceWork& tw) {
   }
   tw.extents = {tol::kBoxEpsilon, tol::kBoxEpsilon, tol::kBoxEpsilon};
   tw.size = Bounds{{0, 0, 0}, {0, 0, 0}};
-  setupTranslationHeartPlanes(tw);
-  tw.maxDistFromHeartPlane1 = tol::kBoxEpsilon;
-  tw.maxDistFromHeartPlane2 = tol::kBoxEpsilon;
+  tw.heartPlanesMade = false;
   tw.numVerts = 1;
   tw.vertices[0].p = tw.start;
   tw.vertices[0].endp = tw.start + tw.dir;
@@ -89,15 +102,7 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
                                                                            : std::fabs(tw.size.max[i])) +
                     tol::kBoxEpsilon;
   }
-  setupTranslationHeartPlanes(tw);
-  tw.maxDistFromHeartPlane1 = tw.maxDistFromHeartPlane2 = 0;
-  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-    const WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
-    tw.maxDistFromHeartPlane1 = std::max(tw.maxDistFromHeartPlane1, std::fabs(tw.heartPlane1.distance(v.p)));
-    tw.maxDistFromHeartPlane2 = std::max(tw.maxDistFromHeartPlane2, std::fabs(tw.heartPlane2.distance(v.p)));
-  }
-  tw.maxDistFromHeartPlane1 += tol::kBoxEpsilon;
-  tw.maxDistFromHeartPlane2 += tol::kBoxEpsilon;
+  tw.heartPlanesMade = false;
 }
 
 // Runs a translation (start != end) into tw; contacts mode when `out` set.

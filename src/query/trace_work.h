@@ -234,9 +234,12 @@ struct TraceWork {
   Real fraction = 1;
   ContactInfo c;
 
-  // heart planes: along the movement, for culling far polygons
+  // heart planes: along the movement, for culling far polygons (a
+  // translation makes them for its first polygon past the box cull:
+  // makeTranslationHeartPlanes)
   Plane heartPlane1, heartPlane2;
   Real maxDistFromHeartPlane1 = 0, maxDistFromHeartPlane2 = 0;
+  bool heartPlanesMade = false;
 
   // rotations (rotate.cpp): the per-feature rotation data; null otherwise
   RotationWork* rotation = nullptr;
@@ -268,6 +271,11 @@ void positionTestThroughModel(TraceWork& tw);
 /// Walks the model's tree with a box (every node the box touches) testing
 /// the polygons met for a rotation part (the box of a piece of the arc).
 void rotateThroughBox(TraceWork& tw, const Bounds& box);
+
+/// A translation's heart planes and the trace model's greatest distances
+/// from them (query.cpp), made when a polygon first needs them (most queries'
+/// polygons fail the box cull before).
+void makeTranslationHeartPlanes(TraceWork& tw);
 
 /// Translation tests of a list of polygons (a node's) for a trace model;
 /// true when one blocks completely.

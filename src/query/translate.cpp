@@ -304,17 +304,20 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
 // True when the polygon may be touched. Point traces make each test only
 // when the ones before passed: a point's thin bounds reject most polygons at
 // once, predictably.
-inline bool pointMayTouch(const TraceWork& tw, const CmPolygon& poly) {
-  return (poly.contents & tw.contentMask) && tw.bounds.intersects(poly.bounds) &&
-         !(poly.plane.normal.dot(tw.dir) > 0) &&  // only front faces collide
-         !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) &&
+inline bool pointMayTouch(TraceWork& tw, const CmPolygon& poly) {
+  if (!(poly.contents & tw.contentMask) || !tw.bounds.intersects(poly.bounds) ||
+      poly.plane.normal.dot(tw.dir) > 0)  // only front faces collide
+    return false;
+  if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
+  return !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane1)) > tw.maxDistFromHeartPlane1) &&
          !(std::fabs(boundsPlaneDistance(poly.bounds, tw.heartPlane2)) > tw.maxDistFromHeartPlane2);
 }
 
 // The same culls for a trace model: after contents and bounds, the rest
 // without branches between them.
-inline bool mayTouch(const TraceWork& tw, const CmPolygon& poly) {
+inline bool mayTouch(TraceWork& tw, const CmPolygon& poly) {
   if (!(poly.contents & tw.contentMask) || !boxesTouch(tw.bounds, poly.bounds)) return false;
+  if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
   const bool backFace = poly.plane.normal.dot(tw.dir) > 0;  // only front faces collide
   // (int | int on purpose: all three tests run, no branch between them.)
   return (int(backFace) | int(boxBeyondPlane(poly.bounds, tw.heartPlane1, tw.maxDistFromHeartPlane1)) |
@@ -448,7 +451,7 @@ inline __m128 boxesBeyondPlane(const __m128 centre[3], const __m128 reach[3], co
 // Which polygons of a cull block pass mayTouch's culls (bit j for lane j):
 // mayTouch's arithmetic in each lane, operation for operation, so the same
 // answers.
-unsigned blockMayTouch(const TraceWork& tw, const CullBlock& b) {
+unsigned blockMayTouch(TraceWork& tw, const CullBlock& b) {
   const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
   const __m128i noContents =
       _mm_cmpeq_epi32(_mm_and_si128(contents, _mm_set1_epi32(int(tw.contentMask))), _mm_setzero_si128());
@@ -463,6 +466,7 @@ unsigned blockMayTouch(const TraceWork& tw, const CullBlock& b) {
   }
   // Most blocks stop here (as most polygons fail mayTouch's first tests).
   if (_mm_movemask_ps(culled) == 0xF) return 0;
+  if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
   // Back faces: normal . dir > 0.
   const __m128 facing = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.normal[0]), _mm_set1_ps(tw.dir.x)),
                                               _mm_mul_ps(_mm_load_ps(b.normal[1]), _mm_set1_ps(tw.dir.y))),
