@@ -7,13 +7,6 @@
 
 namespace cmkit::detail {
 
-Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const Vec3& position) {
-  Vec3 c = position - o.placement->origin;
-  c += o.trmRotated ? trm.offset() * *o.trmAxis : trm.offset();
-  if (o.modelRotated) c = o.placement->axis * c;
-  return c;
-}
-
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
                       std::uint32_t vertices) {
   const Vec3 relative = position - o.placement->origin;

@@ -417,7 +417,14 @@ struct Orientation {
 };
 
 /// The trace model's centre (position + its offset) in the model's frame.
-Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const Vec3& position);
+/// (Inline: returned from another unit, the vector went through the stack
+/// and stalled its reader.)
+inline Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const Vec3& position) {
+  Vec3 c = position - o.placement->origin;
+  c += o.trmRotated ? trm.offset() * *o.trmAxis : trm.offset();
+  if (o.modelRotated) c = o.placement->axis * c;
+  return c;
+}
 
 /// The mask of a trace model's vertices 0..numVerts-1.
 inline std::uint32_t allTrmVertices(int numVerts) {
