@@ -213,17 +213,21 @@ ModelPtr collisionModelFromTraceModel(const TraceModel& trm, std::uint32_t conte
 Result<TraceModel> traceModelFromCollisionModel(const CollisionModel& model);
 
 /// Makes model.queryData from the model as it is now. Call it on a model
-/// made or changed by hand (after validate(): edge and vertex numbers in
-/// range) for the queries' full speed; they are right without it.
+/// made or changed by hand for the queries' full speed; they are right
+/// without it. A model with an edge, vertex or polygon number out of range
+/// gets none (validate() says what is wrong).
 void prepareQueries(CollisionModel& model);
 
-/// The memory a model takes in cmkit, in bytes: its arrays (vertices, edges,
-/// polygon edges, polygons, brush planes, brushes, nodes, polygon and brush
-/// references; not names, materials or spare capacity) and its query data.
+/// The memory a model takes in cmkit, in bytes (modelMemory()).
 struct ModelMemory {
+  /// Its arrays: vertices, edges, polygon edges, polygons, brush planes,
+  /// brushes, nodes, polygon and brush references (not names, materials or
+  /// spare capacity).
   std::size_t arrays = 0;
+  /// Its query data (CollisionModel::queryData; 0 without).
   std::size_t queryData = 0;
 };
+/// The memory `model` takes in cmkit (`cmkit info FILE --memory` prints it).
 ModelMemory modelMemory(const CollisionModel& model);
 
 /// A polygon's vertex loop, in edge order.

@@ -1,7 +1,9 @@
 // The queries' derived data of a model (query_data.h) and prepareQueries.
 #include "model/query_data.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <limits>
 
 namespace cmkit::detail {
 
@@ -17,7 +19,29 @@ void writeEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges
 
 namespace cmkit {
 
+namespace {
+
+// Whether every number the query data is made from is in range: the edges'
+// vertices, the polygons' edge lists and edge numbers, the polygon references.
+bool queryDataSources(const CollisionModel& m) {
+  for (const CmEdge& e : m.edges)
+    for (const std::int32_t v : e.vertex)
+      if (v < 0 || std::size_t(v) >= m.vertices.size()) return false;
+  for (const CmPolygon& p : m.polygons)
+    if (p.firstEdge > m.polygonEdges.size() || p.numEdges > m.polygonEdges.size() - p.firstEdge) return false;
+  for (const std::int32_t e : m.polygonEdges)
+    if (e == std::numeric_limits<std::int32_t>::min() || std::size_t(std::abs(e)) >= m.edges.size())
+      return false;
+  for (const std::int32_t p : m.polygonRefs)
+    if (p < 0 || std::size_t(p) >= m.polygons.size()) return false;
+  return true;
+}
+
+}  // namespace
+
 void prepareQueries(CollisionModel& model) {
+  model.queryData.reset();
+  if (!queryDataSources(model)) return;  // a broken hand-made model: none (validate() says what is wrong)
   auto d = std::make_shared<detail::QueryData>();
   d->vertices = model.vertices.data();
   d->edges = model.edges.data();

@@ -293,6 +293,16 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
     }
     ASSERT_EQ(b.contents[j], p.contents);
   }
+  // A model with a number out of range gets no query data (rather than reading
+  // outside its arrays).
+  CollisionModel broken = m;
+  broken.polygonEdges[0] = std::int32_t(broken.edges.size());
+  prepareQueries(broken);
+  EXPECT_EQ(broken.queryData, nullptr);
+  broken = m;
+  broken.polygonRefs.back() = std::int32_t(broken.polygons.size());
+  prepareQueries(broken);
+  EXPECT_EQ(broken.queryData, nullptr);
   // A model whose arrays grew after prepareQueries is queried without its data.
   CollisionModel grown = m;
   prepareQueries(grown);
