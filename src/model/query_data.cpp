@@ -43,31 +43,22 @@ void prepareQueries(CollisionModel& model) {
   model.queryData.reset();
   if (!queryDataSources(model)) return;  // a broken hand-made model: none (validate() says what is wrong)
   auto d = std::make_shared<detail::QueryData>();
-  d->vertices = model.vertices.data();
-  d->edges = model.edges.data();
-  d->polygonEdges = model.polygonEdges.data();
-  d->polygons = model.polygons.data();
-  d->nodes = model.nodes.data();
-  d->polygonRefs = model.polygonRefs.data();
-  d->numVertices = model.vertices.size();
-  d->numEdges = model.edges.size();
-  d->numPolygonEdges = model.polygonEdges.size();
-  d->numPolygons = model.polygons.size();
-  d->numNodes = model.nodes.size();
-  d->numPolygonRefs = model.polygonRefs.size();
+  d->source = detail::modelArrays(model);
   d->lines.resize(detail::blocksSpanned(0, model.polygonEdges.size()));
   detail::writeEdgeLines(model, model.polygonEdges, d->lines.data());
-  d->culls.resize(detail::blocksSpanned(0, model.polygonRefs.size()));
-  for (std::size_t r = 0; r < model.polygonRefs.size(); ++r) {
-    const CmPolygon& p = model.polygons[std::size_t(model.polygonRefs[r])];
-    detail::CullBlock& b = d->culls[r / detail::kLanes];
-    const std::size_t j = r % detail::kLanes;
-    for (int k = 0; k < 3; ++k) {
-      b.min[k][j] = p.bounds.min[k];
-      b.max[k][j] = p.bounds.max[k];
-      b.normal[k][j] = p.plane.normal[k];
+  if constexpr (detail::kCullBlocks) {
+    d->culls.resize(detail::blocksSpanned(0, model.polygonRefs.size()));
+    for (std::size_t r = 0; r < model.polygonRefs.size(); ++r) {
+      const CmPolygon& p = model.polygons[std::size_t(model.polygonRefs[r])];
+      detail::CullBlock& b = d->culls[r / detail::kLanes];
+      const std::size_t j = r % detail::kLanes;
+      for (int k = 0; k < 3; ++k) {
+        b.min[k][j] = p.bounds.min[k];
+        b.max[k][j] = p.bounds.max[k];
+        b.normal[k][j] = p.plane.normal[k];
+      }
+      b.contents[j] = p.contents;
     }
-    b.contents[j] = p.contents;
   }
   model.queryData = std::move(d);
 }

@@ -10,6 +10,7 @@
 // and 40 bytes per entry, in the order the queries read them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -17,7 +18,21 @@
 
 #include "cmkit/model.h"
 
+// The queries read the cull blocks only four polygons at a time, with SSE2
+// and float lanes (CMKIT_QUERY_LANES); other builds (another target,
+// -DCMKIT_NO_SIMD, a double build) make none.
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
+#define CMKIT_QUERY_LANES 1
+#endif
+
 namespace cmkit::detail {
+
+/// Whether prepareQueries makes cull blocks (CMKIT_QUERY_LANES).
+#ifdef CMKIT_QUERY_LANES
+inline constexpr bool kCullBlocks = true;
+#else
+inline constexpr bool kCullBlocks = false;
+#endif
 
 /// Entries per block (SIMD lanes).
 inline constexpr std::size_t kLanes = 4;
@@ -61,20 +76,28 @@ struct alignas(16) CullBlock {
   std::uint32_t contents[kLanes];
 };
 
+/// Where a model's arrays are and how long they are (vertices, edges,
+/// polygon edges, polygons, nodes, polygon references): what a QueryData was
+/// made from.
+struct ModelArrays {
+  std::array<const void*, 6> data{};
+  std::array<std::size_t, 6> size{};
+  bool operator==(const ModelArrays&) const = default;
+};
+inline ModelArrays modelArrays(const CollisionModel& m) {
+  return {{m.vertices.data(), m.edges.data(), m.polygonEdges.data(), m.polygons.data(), m.nodes.data(),
+           m.polygonRefs.data()},
+          {m.vertices.size(), m.edges.size(), m.polygonEdges.size(), m.polygons.size(), m.nodes.size(),
+           m.polygonRefs.size()}};
+}
+
 struct QueryData {
   /// The arrays it was made from: it serves only the model that owns them.
-  const Vec3* vertices = nullptr;
-  const CmEdge* edges = nullptr;
-  const std::int32_t* polygonEdges = nullptr;
-  const CmPolygon* polygons = nullptr;
-  const CmNode* nodes = nullptr;
-  const std::int32_t* polygonRefs = nullptr;
-  std::size_t numVertices = 0, numEdges = 0, numPolygonEdges = 0, numPolygons = 0, numNodes = 0,
-              numPolygonRefs = 0;
+  ModelArrays source;
 
   /// Per polygonEdges entry: its edge's line.
   std::vector<LineBlock> lines;
-  /// Per polygonRefs entry: its polygon's culls.
+  /// Per polygonRefs entry: its polygon's culls (kCullBlocks builds; else empty).
   std::vector<CullBlock> culls;
 };
 
@@ -83,14 +106,7 @@ struct QueryData {
 /// they need themselves.
 inline const QueryData* queryDataOf(const CollisionModel& m) {
   const QueryData* d = m.queryData.get();
-  if (d && d->vertices == m.vertices.data() && d->edges == m.edges.data() &&
-      d->polygonEdges == m.polygonEdges.data() && d->polygons == m.polygons.data() &&
-      d->nodes == m.nodes.data() && d->polygonRefs == m.polygonRefs.data() &&
-      d->numVertices == m.vertices.size() && d->numEdges == m.edges.size() &&
-      d->numPolygonEdges == m.polygonEdges.size() && d->numPolygons == m.polygons.size() &&
-      d->numNodes == m.nodes.size() && d->numPolygonRefs == m.polygonRefs.size())
-    return d;
-  return nullptr;
+  return d && d->source == modelArrays(m) ? d : nullptr;
 }
 
 }  // namespace cmkit::detail

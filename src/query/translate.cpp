@@ -12,7 +12,8 @@
 // blockMayTouch: four polygons' culls at a time); any other target, or
 // -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic. The
 // lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
+#include "model/query_data.h"  // CMKIT_QUERY_LANES: SSE2, float lanes
+#ifdef CMKIT_QUERY_LANES
 #include <emmintrin.h>
 #define CMKIT_SIDES_SSE2 1
 #endif

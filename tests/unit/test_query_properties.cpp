@@ -281,8 +281,10 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
       for (int k = 0; k < 6; ++k) ASSERT_EQ(got[k], want[k]) << "polygon " << p << " edge " << j;
     }
   }
-  // What the culls read of every node's polygons, entry by entry of polygonRefs.
-  for (std::size_t r = 0; r < m.polygonRefs.size(); ++r) {
+  // What the culls read of every node's polygons, entry by entry of polygonRefs
+  // (in builds that cull four at a time).
+  ASSERT_EQ(d->culls.empty(), !detail::kCullBlocks || m.polygonRefs.empty());
+  for (std::size_t r = 0; r < d->culls.size() * detail::kLanes && r < m.polygonRefs.size(); ++r) {
     const CmPolygon& p = m.polygons[std::size_t(m.polygonRefs[r])];
     const detail::CullBlock& b = d->culls[r / detail::kLanes];
     const std::size_t j = r % detail::kLanes;
