@@ -106,7 +106,17 @@ struct QueryData {
 /// they need themselves.
 inline const QueryData* queryDataOf(const CollisionModel& m) {
   const QueryData* d = m.queryData.get();
-  return d && d->source == modelArrays(m) ? d : nullptr;
+  if (!d) return nullptr;
+  // (Array by array, stopping at the first difference: what every query pays.)
+  const ModelArrays& s = d->source;
+  return s.data[0] == m.vertices.data() && s.size[0] == m.vertices.size() && s.data[1] == m.edges.data() &&
+                 s.size[1] == m.edges.size() && s.data[2] == m.polygonEdges.data() &&
+                 s.size[2] == m.polygonEdges.size() && s.data[3] == m.polygons.data() &&
+                 s.size[3] == m.polygons.size() && s.data[4] == m.nodes.data() &&
+                 s.size[4] == m.nodes.size() && s.data[5] == m.polygonRefs.data() &&
+                 s.size[5] == m.polygonRefs.size()
+             ? d
+             : nullptr;
 }
 
 }  // namespace cmkit::detail
