@@ -82,7 +82,6 @@ struct alignas(16) CullBlock {
 struct ModelArrays {
   std::array<const void*, 6> data{};
   std::array<std::size_t, 6> size{};
-  bool operator==(const ModelArrays&) const = default;
 };
 inline ModelArrays modelArrays(const CollisionModel& m) {
   return {{m.vertices.data(), m.edges.data(), m.polygonEdges.data(), m.polygons.data(), m.nodes.data(),

@@ -10,8 +10,6 @@
 
 namespace cmkit::detail {
 
-namespace {}  // namespace
-
 void makeTranslationHeartPlanes(TraceWork& tw) {
   tw.heartPlanesMade = true;
   Vec3 dir = tw.dir;

@@ -395,7 +395,7 @@ struct PolygonLines {
 PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly);
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges, one
 /// Pluecker each (for the loops that read a polygon's lines many times):
-/// copied from the query data, or made.
+/// polygonLines' copied.
 void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly);
 
 // ---- placing the trace model (placement.cpp) ------------------------------

@@ -196,14 +196,8 @@ PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly) {
 void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {
   std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
   if (lines.size() < poly.numEdges) lines.resize(poly.numEdges);
-  const auto edges = tw.model.edgesOf(poly);
-  if (tw.queryData) {
-    for (std::size_t i = 0; i < edges.size(); ++i)
-      lines[i] = blockLine(tw.queryData->lines.data(), poly.firstEdge + i);
-  } else {
-    for (std::size_t i = 0; i < edges.size(); ++i)
-      lines[i] = modelEdgeLine(tw.model, std::size_t(std::abs(edges[i])));
-  }
+  const PolygonLines from = polygonLines(tw, poly);
+  for (std::size_t i = 0; i < poly.numEdges; ++i) lines[i] = from.line(i);
 }
 
 void translateThroughModel(TraceWork& tw) {
