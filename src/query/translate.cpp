@@ -89,8 +89,10 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 // stored direction) . (vertex v's line), the product the original caches per
 // model edge. It depends only on the edge and the vertex, so computing all of
 // a polygon's at once gives the same bits as the cache, without its branches
-// and scattered memory.
-void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, const PolygonLines& lines) {
+// and scattered memory. Returns the moving vertices whose paths pass inside
+// every edge (on the negative side of the edges used backwards, the positive
+// of the others): those the vertex test tries.
+std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, const PolygonLines& lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
@@ -98,6 +100,7 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, con
     s.edgesReversed.resize(groups);
     s.edgesToTest.resize(groups);
   }
+  std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
@@ -136,6 +139,7 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, con
         bits |= k == 0 ? signs >> lane : signs << (kLanes * k - lane);
       }
       sides[v] = bits & valid;
+      outside |= std::uint32_t(((bits & valid) ^ reversed) != 0) << v;
     }
 #else
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
@@ -150,9 +154,11 @@ void sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, con
         bits |= std::uint64_t(signBitSet(product)) << i;
       }
       sides[v] = bits & valid;
+      outside |= std::uint32_t(((bits & valid) ^ reversed) != 0) << v;
     }
 #endif
   }
+  return tw.movingVertices & ~outside;
 }
 
 // A trace-model vertex reaches the polygon at fraction f: the nearest hit so far.
@@ -169,22 +175,12 @@ void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, 
   }
 }
 
-// The trace-model vertices through a polygon, in vertex order. A vertex's
-// path must pass inside every polygon edge (on the negative side of the
-// edges used backwards, the positive of the others) and reach the plane
-// before the nearest hit so far.
-void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
-  QueryScratch& s = tw.scratch;
-  count(s, &QueryStats::vertexTests, unsigned(std::popcount(tw.movingVertices)));
-  const std::size_t groups = edgeGroups(poly.numEdges);
-  std::uint32_t inside = 0;
-  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-    const int v = std::countr_zero(moving);
-    std::uint64_t outside = 0;
-    for (std::size_t g = 0; g < groups; ++g)
-      outside |= s.vertexEdgeSides[g * kMaxTrmVertices + std::size_t(v)] ^ s.edgesReversed[g];
-    inside |= std::uint32_t(outside == 0) << v;
-  }
+// The trace-model vertices through a polygon, in vertex order: those whose
+// paths pass inside every polygon edge (`inside`, from sidesOfPolygonEdges)
+// and reach the plane before the nearest hit so far.
+void translateTrmVerticesThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                        std::uint32_t inside) {
+  count(tw.scratch, &QueryStats::vertexTests, unsigned(std::popcount(tw.movingVertices)));
   for (; inside; inside &= inside - 1) {
     const int vertexNum = std::countr_zero(inside);
     WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
@@ -259,20 +255,31 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   if (tw.gettingContacts()) tw.addContact();
 }
 
-// Trace-model edge trmEdgeNum against the polygon edges to test, in their
-// order: those whose line its two vertices pass on different sides.
-void translateTrmEdgeThroughPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines,
-                                    int trmEdgeNum) {
+// The moving trace-model edges against the polygon edges to test, trace-model
+// edge by edge, each against the polygon edges whose line its two vertices
+// pass on different sides, in their order. The pairs are found first, without
+// a branch per trace-model edge (most edges cross none of a polygon's edge
+// lines, unpredictably), then tested.
+void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines) {
   const QueryScratch& s = tw.scratch;
-  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::size_t groups = edgeGroups(poly.numEdges);
+  std::uint64_t crossing[kMaxTrmEdges + 1];
+  std::uint8_t crossingEdge[kMaxTrmEdges + 1];
   for (std::size_t g = 0; g < groups; ++g) {
     const std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
-    std::uint64_t crossing =
-        (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & s.edgesToTest[g];
-    for (; crossing; crossing &= crossing - 1)
-      translateTrmEdgeThroughEdge(tw, poly, lines, trmEdgeNum,
-                                  g * kEdgeGroup + std::size_t(std::countr_zero(crossing)));
+    const std::uint64_t toTest = s.edgesToTest[g];
+    std::size_t n = 0;
+    for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
+      const int e = std::countr_zero(moving);
+      const WorkEdge& te = tw.edges[std::size_t(e)];
+      const std::uint64_t c = (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & toTest;
+      crossing[n] = c;
+      crossingEdge[n] = std::uint8_t(e);
+      n += c != 0;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      for (std::uint64_t c = crossing[k]; c; c &= c - 1)
+        translateTrmEdgeThroughEdge(tw, poly, lines, crossingEdge[k], g * kEdgeGroup + std::size_t(std::countr_zero(c)));
   }
 }
 
@@ -381,7 +388,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const auto edges = m.edgesOf(poly);
   const PolygonLines lines = polygonLines(tw, poly);
-  sidesOfPolygonEdges(tw, edges, lines);
+  const std::uint32_t inside = sidesOfPolygonEdges(tw, edges, lines);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
   // after the edge tests, so these masks hold for every trace-model edge).
@@ -398,10 +405,8 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
     }
   }
 
-  translateTrmVerticesThroughPolygon(tw, polyNum, poly);
-  if (anyToTest)
-    for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1)
-      translateTrmEdgeThroughPolygon(tw, poly, lines, std::countr_zero(moving));
+  translateTrmVerticesThroughPolygon(tw, polyNum, poly, inside);
+  if (anyToTest) translateTrmEdgesThroughPolygon(tw, poly, lines);
   // Model vertices through the trace model's front polygons.
   forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
     const Vec3 endp = p - tw.dir;
