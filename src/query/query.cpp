@@ -66,14 +66,15 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   tw.movingPolygons = 0;
   tw.movingVertices = 0;
   tw.movingEdges = 0;
+  // Polygons facing the movement (or, for a flat trm, along it) collide.
+  // (Masks, not branches: which polygons face the move is unpredictable.)
+  const unsigned flat = unsigned(!trm.isConvex());
   for (int i = 0; i < tw.numPolys; ++i) {
-    WorkPolygon& wp = tw.polys[std::size_t(i)];
-    // Polygons facing the movement (or, for a flat trm, along it) collide.
-    const Real d = wp.plane.normal.dot(tw.dir);
-    if (!(d > 0 || (!trm.isConvex() && d == 0))) continue;
-    tw.movingPolygons |= std::uint32_t(1) << i;
-    tw.movingEdges |= trm.polygonEdgeBits(i);
-    tw.movingVertices |= trm.polygonVertexBits(i);
+    const Real d = tw.polys[std::size_t(i)].plane.normal.dot(tw.dir);
+    const unsigned facing = unsigned(d > 0) | (flat & unsigned(d == 0));
+    tw.movingPolygons |= std::uint32_t(facing) << i;
+    tw.movingEdges |= trm.polygonEdgeBits(i) & (std::uint64_t(0) - facing);
+    tw.movingVertices |= trm.polygonVertexBits(i) & (std::uint32_t(0) - facing);
   }
   placeTrmVertices(tw, trm, o, q.start, tw.movingVertices);
   // (In locals: through tw, the size would go to memory and back at every
@@ -88,17 +89,12 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   }
   tw.size = size;
   tw.featuresPlaced = false;  // the paths, edge lines and planes: placeTranslationFeatures
+  // (min/max, not branches: the same values, the move's direction along an
+  // axis being unpredictable.)
   for (int i = 0; i < 3; ++i) {
-    if (tw.start[i] < tw.end[i]) {
-      tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
-      tw.bounds.max[i] = tw.end[i] + tw.size.max[i] + tol::kBoxEpsilon;
-    } else {
-      tw.bounds.min[i] = tw.end[i] + tw.size.min[i] - tol::kBoxEpsilon;
-      tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
-    }
-    tw.extents[i] = (std::fabs(tw.size.min[i]) > std::fabs(tw.size.max[i]) ? std::fabs(tw.size.min[i])
-                                                                           : std::fabs(tw.size.max[i])) +
-                    tol::kBoxEpsilon;
+    tw.bounds.min[i] = std::min(tw.start[i], tw.end[i]) + tw.size.min[i] - tol::kBoxEpsilon;
+    tw.bounds.max[i] = std::max(tw.start[i], tw.end[i]) + tw.size.max[i] + tol::kBoxEpsilon;
+    tw.extents[i] = std::max(std::fabs(tw.size.min[i]), std::fabs(tw.size.max[i])) + tol::kBoxEpsilon;
   }
   tw.heartPlanesMade = false;
 }

@@ -336,14 +336,9 @@ inline bool mayTouch(TraceWork& tw, const CmPolygon& poly) {
 void shrinkTraceBounds(TraceWork& tw) {
   if (tw.fraction < 1 && !tw.gettingContacts()) {
     const Vec3 endp = tw.start + tw.dir * tw.fraction;
-    for (int i = 0; i < 3; ++i) {
-      if (tw.start[i] < endp[i]) {
-        tw.bounds.min[i] = tw.start[i] + tw.size.min[i] - tol::kBoxEpsilon;
-        tw.bounds.max[i] = endp[i] + tw.size.max[i] + tol::kBoxEpsilon;
-      } else {
-        tw.bounds.min[i] = endp[i] + tw.size.min[i] - tol::kBoxEpsilon;
-        tw.bounds.max[i] = tw.start[i] + tw.size.max[i] + tol::kBoxEpsilon;
-      }
+    for (int i = 0; i < 3; ++i) {  // (as in the set-up: min/max, not branches)
+      tw.bounds.min[i] = std::min(tw.start[i], endp[i]) + tw.size.min[i] - tol::kBoxEpsilon;
+      tw.bounds.max[i] = std::max(tw.start[i], endp[i]) + tw.size.max[i] + tol::kBoxEpsilon;
     }
   }
 }
