@@ -49,10 +49,13 @@ struct Vec3 {
   /// A vector from its coordinates.
   constexpr Vec3(Real x_, Real y_, Real z_) : x(x_), y(y_), z(z_) {}
 
+  // (The member's address is chosen, not its value: compilers select
+  // addresses without a branch, and the tree walks index by a node's
+  // split axis, which is unpredictable.)
   /// Coordinate i (0: x, 1: y, 2: z).
-  constexpr Real operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr Real operator[](int i) const { return *(i == 0 ? &x : (i == 1 ? &y : &z)); }
   /// Coordinate i (0: x, 1: y, 2: z).
-  constexpr Real& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr Real& operator[](int i) { return *(i == 0 ? &x : (i == 1 ? &y : &z)); }
 
   /// The opposite vector.
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
