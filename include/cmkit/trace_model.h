@@ -164,9 +164,18 @@ class TraceModel {
   /// Polygon i.
   const TrmPolygon& polygon(int i) const { return polygons_[size_t(i)]; }
   /// The edges of polygon i as bits: bit e for edge number e (1..numEdges()).
-  std::uint64_t polygonEdgeBits(int i) const { return polygonEdgeBits_[size_t(i)]; }
+  std::uint64_t polygonEdgeBits(int i) const { return facing_[size_t(i)].edgeBits; }
   /// The vertices of polygon i as bits: bit v for vertex v.
-  std::uint32_t polygonVertexBits(int i) const { return polygonVertexBits_[size_t(i)]; }
+  std::uint32_t polygonVertexBits(int i) const { return facing_[size_t(i)].vertexBits; }
+  /// polygon(i).normal, from the packed per-polygon data a query's set-up
+  /// reads (a few cache lines, where the polygons take one or two each).
+  const Vec3& polygonNormal(int i) const { return facing_[size_t(i)].normal; }
+  /// The vertex the queries fit polygon i's plane through: the start of its
+  /// first edge (edge(|polygon(i).edges[0]|).v[0]).
+  int polygonPlaneVertex(int i) const { return facing_[size_t(i)].planeVertex; }
+  /// edge(n).v[k] (k = 0: start, 1: end), from the packed array a query's
+  /// set-up reads.
+  int edgeVertex(int n, int k) const { return edgeVertices_[size_t(n)][size_t(k)]; }
   /// Bounds of all vertices.
   const Bounds& bounds() const { return bounds_; }
   /// The shape's centre: the point that follows the trace start and end.
@@ -207,12 +216,20 @@ class TraceModel {
   Bounds bounds_;
   Vec3 offset_;
   std::array<Vec3, kMaxTrmVertices> vertices_{};
+  // Derived from the polygons and edges when the shape is made (normals
+  // again when it is turned), packed for a query's set-up, which reads every
+  // polygon's normal (which ones face the move) and every edge's vertices: a
+  // translation takes the features of the polygons facing the move.
+  struct PolygonFacing {
+    Vec3 normal;
+    std::uint32_t vertexBits = 0;
+    std::uint64_t edgeBits = 0;
+    std::uint8_t planeVertex = 0;
+  };
+  std::array<PolygonFacing, kMaxTrmPolygons> facing_{};
+  std::array<std::array<std::uint8_t, 2>, kMaxTrmEdges + 1> edgeVertices_{};
   std::array<TrmEdge, kMaxTrmEdges + 1> edges_{};
   std::array<TrmPolygon, kMaxTrmPolygons> polygons_{};
-  // Derived from the polygons' edges when the shape is made (a translation
-  // takes the features of the polygons facing the move).
-  std::array<std::uint64_t, kMaxTrmPolygons> polygonEdgeBits_{};
-  std::array<std::uint32_t, kMaxTrmPolygons> polygonVertexBits_{};
 };
 
 inline int TrmPolygon::startVertex(const TraceModel& trm, int i) const {

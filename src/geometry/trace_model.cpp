@@ -65,9 +65,11 @@ TraceModel detail::TraceModelBuilder::finish(const Vec3& offset, bool convex, bo
       edgeBits |= std::uint64_t(1) << std::abs(p.edges[size_t(j)]);
       vertexBits |= std::uint32_t(1) << p.startVertex(t, j);
     }
-    t.polygonEdgeBits_[size_t(i)] = edgeBits;
-    t.polygonVertexBits_[size_t(i)] = vertexBits;
+    t.facing_[size_t(i)] = {p.normal, vertexBits, edgeBits,
+                            std::uint8_t(t.edges_[size_t(std::abs(p.edges[0]))].v[0])};
   }
+  for (int e = 0; e <= t.numEdges_; ++e)
+    t.edgeVertices_[size_t(e)] = {std::uint8_t(t.edges_[size_t(e)].v[0]), std::uint8_t(t.edges_[size_t(e)].v[1])};
   if (convex) generateEdgeNormals(t);
   return t;
 }
@@ -499,6 +501,7 @@ void TraceModel::rotate(const Mat3& axis) {
   for (int i = 0; i < numPolygons_; ++i) {
     TrmPolygon& p = polygons_[size_t(i)];
     p.normal = p.normal * axis;
+    facing_[size_t(i)].normal = p.normal;
     p.bounds.clear();
     for (int j = 0; j < p.numEdges; ++j) p.bounds.addPoint(vertices_[size_t(p.startVertex(*this, j))]);
     p.dist = p.normal.dot(vertices_[size_t(p.startVertex(*this, 0))]);

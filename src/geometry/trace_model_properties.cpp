@@ -74,6 +74,8 @@ std::string TraceModel::checkInvariants() const {
       return fail("edge " + std::to_string(e) + " references a missing vertex");
     if ((vertices_[size_t(ed.v[0])] - vertices_[size_t(ed.v[1])]).length() <= eps)
       return fail("edge " + std::to_string(e) + " has zero length");
+    if (edgeVertices_[size_t(e)][0] != ed.v[0] || edgeVertices_[size_t(e)][1] != ed.v[1])
+      return fail("edge " + std::to_string(e) + " packed vertices differ from its own");
   }
   std::vector<int> forward(size_t(numEdges_ + 1), 0), backward(size_t(numEdges_ + 1), 0);
   for (int i = 0; i < numPolygons_; ++i) {
@@ -102,8 +104,11 @@ std::string TraceModel::checkInvariants() const {
       edgeBits |= std::uint64_t(1) << std::abs(p.edges[size_t(j)]);
       vertexBits |= std::uint32_t(1) << p.startVertex(*this, j);
     }
-    if (edgeBits != polygonEdgeBits_[size_t(i)] || vertexBits != polygonVertexBits_[size_t(i)])
+    const PolygonFacing& f = facing_[size_t(i)];
+    if (edgeBits != f.edgeBits || vertexBits != f.vertexBits)
       return fail(name + " edge or vertex bits differ from its edges");
+    if (f.normal != p.normal || f.planeVertex != edges_[size_t(std::abs(p.edges[0]))].v[0])
+      return fail(name + " packed normal or plane vertex differs from the polygon's");
     if (isConvex_) {
       bool behind = false;
       for (int v = 0; v < numVertices_; ++v) {

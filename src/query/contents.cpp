@@ -19,7 +19,7 @@ void placePositionTestFeatures(TraceWork& tw) {
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.used = true;
-    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+    wp.plane.fitThroughPoint(tw.vertices[std::size_t(wp.planeVertex)].p);
   }
 }
 
@@ -156,13 +156,13 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
       if (s1 == s2) continue;
       const unsigned flip = s1;
       int k = 0;
-      for (; k < tp.numEdges; ++k) {
-        const int trmEdgeNum = tp.edges[std::size_t(k)];
+      for (; k < tp.source->numEdges; ++k) {
+        const int trmEdgeNum = tp.source->edges[std::size_t(k)];
         const WorkEdge& te = tw.edges[std::size_t(std::abs(trmEdgeNum))];
         const unsigned side = edgeLineSide(te, s.polygonEdgeLines[i]);
         if (unsigned(trmEdgeNum < 0) ^ side ^ flip) break;
       }
-      if (k >= tp.numEdges) {
+      if (k >= tp.source->numEdges) {
         return stuck(ContactType::Edge, -tp.plane.normal, -tp.plane.dist, m.vertices[flip ? v2 : v1], edgeNum,
                      j);
       }

@@ -33,17 +33,16 @@ void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o
   const Placement& placement = *o.placement;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
-    e.vertexNum[0] = trm.edge(i).v[0];
-    e.vertexNum[1] = trm.edge(i).v[1];
+    e.vertexNum[0] = trm.edgeVertex(i, 0);
+    e.vertexNum[1] = trm.edgeVertex(i, 1);
   }
   // Normals: local -> world (n * trmAxis) -> model frame (n * axis^T), as one matrix.
   const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * placement.axis.transposed() : trmAxis;
   for (int i = 0; i < tw.numPolys; ++i) {
-    const TrmPolygon& tp = trm.polygon(i);
     WorkPolygon& wp = tw.polys[std::size_t(i)];
-    wp.numEdges = tp.numEdges;
-    wp.edges = tp.edges.data();
-    Vec3 n = tp.normal;
+    wp.source = &trm.polygon(i);  // (its address only: not read here)
+    wp.planeVertex = trm.polygonPlaneVertex(i);
+    Vec3 n = trm.polygonNormal(i);
     if (trmRotated)
       n = n * planeAxis;
     else if (modelRotated)

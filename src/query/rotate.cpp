@@ -279,8 +279,8 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
   if (!rotatePointThroughEpsilonPlane(rw, p, endp, ro, -rw.sign, tp.plane, u, point, dir)) return;
   if (!(u < rw.maxTan)) return;
   rw.makeEdgeLines(tw);
-  if (!rayInsideEdges(point, dir, tp.numEdges, [&](int k, bool& reversed) -> const Pluecker& {
-        const int e = tp.edges[std::size_t(k)];
+  if (!rayInsideEdges(point, dir, tp.source->numEdges, [&](int k, bool& reversed) -> const Pluecker& {
+        const int e = tp.source->edges[std::size_t(k)];
         reversed = e < 0;
         return tw.edges[std::size_t(std::abs(e))].pl;
       }))

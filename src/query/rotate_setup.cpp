@@ -175,7 +175,7 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
       WorkPolygon& wp = tw.polys[std::size_t(i)];
       wp.used = true;
       if (!atZero) wp.plane.normal = wp.plane.normal * *startM;
-      wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+      wp.plane.fitThroughPoint(tw.vertices[std::size_t(wp.planeVertex)].p);
     }
   }
 

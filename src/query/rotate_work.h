@@ -196,8 +196,8 @@ struct RotationWork {
       polygonBoundsSet |= std::uint32_t(1) << j;
       const WorkPolygon& wp = tw.polys[std::size_t(j)];
       Bounds b;
-      for (int k = 0; k < wp.numEdges; ++k)
-        edgeBoxes.uniteInto(b, std::size_t(std::abs(wp.edges[std::size_t(k)]) - 1));
+      for (int k = 0; k < wp.source->numEdges; ++k)
+        edgeBoxes.uniteInto(b, std::size_t(std::abs(wp.source->edges[std::size_t(k)]) - 1));
       rp.bounds = b;
     }
     return rp.bounds;

@@ -36,11 +36,11 @@ struct WorkEdge {
 /// A trace-model polygon during a query.
 struct WorkPolygon {
   Plane plane;
-  int numEdges = 0;
-  /// The trace model's signed edge numbers (numEdges of them), not a copy:
-  /// a query reads only the polygons' first few, and copying the whole
-  /// fixed-size lists read cache lines of the trace model it never used.
-  const int* edges = nullptr;
+  /// The trace model's polygon (its edge list: source->numEdges signed edge
+  /// numbers), not a copy: a query reads few polygons' edges, and the set-up
+  /// reads only the packed normals (TraceModel::polygonNormal).
+  const TrmPolygon* source = nullptr;
+  int planeVertex = 0;  ///< TraceModel::polygonPlaneVertex
   bool used = false;
 };
 

@@ -293,8 +293,8 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
   const Real f = translationPlaneFraction(tp.plane, p, endp);
   if (!(f < tw.fraction)) return;
   const Pluecker pl = Pluecker::fromRay(p, -tw.dir);
-  for (int i = 0; i < tp.numEdges; ++i) {
-    const int edgeNum = tp.edges[std::size_t(i)];
+  for (int i = 0; i < tp.source->numEdges; ++i) {
+    const int edgeNum = tp.source->edges[std::size_t(i)];
     const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
     if (unsigned(edgeNum < 0) ^ modelVertexSide(te, pl)) return;
   }
@@ -366,7 +366,7 @@ void placeTranslationFeatures(TraceWork& tw) {
   }
   for (std::uint32_t moving = tw.movingPolygons; moving; moving &= moving - 1) {
     WorkPolygon& wp = tw.polys[std::size_t(std::countr_zero(moving))];
-    wp.plane.fitThroughPoint(tw.edges[std::size_t(std::abs(wp.edges[0]))].start);
+    wp.plane.fitThroughPoint(tw.vertices[std::size_t(wp.planeVertex)].p);
   }
 }
 
