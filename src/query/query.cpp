@@ -12,10 +12,16 @@ namespace cmkit::detail {
 
 void makeTranslationHeartPlanes(TraceWork& tw) {
   tw.heartPlanesMade = true;
-  Vec3 dir = tw.dir;
-  dir.normalize();
-  Vec3 n1, n2;
-  normalVectors(dir, n1, n2);
+  // Two planes through the move, at right angles to each other (the
+  // original's normalVectors of the move's direction). They only cull, each
+  // with the trace model's greatest distance from it, so they need not be
+  // the original's bit for bit: plain square roots, not its reciprocal
+  // square root (whose Newton steps are a long chain of multiplications).
+  const Real len2 = tw.dir.lengthSquared();
+  Vec3 dir = len2 > 0 ? tw.dir * (Real(1) / std::sqrt(len2)) : Vec3{};
+  const Real d = dir.x * dir.x + dir.y * dir.y;
+  const Vec3 n1 = d == 0 ? Vec3{1, 0, 0} : Vec3{-dir.y, dir.x, 0} * (Real(1) / std::sqrt(d));
+  const Vec3 n2 = n1.cross(dir);
   tw.heartPlane1 = Plane{n1, n1.dot(tw.start)};
   tw.heartPlane2 = Plane{n2, n2.dot(tw.start)};
   if (tw.pointTrace) {
