@@ -9,14 +9,9 @@ namespace cmkit::detail {
 
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
                       std::uint32_t vertices) {
-  const Vec3 relative = position - o.placement->origin;
   for (; vertices; vertices &= vertices - 1) {
     const int i = std::countr_zero(vertices);
-    Vec3 p = trm.vertex(i);
-    if (o.trmRotated) p = p * *o.trmAxis;
-    p += relative;
-    if (o.modelRotated) p = o.placement->axis * p;  // into the model's frame
-    tw.vertices[std::size_t(i)].p = p;
+    tw.vertices[std::size_t(i)].p = placedTrmVertex(trm, o, i, position);
   }
 }
 
@@ -28,26 +23,17 @@ void placeTrmFrame(TraceWork& tw, const TraceModel& trm, const Orientation& o, c
 }
 
 void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o) {
-  const bool trmRotated = o.trmRotated, modelRotated = o.modelRotated;
-  const Mat3& trmAxis = *o.trmAxis;
-  const Placement& placement = *o.placement;
   for (int i = 1; i <= tw.numEdges; ++i) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     e.vertexNum[0] = trm.edgeVertex(i, 0);
     e.vertexNum[1] = trm.edgeVertex(i, 1);
   }
-  // Normals: local -> world (n * trmAxis) -> model frame (n * axis^T), as one matrix.
-  const Mat3 planeAxis = trmRotated && modelRotated ? trmAxis * placement.axis.transposed() : trmAxis;
+  const Mat3 planeAxis = trmPlaneAxis(o);
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.source = &trm.polygon(i);  // (its address only: not read here)
     wp.planeVertex = trm.polygonPlaneVertex(i);
-    Vec3 n = trm.polygonNormal(i);
-    if (trmRotated)
-      n = n * planeAxis;
-    else if (modelRotated)
-      n = placement.axis * n;
-    wp.plane.normal = n;
+    wp.plane.normal = placedTrmNormal(trm.polygonNormal(i), o, planeAxis);
   }
 }
 

@@ -61,37 +61,53 @@ void setupPointTrace(TraceWork& tw) {
 }
 
 // Trace-model translation set-up: the trace model at the start, only the
-// features facing the movement used (as masks; only their vertices placed).
+// features facing the movement used (as masks; only their vertices placed;
+// the edges' vertex numbers when a polygon first needs them,
+// placeTranslationFeatures).
 void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation& o) {
   const TraceModel& trm = *q.trm;
   placeTrmFrame(tw, trm, o, q.start);
-  placeTrmTopology(tw, trm, o);
+  tw.placedTrm = &trm;
+  tw.placedOrientation = &o;
   tw.end = trmCentreInModel(trm, o, q.end);
   tw.dir = q.end - q.start;
   if (o.modelRotated) tw.dir = q.placement.axis * tw.dir;
-  tw.movingPolygons = 0;
-  tw.movingVertices = 0;
-  tw.movingEdges = 0;
-  // Polygons facing the movement (or, for a flat trm, along it) collide.
-  // (Masks, not branches: which polygons face the move is unpredictable.)
+  // The polygons' normals (placeTrmTopology's), and which polygons face the
+  // movement (or, for a flat trm, lie along it): those collide. (Masks, not
+  // branches: which polygons face the move is unpredictable.)
+  const Mat3 planeAxis = trmPlaneAxis(o);
   const unsigned flat = unsigned(!trm.isConvex());
+  const Vec3 dir = tw.dir;
+  std::uint32_t movingPolygons = 0, movingVertices = 0;
+  std::uint64_t movingEdges = 0;
   for (int i = 0; i < tw.numPolys; ++i) {
-    const Real d = tw.polys[std::size_t(i)].plane.normal.dot(tw.dir);
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    wp.source = &trm.polygon(i);  // (its address only: not read here)
+    wp.planeVertex = trm.polygonPlaneVertex(i);
+    const Vec3 n = placedTrmNormal(trm.polygonNormal(i), o, planeAxis);
+    wp.plane.normal = n;
+    const Real d = n.dot(dir);
     const unsigned facing = unsigned(d > 0) | (flat & unsigned(d == 0));
-    tw.movingPolygons |= std::uint32_t(facing) << i;
-    tw.movingEdges |= trm.polygonEdgeBits(i) & (std::uint64_t(0) - facing);
-    tw.movingVertices |= trm.polygonVertexBits(i) & (std::uint32_t(0) - facing);
+    movingPolygons |= std::uint32_t(facing) << i;
+    movingEdges |= trm.polygonEdgeBits(i) & (std::uint64_t(0) - facing);
+    movingVertices |= trm.polygonVertexBits(i) & (std::uint32_t(0) - facing);
   }
-  placeTrmVertices(tw, trm, o, q.start, tw.movingVertices);
-  // (In locals: through tw, the size would go to memory and back at every
+  tw.movingPolygons = movingPolygons;
+  tw.movingEdges = movingEdges;
+  tw.movingVertices = movingVertices;
+  // The moving vertices, their ends and their extent from the centre. (In
+  // locals: through tw, the size would go to memory and back at every
   // vertex, since the vertices' stores might overlap it.)
-  const Vec3 start = tw.start, dir = tw.dir;
+  const Vec3 start = tw.start;
   Bounds size;
-  for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-    WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
+  for (std::uint32_t moving = movingVertices; moving; moving &= moving - 1) {
+    const int i = std::countr_zero(moving);
+    WorkVertex& v = tw.vertices[std::size_t(i)];
+    const Vec3 p = placedTrmVertex(trm, o, i, q.start);
+    v.p = p;
     v.used = true;
-    size.addPoint(v.p - start);
-    v.endp = v.p + dir;
+    size.addPoint(p - start);
+    v.endp = p + dir;
   }
   tw.size = size;
   tw.featuresPlaced = false;  // the paths, edge lines and planes: placeTranslationFeatures

@@ -206,8 +206,8 @@ struct TraceWork {
   std::array<WorkEdge, kMaxTrmEdges + 1>& edges;      ///< scratch.trm.edges
   std::array<WorkPolygon, kMaxTrmPolygons>& polys;    ///< scratch.trm.polys
 
-  /// A position test's trace model and orientations (they outlive the
-  /// query), for the parts placed only when a polygon needs them.
+  /// A position test's or translation's trace model and orientations (they
+  /// outlive the query), for the parts placed only when a polygon needs them.
   const TraceModel* placedTrm = nullptr;
   const Orientation* placedOrientation = nullptr;
 
@@ -424,6 +424,28 @@ inline Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const 
   c += o.trmRotated ? trm.offset() * *o.trmAxis : trm.offset();
   if (o.modelRotated) c = o.placement->axis * c;
   return c;
+}
+
+/// What turns a trace-model polygon's normal into the model's frame when
+/// the trace model is turned: local -> world (n * trmAxis) -> model frame
+/// (n * axis^T), as one matrix.
+inline Mat3 trmPlaneAxis(const Orientation& o) {
+  return o.trmRotated && o.modelRotated ? *o.trmAxis * o.placement->axis.transposed() : *o.trmAxis;
+}
+/// A trace-model polygon's normal n in the model's frame (planeAxis:
+/// trmPlaneAxis(o)).
+inline Vec3 placedTrmNormal(const Vec3& n, const Orientation& o, const Mat3& planeAxis) {
+  if (o.trmRotated) return n * planeAxis;
+  if (o.modelRotated) return o.placement->axis * n;
+  return n;
+}
+/// Trace-model vertex i, the trace model at `position`, in the model's frame.
+inline Vec3 placedTrmVertex(const TraceModel& trm, const Orientation& o, int i, const Vec3& position) {
+  Vec3 p = trm.vertex(i);
+  if (o.trmRotated) p = p * *o.trmAxis;
+  p += position - o.placement->origin;
+  if (o.modelRotated) p = o.placement->axis * p;
+  return p;
 }
 
 /// The mask of a trace model's vertices 0..numVerts-1.

@@ -344,8 +344,8 @@ void shrinkTraceBounds(TraceWork& tw) {
 }
 
 // The moving features' data that only a polygon past its culls needs, once
-// per query: the vertices' paths, the edges' lines and sweep directions, the
-// front polygons' planes.
+// per query: the vertices' paths, the edges' vertex numbers, lines and sweep
+// directions, the front polygons' planes.
 void placeTranslationFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
@@ -353,8 +353,12 @@ void placeTranslationFeatures(TraceWork& tw) {
     WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
     v.pl = Pluecker::fromRay(v.p, tw.dir);
   }
+  const TraceModel& trm = *tw.placedTrm;
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
-    WorkEdge& e = tw.edges[std::size_t(std::countr_zero(moving))];
+    const int i = std::countr_zero(moving);
+    WorkEdge& e = tw.edges[std::size_t(i)];
+    e.vertexNum[0] = trm.edgeVertex(i, 0);
+    e.vertexNum[1] = trm.edgeVertex(i, 1);
     const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;  // (locals: as placeTrmEdges)
     const Vec3 end = tw.vertices[std::size_t(e.vertexNum[1])].p;
     e.start = start;
