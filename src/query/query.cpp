@@ -104,10 +104,17 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
     const int i = std::countr_zero(moving);
     WorkVertex& v = tw.vertices[std::size_t(i)];
     const Vec3 p = placedTrmVertex(trm, o, i, q.start);
-    v.p = p;
+    // (Coordinate by coordinate: stored as a whole, the vectors were built
+    // on the stack with 4-byte stores and copied with an 8-byte load, which
+    // waits for both stores to land: a stall per vertex.)
+    v.p.x = p.x;
+    v.p.y = p.y;
+    v.p.z = p.z;
     v.used = true;
     size.addPoint(p - start);
-    v.endp = p + dir;
+    v.endp.x = p.x + dir.x;
+    v.endp.y = p.y + dir.y;
+    v.endp.z = p.z + dir.z;
   }
   tw.size = size;
   tw.featuresPlaced = false;  // the paths, edge lines and planes: placeTranslationFeatures
