@@ -161,8 +161,10 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
   return tw.movingVertices & ~outside;
 }
 
-// A trace-model vertex reaches the polygon at fraction f: the nearest hit so far.
-void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, int vertexNum, Real f) {
+// A trace-model vertex reaches the polygon at fraction f: the nearest hit so
+// far. (The hits are out of line, kept off the tests' path: most tested
+// features hit nothing.)
+[[gnu::cold, gnu::noinline]] void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, int vertexNum, Real f) {
   WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = poly.plane.normal;
@@ -204,6 +206,8 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
   return modelVertexSide(te, Pluecker::fromRay(vertex, -dir));
 }
 
+void hitByEdge(TraceWork& tw, const CmPolygon& poly, std::int32_t edgeNum, int trmEdgeNum, Real f2);
+
 // Trace-model edge trmEdgeNum against edge i of the polygon, whose line
 // its two vertices pass on different sides.
 void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines,
@@ -233,6 +237,18 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   if (f2 < 0) f2 = 0;
   if (!(f2 < tw.fraction)) return;
 
+  hitByEdge(tw, poly, edgeNum, trmEdgeNum, f2);
+}
+
+// Trace-model edge trmEdgeNum meets model edge edgeNum (of poly) at fraction
+// f2: the nearest hit so far.
+[[gnu::cold, gnu::noinline]] void hitByEdge(TraceWork& tw, const CmPolygon& poly, std::int32_t edgeNum,
+                                            int trmEdgeNum, Real f2) {
+  const CollisionModel& m = tw.model;
+  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
+  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
+  const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
   tw.fraction = f2;
   // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
   Vec3 normal = (end - start).cross(te.end - te.start);
@@ -283,6 +299,9 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
   }
 }
 
+void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum, std::size_t vertexNum, const Vec3& p,
+                      const Vec3& endp, Real f);
+
 // (The vertex's path line only for a trace-model polygon it reaches in time:
 // most reach none.)
 void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
@@ -298,6 +317,14 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
     const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
     if (unsigned(edgeNum < 0) ^ modelVertexSide(te, pl)) return;
   }
+  hitByModelVertex(tw, poly, trmPolyNum, vertexNum, p, endp, f);
+}
+
+// Model vertex vertexNum (at p, moving to endp relative to the trace model)
+// reaches trace-model polygon trmPolyNum at fraction f: the nearest hit so far.
+[[gnu::cold, gnu::noinline]] void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
+                                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp, Real f) {
+  const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = -tp.plane.normal;
   tw.c.dist = -tp.plane.dist;
