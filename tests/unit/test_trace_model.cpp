@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -304,6 +306,48 @@ TEST(TraceModel, TranslateAndRotateKeepTheShapeValid) {
   box.rotate(Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}});
   EXPECT_EQ(box.bounds(), Bounds({-20, 0, 0}, {0, 10, 30}));
   expectClosedConvexSolid(box);
+}
+
+// The packed copies a query's set-up reads (polygonNormal, polygonPlaneVertex,
+// edgeVertex, the edge and vertex bits) match the features, for every shape
+// and after turning (which changes the normals).
+void expectPackedFeatures(const TraceModel& t) {
+  for (int i = 0; i < t.numPolygons(); ++i) {
+    const TrmPolygon& p = t.polygon(i);
+    EXPECT_EQ(t.polygonNormal(i), p.normal) << "polygon " << i;
+    EXPECT_EQ(t.polygonPlaneVertex(i), t.edge(std::abs(p.edges[0])).v[0]) << "polygon " << i;
+    std::uint64_t edgeBits = 0;
+    std::uint32_t vertexBits = 0;
+    for (int j = 0; j < p.numEdges; ++j) {
+      edgeBits |= std::uint64_t(1) << std::abs(p.edges[std::size_t(j)]);
+      vertexBits |= std::uint32_t(1) << p.startVertex(t, j);
+    }
+    EXPECT_EQ(t.polygonEdgeBits(i), edgeBits) << "polygon " << i;
+    EXPECT_EQ(t.polygonVertexBits(i), vertexBits) << "polygon " << i;
+  }
+  for (int e = 1; e <= t.numEdges(); ++e) {
+    EXPECT_EQ(t.edgeVertex(e, 0), t.edge(e).v[0]) << "edge " << e;
+    EXPECT_EQ(t.edgeVertex(e, 1), t.edge(e).v[1]) << "edge " << e;
+  }
+}
+
+TEST(TraceModel, PackedFeaturesMatchTheShape) {
+  const Bounds b{{-8, -12, 0}, {8, 12, 40}};
+  const std::vector<Vec3> square{{0, 0, 0}, {16, 0, 0}, {16, 16, 0}, {0, 16, 0}};
+  for (const Result<TraceModel>& t :
+       {TraceModel::box(b), TraceModel::octahedron(b), TraceModel::dodecahedron(b), TraceModel::cylinder(b, 7),
+        TraceModel::cone(b, 5), TraceModel::bone(40, 10), TraceModel::polygon(square),
+        TraceModel::polygonVolume(square, 4)}) {
+    ASSERT_TRUE(t.ok());
+    SCOPED_TRACE(t->describe());
+    expectPackedFeatures(*t);
+    TraceModel turned = *t;
+    turned.rotate(Mat3::fromAngles(30, 45, 60));
+    turned.translate({5, -3, 2});
+    expectPackedFeatures(turned);
+    EXPECT_NE(turned.polygonNormal(0), t->polygonNormal(0));
+    EXPECT_EQ(turned.checkInvariants(), "");
+  }
 }
 
 TEST(TraceModel, ParseMatchesFactories) {
