@@ -69,7 +69,8 @@ TraceModel detail::TraceModelBuilder::finish(const Vec3& offset, bool convex, bo
                             std::uint8_t(t.edges_[size_t(std::abs(p.edges[0]))].v[0])};
   }
   for (int e = 0; e <= t.numEdges_; ++e)
-    t.edgeVertices_[size_t(e)] = {std::uint8_t(t.edges_[size_t(e)].v[0]), std::uint8_t(t.edges_[size_t(e)].v[1])};
+    t.edgeVertices_[size_t(e)] = {std::uint8_t(t.edges_[size_t(e)].v[0]),
+                                  std::uint8_t(t.edges_[size_t(e)].v[1])};
   if (convex) generateEdgeNormals(t);
   return t;
 }

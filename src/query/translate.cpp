@@ -92,7 +92,8 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 // and scattered memory. Returns the moving vertices whose paths pass inside
 // every edge (on the negative side of the edges used backwards, the positive
 // of the others): those the vertex test tries.
-std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges, const PolygonLines& lines) {
+std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges,
+                                  const PolygonLines& lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
@@ -164,7 +165,8 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
 // A trace-model vertex reaches the polygon at fraction f: the nearest hit so
 // far. (The hits are out of line, kept off the tests' path: most tested
 // features hit nothing.)
-[[gnu::cold, gnu::noinline]] void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly, int vertexNum, Real f) {
+[[gnu::cold, gnu::noinline]] void hitByTrmVertex(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                                 int vertexNum, Real f) {
   WorkVertex& v = tw.vertices[std::size_t(vertexNum)];
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = poly.plane.normal;
@@ -288,19 +290,21 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
     for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
       const int e = std::countr_zero(moving);
       const WorkEdge& te = tw.edges[std::size_t(e)];
-      const std::uint64_t c = (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & toTest;
+      const std::uint64_t c =
+          (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & toTest;
       crossing[n] = c;
       crossingEdge[n] = std::uint8_t(e);
       n += c != 0;
     }
     for (std::size_t k = 0; k < n; ++k)
       for (std::uint64_t c = crossing[k]; c; c &= c - 1)
-        translateTrmEdgeThroughEdge(tw, poly, lines, crossingEdge[k], g * kEdgeGroup + std::size_t(std::countr_zero(c)));
+        translateTrmEdgeThroughEdge(tw, poly, lines, crossingEdge[k],
+                                    g * kEdgeGroup + std::size_t(std::countr_zero(c)));
   }
 }
 
-void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum, std::size_t vertexNum, const Vec3& p,
-                      const Vec3& endp, Real f);
+void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum, std::size_t vertexNum,
+                      const Vec3& p, const Vec3& endp, Real f);
 
 // (The vertex's path line only for a trace-model polygon it reaches in time:
 // most reach none.)
@@ -323,7 +327,8 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
 // Model vertex vertexNum (at p, moving to endp relative to the trace model)
 // reaches trace-model polygon trmPolyNum at fraction f: the nearest hit so far.
 [[gnu::cold, gnu::noinline]] void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
-                                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp, Real f) {
+                                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp,
+                                                   Real f) {
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = -tp.plane.normal;

@@ -335,9 +335,9 @@ TEST(TraceModel, PackedFeaturesMatchTheShape) {
   const Bounds b{{-8, -12, 0}, {8, 12, 40}};
   const std::vector<Vec3> square{{0, 0, 0}, {16, 0, 0}, {16, 16, 0}, {0, 16, 0}};
   for (const Result<TraceModel>& t :
-       {TraceModel::box(b), TraceModel::octahedron(b), TraceModel::dodecahedron(b), TraceModel::cylinder(b, 7),
-        TraceModel::cone(b, 5), TraceModel::bone(40, 10), TraceModel::polygon(square),
-        TraceModel::polygonVolume(square, 4)}) {
+       {TraceModel::box(b), TraceModel::octahedron(b), TraceModel::dodecahedron(b),
+        TraceModel::cylinder(b, 7), TraceModel::cone(b, 5), TraceModel::bone(40, 10),
+        TraceModel::polygon(square), TraceModel::polygonVolume(square, 4)}) {
     ASSERT_TRUE(t.ok());
     SCOPED_TRACE(t->describe());
     expectPackedFeatures(*t);
