@@ -260,16 +260,21 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& qu
 }
 
 TraceResult translate(const CollisionModel& model, const TranslationQuery& query, QueryWork& work) {
+  // (One result object, returned on every path: made in the caller's place,
+  // not copied there. A copy read back, in wide loads, fields just stored
+  // one at a time: a stall per query.)
+  TraceResult r;
   TranslationQuery q = query;
-  if (const QueryStatus st = guardTranslation(q); st != QueryStatus::Ok)
-    return refusedTrace(query.start, query.trmAxis, st);
+  if (const QueryStatus st = guardTranslation(q); st != QueryStatus::Ok) {
+    r = refusedTrace(query.start, query.trmAxis, st);
+    return r;
+  }
   if (q.start == q.end) {
     ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
-    TraceResult r = contentsTest(model, cq, work).trace;
+    r = contentsTest(model, cq, work).trace;
     r.startSolid = r.fraction == 0;
     return r;
   }
-  TraceResult r;
   if (q.detectStartSolid) {
     ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;

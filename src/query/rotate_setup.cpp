@@ -254,20 +254,22 @@ namespace cmkit {
 using namespace detail;  // the query internals (trace_work.h)
 
 TraceResult rotate(const CollisionModel& model, const RotationQuery& query, QueryWork& work) {
+  TraceResult r;  // (returned on every path, as translate's: no copy)
   RotationQuery q = query;
-  if (const QueryStatus st = guardRotation(q); st != QueryStatus::Ok)
-    return refusedTrace(query.start, query.trmAxis, st);
+  if (const QueryStatus st = guardRotation(q); st != QueryStatus::Ok) {
+    r = refusedTrace(query.start, query.trmAxis, st);
+    return r;
+  }
   const Real angle = q.rotation.angle;
   const bool point = isPointTrm(q.trm);
   if (angle == 0) {  // a position test
     const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
-    TraceResult r = contentsTest(model, cq, work).trace;
+    r = contentsTest(model, cq, work).trace;
     r.startSolid = r.fraction == 0;
     r.endPos = q.start;
     r.endAxis = point ? Mat3::identity() : q.trmAxis;
     return r;
   }
-  TraceResult r;
   if (q.detectStartSolid) {
     const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;
