@@ -102,6 +102,9 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     s.edgesToTest.resize(groups);
   }
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
+#ifdef CMKIT_SIDES_SSE2
+  const bool almostAllMove = std::popcount(tw.movingVertices) + 1 >= tw.numVerts;
+#endif
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
@@ -120,8 +123,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     const LineBlock* blocks = lines.blocks + entry / kLanes;
     const std::size_t numBlocks = blocksSpanned(entry, count);
     const std::size_t lane = entry % kLanes;
-    for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-      const int v = std::countr_zero(moving);
+    auto sidesOf = [&](int v) {
       const Pluecker& r = tw.vertices[std::size_t(v)].pl;
       const __m128 r0 = _mm_set1_ps(r[0]), r1 = _mm_set1_ps(r[1]), r2 = _mm_set1_ps(r[2]);
       const __m128 r3 = _mm_set1_ps(r[3]), r4 = _mm_set1_ps(r[4]), r5 = _mm_set1_ps(r[5]);
@@ -141,6 +143,16 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
       }
       sides[v] = bits & valid;
       outside |= std::uint32_t(((bits & valid) ^ reversed) != 0) << v;
+    };
+    // When all vertices but one at most move (a box moving off the axes),
+    // every vertex in turn: a loop of as many as the trace model has, which
+    // the predictor learns (an unmoving vertex's sides go unused: a moving
+    // edge's ends move); else the moving ones.
+    if (almostAllMove) {
+      for (int v = 0; v < tw.numVerts; ++v) sidesOf(v);
+    } else {
+      for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1)
+        sidesOf(std::countr_zero(moving));
     }
 #else
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
