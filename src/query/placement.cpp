@@ -28,7 +28,8 @@ void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o
     e.vertexNum[0] = trm.edgeVertex(i, 0);
     e.vertexNum[1] = trm.edgeVertex(i, 1);
   }
-  const Mat3 planeAxis = trmPlaneAxis(o);
+  Mat3 both;
+  const Mat3& planeAxis = trmPlaneAxis(o, both);
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.source = &trm.polygon(i);  // (its address only: not read here)

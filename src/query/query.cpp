@@ -75,7 +75,8 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   // The polygons' normals (placeTrmTopology's), and which polygons face the
   // movement (or, for a flat trm, lie along it): those collide. (Masks, not
   // branches: which polygons face the move is unpredictable.)
-  const Mat3 planeAxis = trmPlaneAxis(o);
+  Mat3 both;
+  const Mat3& planeAxis = trmPlaneAxis(o, both);
   const unsigned flat = unsigned(!trm.isConvex());
   const Vec3 dir = tw.dir;
   std::uint32_t movingPolygons = 0, movingVertices = 0;

@@ -428,9 +428,13 @@ inline Vec3 trmCentreInModel(const TraceModel& trm, const Orientation& o, const 
 
 /// What turns a trace-model polygon's normal into the model's frame when
 /// the trace model is turned: local -> world (n * trmAxis) -> model frame
-/// (n * axis^T), as one matrix.
-inline Mat3 trmPlaneAxis(const Orientation& o) {
-  return o.trmRotated && o.modelRotated ? *o.trmAxis * o.placement->axis.transposed() : *o.trmAxis;
+/// (n * axis^T), as one matrix, made in `both` when both are turned, else
+/// the trace model's axis itself. (Not a copy: the placement loops read it
+/// back in wide loads, which waited for a copy's narrow stores to land.)
+inline const Mat3& trmPlaneAxis(const Orientation& o, Mat3& both) {
+  if (!(o.trmRotated && o.modelRotated)) return *o.trmAxis;
+  both = *o.trmAxis * o.placement->axis.transposed();
+  return both;
 }
 /// A trace-model polygon's normal n in the model's frame (planeAxis:
 /// trmPlaneAxis(o)).
