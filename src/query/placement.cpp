@@ -9,9 +9,10 @@ namespace cmkit::detail {
 
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
                       std::uint32_t vertices) {
+  const Vec3 relative = position - o.placement->origin;
   for (; vertices; vertices &= vertices - 1) {
     const int i = std::countr_zero(vertices);
-    tw.vertices[std::size_t(i)].p = placedTrmVertex(trm, o, i, position);
+    tw.vertices[std::size_t(i)].p = placedTrmVertex(trm, o, i, relative);
   }
 }
 
@@ -30,12 +31,7 @@ void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o
   }
   Mat3 both;
   const Mat3& planeAxis = trmPlaneAxis(o, both);
-  for (int i = 0; i < tw.numPolys; ++i) {
-    WorkPolygon& wp = tw.polys[std::size_t(i)];
-    wp.source = &trm.polygon(i);  // (its address only: not read here)
-    wp.planeVertex = trm.polygonPlaneVertex(i);
-    wp.plane.normal = placedTrmNormal(trm.polygonNormal(i), o, planeAxis);
-  }
+  for (int i = 0; i < tw.numPolys; ++i) placeTrmPolygon(tw.polys[std::size_t(i)], trm, i, o, planeAxis);
 }
 
 void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position) {

@@ -72,7 +72,7 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   tw.end = trmCentreInModel(trm, o, q.end);
   tw.dir = q.end - q.start;
   if (o.modelRotated) tw.dir = q.placement.axis * tw.dir;
-  // The polygons' normals (placeTrmTopology's), and which polygons face the
+  // The polygons (placeTrmPolygon, as placeTrmTopology), and which face the
   // movement (or, for a flat trm, lie along it): those collide. (Masks, not
   // branches: which polygons face the move is unpredictable.)
   Mat3 both;
@@ -82,12 +82,7 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   std::uint32_t movingPolygons = 0, movingVertices = 0;
   std::uint64_t movingEdges = 0;
   for (int i = 0; i < tw.numPolys; ++i) {
-    WorkPolygon& wp = tw.polys[std::size_t(i)];
-    wp.source = &trm.polygon(i);  // (its address only: not read here)
-    wp.planeVertex = trm.polygonPlaneVertex(i);
-    const Vec3 n = placedTrmNormal(trm.polygonNormal(i), o, planeAxis);
-    wp.plane.normal = n;
-    const Real d = n.dot(dir);
+    const Real d = placeTrmPolygon(tw.polys[std::size_t(i)], trm, i, o, planeAxis).dot(dir);
     const unsigned facing = unsigned(d > 0) | (flat & unsigned(d == 0));
     movingPolygons |= std::uint32_t(facing) << i;
     movingEdges |= trm.polygonEdgeBits(i) & (std::uint64_t(0) - facing);
@@ -99,12 +94,12 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   // The moving vertices, their ends and their extent from the centre. (In
   // locals: through tw, the size would go to memory and back at every
   // vertex, since the vertices' stores might overlap it.)
-  const Vec3 start = tw.start;
+  const Vec3 start = tw.start, relative = q.start - q.placement.origin;
   Bounds size;
   for (std::uint32_t moving = movingVertices; moving; moving &= moving - 1) {
     const int i = std::countr_zero(moving);
     WorkVertex& v = tw.vertices[std::size_t(i)];
-    const Vec3 p = placedTrmVertex(trm, o, i, q.start);
+    const Vec3 p = placedTrmVertex(trm, o, i, relative);
     // (Coordinate by coordinate: stored as a whole, the vectors were built
     // on the stack with 4-byte stores and copied with an 8-byte load, which
     // waits for both stores to land: a stall per vertex.)

@@ -436,18 +436,23 @@ inline const Mat3& trmPlaneAxis(const Orientation& o, Mat3& both) {
   both = *o.trmAxis * o.placement->axis.transposed();
   return both;
 }
-/// A trace-model polygon's normal n in the model's frame (planeAxis:
-/// trmPlaneAxis(o)).
-inline Vec3 placedTrmNormal(const Vec3& n, const Orientation& o, const Mat3& planeAxis) {
-  if (o.trmRotated) return n * planeAxis;
-  if (o.modelRotated) return o.placement->axis * n;
+/// Trace-model polygon i's work polygon: its source, plane vertex and normal
+/// in the model's frame (planeAxis: trmPlaneAxis(o, ...)); returns the normal.
+inline Vec3 placeTrmPolygon(WorkPolygon& wp, const TraceModel& trm, int i, const Orientation& o,
+                            const Mat3& planeAxis) {
+  wp.source = &trm.polygon(i);  // (its address only: not read here)
+  wp.planeVertex = trm.polygonPlaneVertex(i);
+  const Vec3& local = trm.polygonNormal(i);
+  const Vec3 n = o.trmRotated ? local * planeAxis : (o.modelRotated ? o.placement->axis * local : local);
+  wp.plane.normal = n;
   return n;
 }
-/// Trace-model vertex i, the trace model at `position`, in the model's frame.
-inline Vec3 placedTrmVertex(const TraceModel& trm, const Orientation& o, int i, const Vec3& position) {
+/// Trace-model vertex i in the model's frame, the trace model at `relative`
+/// (its position - the model's origin: made once by the caller's loop).
+inline Vec3 placedTrmVertex(const TraceModel& trm, const Orientation& o, int i, const Vec3& relative) {
   Vec3 p = trm.vertex(i);
   if (o.trmRotated) p = p * *o.trmAxis;
-  p += position - o.placement->origin;
+  p += relative;
   if (o.modelRotated) p = o.placement->axis * p;
   return p;
 }

@@ -220,7 +220,36 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
   return modelVertexSide(te, Pluecker::fromRay(vertex, -dir));
 }
 
-void hitByEdge(TraceWork& tw, const CmPolygon& poly, std::int32_t edgeNum, int trmEdgeNum, Real f2);
+// Trace-model edge trmEdgeNum meets model edge edgeNum (of poly) at fraction
+// f2: the nearest hit so far.
+[[gnu::cold, gnu::noinline]] void hitByEdge(TraceWork& tw, const CmPolygon& poly, std::int32_t edgeNum,
+                                            int trmEdgeNum, Real f2) {
+  const CollisionModel& m = tw.model;
+  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
+  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
+  const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
+  tw.fraction = f2;
+  // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
+  Vec3 normal = (end - start).cross(te.end - te.start);
+  normal.normalize();
+  Real dist = normal.dot(start);
+  if (normal.dot(te.start) - dist < 0) {
+    normal = -normal;
+    dist = -dist;
+  }
+  tw.c.normal = normal;
+  tw.c.dist = dist;
+  // Contact point on the model edge: where the plane swept by the trm edge cuts it.
+  const Vec3 sweepNormal{te.cross[2], -te.cross[1], te.cross[0]};
+  const Real sweepDist = sweepNormal.dot(te.start);
+  const Real d1 = sweepNormal.dot(start) - sweepDist;
+  const Real d2 = sweepNormal.dot(end) - sweepDist;
+  const Real t = std::fabs(d1 - d2) > std::numeric_limits<Real>::epsilon() ? d1 / (d1 - d2) : Real(0);
+  tw.c.point = start + (end - start) * t;
+  setContact(tw, poly, ContactType::Edge, edgeNum, trmEdgeNum);
+  if (tw.gettingContacts()) tw.addContact();
+}
 
 // Trace-model edge trmEdgeNum against edge i of the polygon, whose line
 // its two vertices pass on different sides.
@@ -254,37 +283,6 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   hitByEdge(tw, poly, edgeNum, trmEdgeNum, f2);
 }
 
-// Trace-model edge trmEdgeNum meets model edge edgeNum (of poly) at fraction
-// f2: the nearest hit so far.
-[[gnu::cold, gnu::noinline]] void hitByEdge(TraceWork& tw, const CmPolygon& poly, std::int32_t edgeNum,
-                                            int trmEdgeNum, Real f2) {
-  const CollisionModel& m = tw.model;
-  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
-  const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
-  const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
-  tw.fraction = f2;
-  // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
-  Vec3 normal = (end - start).cross(te.end - te.start);
-  normal.normalize();
-  Real dist = normal.dot(start);
-  if (normal.dot(te.start) - dist < 0) {
-    normal = -normal;
-    dist = -dist;
-  }
-  tw.c.normal = normal;
-  tw.c.dist = dist;
-  // Contact point on the model edge: where the plane swept by the trm edge cuts it.
-  const Vec3 sweepNormal{te.cross[2], -te.cross[1], te.cross[0]};
-  const Real sweepDist = sweepNormal.dot(te.start);
-  const Real d1 = sweepNormal.dot(start) - sweepDist;
-  const Real d2 = sweepNormal.dot(end) - sweepDist;
-  const Real t = std::fabs(d1 - d2) > std::numeric_limits<Real>::epsilon() ? d1 / (d1 - d2) : Real(0);
-  tw.c.point = start + (end - start) * t;
-  setContact(tw, poly, ContactType::Edge, edgeNum, trmEdgeNum);
-  if (tw.gettingContacts()) tw.addContact();
-}
-
 // The moving trace-model edges against the polygon edges to test, trace-model
 // edge by edge, each against the polygon edges whose line its two vertices
 // pass on different sides, in their order. The pairs are found first, without
@@ -315,8 +313,21 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
   }
 }
 
-void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum, std::size_t vertexNum,
-                      const Vec3& p, const Vec3& endp, Real f);
+// Model vertex vertexNum (at p, moving to endp relative to the trace model)
+// reaches trace-model polygon trmPolyNum at fraction f: the nearest hit so far.
+[[gnu::cold, gnu::noinline]] void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
+                                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp,
+                                                   Real f) {
+  const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
+  tw.fraction = f < 0 ? Real(0) : f;
+  tw.c.normal = -tp.plane.normal;
+  tw.c.dist = -tp.plane.dist;
+  // The original reports the vertex moved back by the fraction: the model
+  // vertex relative to the trace model at its start (see docs/fidelity.md).
+  tw.c.point = p + (endp - p) * tw.fraction;
+  setContact(tw, poly, ContactType::ModelVertex, std::int32_t(vertexNum), trmPolyNum);
+  if (tw.gettingContacts()) tw.addContact();
+}
 
 // (The vertex's path line only for a trace-model polygon it reaches in time:
 // most reach none.)
@@ -334,22 +345,6 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
     if (unsigned(edgeNum < 0) ^ modelVertexSide(te, pl)) return;
   }
   hitByModelVertex(tw, poly, trmPolyNum, vertexNum, p, endp, f);
-}
-
-// Model vertex vertexNum (at p, moving to endp relative to the trace model)
-// reaches trace-model polygon trmPolyNum at fraction f: the nearest hit so far.
-[[gnu::cold, gnu::noinline]] void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
-                                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp,
-                                                   Real f) {
-  const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
-  tw.fraction = f < 0 ? Real(0) : f;
-  tw.c.normal = -tp.plane.normal;
-  tw.c.dist = -tp.plane.dist;
-  // The original reports the vertex moved back by the fraction: the model
-  // vertex relative to the trace model at its start (see docs/fidelity.md).
-  tw.c.point = p + (endp - p) * tw.fraction;
-  setContact(tw, poly, ContactType::ModelVertex, std::int32_t(vertexNum), trmPolyNum);
-  if (tw.gettingContacts()) tw.addContact();
 }
 
 // Culling: contents, bounds, back faces, distance from the heart planes.
