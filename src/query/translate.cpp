@@ -492,41 +492,60 @@ inline __m128 boxesBeyondPlane(const __m128 centre[3], const __m128 reach[3], co
                    _mm_cmpgt_ps(_mm_xor_ps(_mm_add_ps(d1, d2), signMask), limit));
 }
 
-// Which polygons of a cull block pass mayTouch's culls (bit j for lane j):
-// mayTouch's arithmetic in each lane, operation for operation, so the same
-// answers.
-unsigned blockMayTouch(TraceWork& tw, const CullBlock& b) {
-  const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
-  const __m128i noContents =
-      _mm_cmpeq_epi32(_mm_and_si128(contents, _mm_set1_epi32(int(tw.contentMask))), _mm_setzero_si128());
-  __m128 culled = _mm_castsi128_ps(noContents);
+// mayTouch's culls four polygons at a time, in two parts: the contents and
+// bounds (most blocks stop there), with the trace bounds and the content mask
+// broadcast once per node and again when a hit shrinks the bounds; then, out
+// of line, the back faces and heart planes. Each lane does mayTouch's
+// arithmetic, operation for operation, so the same answers.
+namespace {
+
+struct BoundsLanes {
   __m128 min[3], max[3];
-  for (int k = 0; k < 3; ++k) {
-    min[k] = _mm_load_ps(b.min[k]);
-    max[k] = _mm_load_ps(b.max[k]);
-    // boxesTouch(tw.bounds, polygon bounds)
-    culled = _mm_or_ps(culled, _mm_cmplt_ps(max[k], _mm_set1_ps(tw.bounds.min[k])));
-    culled = _mm_or_ps(culled, _mm_cmpgt_ps(min[k], _mm_set1_ps(tw.bounds.max[k])));
+  __m128i contentMask;
+  explicit BoundsLanes(const TraceWork& tw) { load(tw); }
+  void load(const TraceWork& tw) {
+    for (int k = 0; k < 3; ++k) {
+      min[k] = _mm_set1_ps(tw.bounds.min[k]);
+      max[k] = _mm_set1_ps(tw.bounds.max[k]);
+    }
+    contentMask = _mm_set1_epi32(int(tw.contentMask));
   }
-  // Most blocks stop here (as most polygons fail mayTouch's first tests).
-  if (_mm_movemask_ps(culled) == 0xF) return 0;
+  /// Lanes whose polygon shares a content flag and whose bounds touch the
+  /// trace bounds (bit j for lane j).
+  unsigned pass(const CullBlock& b) const {
+    const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
+    __m128 culled =
+        _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(contents, contentMask), _mm_setzero_si128()));
+    for (int k = 0; k < 3; ++k) {  // boxesTouch(tw.bounds, polygon bounds)
+      culled = _mm_or_ps(culled, _mm_cmplt_ps(_mm_load_ps(b.max[k]), min[k]));
+      culled = _mm_or_ps(culled, _mm_cmpgt_ps(_mm_load_ps(b.min[k]), max[k]));
+    }
+    return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
+  }
+};
+
+// The lanes of a cull block that pass the back-face and heart-plane culls.
+[[gnu::noinline]] unsigned blockFacesPass(TraceWork& tw, const CullBlock& b) {
   if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
   // Back faces: normal . dir > 0.
   const __m128 facing = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.normal[0]), _mm_set1_ps(tw.dir.x)),
                                               _mm_mul_ps(_mm_load_ps(b.normal[1]), _mm_set1_ps(tw.dir.y))),
                                    _mm_mul_ps(_mm_load_ps(b.normal[2]), _mm_set1_ps(tw.dir.z)));
-  culled = _mm_or_ps(culled, _mm_cmpgt_ps(facing, _mm_setzero_ps()));
+  __m128 culled = _mm_cmpgt_ps(facing, _mm_setzero_ps());
   // The heart planes (boxPlaneSpan: the box's centre and half size).
   const __m128 half = _mm_set1_ps(Real(0.5));
   __m128 centre[3], reach[3];
   for (int k = 0; k < 3; ++k) {
-    centre[k] = _mm_mul_ps(_mm_add_ps(min[k], max[k]), half);
-    reach[k] = _mm_sub_ps(max[k], centre[k]);
+    const __m128 min = _mm_load_ps(b.min[k]), max = _mm_load_ps(b.max[k]);
+    centre[k] = _mm_mul_ps(_mm_add_ps(min, max), half);
+    reach[k] = _mm_sub_ps(max, centre[k]);
   }
   culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1));
   culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2));
   return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
 }
+
+}  // namespace
 
 // translateTrmThroughPolygons for a node of a model with query data: the
 // culls four polygons at a time from the cull blocks of the node's entries
@@ -543,18 +562,24 @@ bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNo
     for (const std::int32_t polyNum : tw.model.polygonsAt(node))
       if (!s.testAndMark(s.polygonMet, std::size_t(polyNum))) count(s, &QueryStats::polygonsMet);
   }
+  BoundsLanes bounds(tw);
   for (std::size_t entry = first - first % kLanes; entry < end; entry += kLanes) {
     const CullBlock& b = d.culls[entry / kLanes];
     const unsigned from = unsigned(std::max(first, entry) - entry),
                    to = unsigned(std::min(end - entry, kLanes));
-    unsigned pass = blockMayTouch(tw, b) & ((1u << to) - (1u << from));
+    unsigned pass = bounds.pass(b) & ((1u << to) - (1u << from));
+    if (pass == 0) continue;
+    pass &= blockFacesPass(tw, b);
     while (pass) {
       const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
       pass &= pass - 1;
       if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
       const Real before = tw.fraction;
       if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
-      if (tw.fraction != before) pass &= blockMayTouch(tw, b);  // the bounds may have shrunk
+      if (tw.fraction != before) {  // the bounds may have shrunk
+        bounds.load(tw);
+        pass &= bounds.pass(b);
+      }
     }
   }
   return false;
