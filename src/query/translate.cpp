@@ -563,22 +563,40 @@ bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNo
       if (!s.testAndMark(s.polygonMet, std::size_t(polyNum))) count(s, &QueryStats::polygonsMet);
   }
   BoundsLanes bounds(tw);
-  for (std::size_t entry = first - first % kLanes; entry < end; entry += kLanes) {
-    const CullBlock& b = d.culls[entry / kLanes];
-    const unsigned from = unsigned(std::max(first, entry) - entry),
-                   to = unsigned(std::min(end - entry, kLanes));
-    unsigned pass = bounds.pass(b) & ((1u << to) - (1u << from));
-    if (pass == 0) continue;
-    pass &= blockFacesPass(tw, b);
-    while (pass) {
-      const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
-      pass &= pass - 1;
-      if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-      const Real before = tw.fraction;
-      if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
-      if (tw.fraction != before) {  // the bounds may have shrunk
-        bounds.load(tw);
-        pass &= bounds.pass(b);
+  // The contents and bounds of up to 16 blocks at a time, without a branch
+  // per block (which pass is unpredictable), then the blocks with a lane
+  // left, in order. A hit shrinks the bounds: the blocks after it are
+  // culled again with the new ones.
+  constexpr std::size_t kChunk = 64 / kLanes;
+  const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
+  for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunk) {
+    const std::size_t numBlocks = std::min(kChunk, endBlock - chunk);
+    std::uint64_t mask = 0;
+    for (std::size_t k = 0; k < numBlocks; ++k)
+      mask |= std::uint64_t(bounds.pass(d.culls[chunk + k])) << (kLanes * k);
+    // Only the node's entries: lanes from `first` to `end`.
+    const std::size_t base = chunk * kLanes;
+    const std::size_t lo = first > base ? first - base : 0, hi = std::min(end - base, std::size_t(64));
+    mask &= (hi == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << hi) - 1) & ~((std::uint64_t(1) << lo) - 1);
+    const Real maskFraction = tw.fraction;
+    while (mask) {
+      const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
+      unsigned pass = unsigned(mask >> (kLanes * k)) & 0xFu;
+      mask &= ~(std::uint64_t(0xF) << (kLanes * k));
+      const CullBlock& b = d.culls[chunk + k];
+      if (tw.fraction != maskFraction && (pass &= bounds.pass(b)) == 0) continue;
+      pass &= blockFacesPass(tw, b);
+      const std::size_t entry = (chunk + k) * kLanes;
+      while (pass) {
+        const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
+        pass &= pass - 1;
+        if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+        const Real before = tw.fraction;
+        if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+        if (tw.fraction != before) {  // the bounds may have shrunk
+          bounds.load(tw);
+          pass &= bounds.pass(b);
+        }
       }
     }
   }
