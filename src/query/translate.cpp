@@ -436,7 +436,9 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
       std::uint64_t toTest = 0;
       for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size()); ++i) {
         const std::size_t e = std::size_t(std::abs(edges[i]));
-        toTest |= std::uint64_t(!s.isChecked(s.edges[e]) && !m.edges[e].internal) << (i - first);
+        // (& not &&: whether an edge was met before is unpredictable.)
+        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edges[e])) & unsigned(!m.edges[e].internal))
+                  << (i - first);
       }
       s.edgesToTest[first / kEdgeGroup] = toTest;
       anyToTest |= toTest != 0;
