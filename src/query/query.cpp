@@ -7,6 +7,9 @@
 
 #include "query/query_guards.h"
 #include "query/trace_work.h"
+#ifdef CMKIT_QUERY_LANES
+#include <xmmintrin.h>
+#endif
 
 namespace cmkit::detail {
 
@@ -160,6 +163,29 @@ void runTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation&
 /// tested either way.
 constexpr std::size_t kPointContentsCachedBrushes = 1024;
 
+/// Whether p is behind every plane (distance < 0): inside the brush they
+/// bound. Four planes at a time where SSE2 float lanes are available, each
+/// lane computing Plane::distance's products and sums in its order (the
+/// same distances).
+inline bool behindAllPlanes(std::span<const Plane> planes, const Vec3& p) {
+  std::size_t i = 0;
+#ifdef CMKIT_QUERY_LANES
+  static_assert(sizeof(Plane) == 4 * sizeof(float), "a Plane is four floats: normal, dist");
+  const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
+  for (; i + 4 <= planes.size(); i += 4) {
+    const float* f = &planes[i].normal.x;
+    __m128 nx = _mm_loadu_ps(f), ny = _mm_loadu_ps(f + 4), nz = _mm_loadu_ps(f + 8), d = _mm_loadu_ps(f + 12);
+    _MM_TRANSPOSE4_PS(nx, ny, nz, d);
+    const __m128 dist =
+        _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, px), _mm_mul_ps(ny, py)), _mm_mul_ps(nz, pz)), d);
+    if (_mm_movemask_ps(_mm_cmpge_ps(dist, _mm_setzero_ps())) != 0) return false;
+  }
+#endif
+  for (; i < planes.size(); ++i)
+    if (planes[i].distance(p) >= 0) return false;
+  return true;
+}
+
 std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
                                   std::uint32_t mask) {
   // The range check waits for a point found inside something: the walk is
@@ -204,14 +230,7 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
       for (std::int32_t brushNum : model.brushesAt(*withBrushes[--count])) {
         const CmBrush& b = model.brushes[std::size_t(brushNum)];
         if (!(b.contents & mask & ~contents) || !b.bounds.containsPoint(p) || b.numPlanes == 0) continue;
-        bool inside = true;
-        for (const Plane& plane : model.planesOf(b)) {
-          if (plane.distance(p) >= 0) {
-            inside = false;
-            break;
-          }
-        }
-        if (inside) contents |= b.contents;
+        if (behindAllPlanes(model.planesOf(b), p)) contents |= b.contents;
       }
     }
   }
