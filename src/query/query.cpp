@@ -20,11 +20,14 @@ void makeTranslationHeartPlanes(TraceWork& tw) {
   // with the trace model's greatest distance from it, so they need not be
   // the original's bit for bit: plain square roots, not its reciprocal
   // square root (whose Newton steps are a long chain of multiplications).
-  const Real len2 = tw.dir.lengthSquared();
-  Vec3 dir = len2 > 0 ? tw.dir * (Real(1) / std::sqrt(len2)) : Vec3{};
+  // (The two square roots do not wait for each other: n1 needs only the
+  // direction's x and y, not the unit direction.)
+  const Vec3& dir = tw.dir;
+  const Real len2 = dir.lengthSquared();
   const Real d = dir.x * dir.x + dir.y * dir.y;
+  const Real invLength = len2 > 0 ? Real(1) / std::sqrt(len2) : Real(0);
   const Vec3 n1 = d == 0 ? Vec3{1, 0, 0} : Vec3{-dir.y, dir.x, 0} * (Real(1) / std::sqrt(d));
-  const Vec3 n2 = n1.cross(dir);
+  const Vec3 n2 = n1.cross(dir) * invLength;
   tw.heartPlane1 = Plane{n1, n1.dot(tw.start)};
   tw.heartPlane2 = Plane{n2, n2.dot(tw.start)};
   if (tw.pointTrace) {
