@@ -442,7 +442,8 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
       }
       const std::uint32_t want = expected(p);
       (want != 0 ? inside : onOrOutside)++;
-      ASSERT_EQ(pointContents(m, p), want) << shape.describe() << " point " << p.x << " " << p.y << " " << p.z;
+      ASSERT_EQ(pointContents(m, p), want)
+          << shape.describe() << " point " << p.x << " " << p.y << " " << p.z;
     }
     EXPECT_GT(inside, 50) << shape.describe();  // both answers were met
     EXPECT_GT(onOrOutside, 50) << shape.describe();
