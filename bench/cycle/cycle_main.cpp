@@ -8,8 +8,8 @@
 //   cmkit_cycle MAP QUERIES [--kind translation] [--first N] [--passes P]
 //               [--branches B] [--evict KB] [--shuffle]
 //
-// MAP is a .map file (built as `cmkit query` builds it, without a .proc) or
-// a .cm file. docs/performance.md ("Where a translation's time goes") uses
+// MAP is a .map file (loaded as the engine loads it: ModelManager::loadMap)
+// or a .cm file. docs/performance.md ("Where a translation's time goes") uses
 // it: cycling through 200 of a large map's translations against all of them,
 // and the 200 again with --branches 20000 (the branch predictor's state lost
 // between queries) or --evict 1024 (the second-level cache's data lost).
@@ -23,9 +23,7 @@
 #include <string_view>
 #include <vector>
 
-#include "cmkit/cm_file.h"
-#include "cmkit/compile.h"
-#include "cmkit/map.h"
+#include "cmkit/manager.h"
 #include "cmkit/materials.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
@@ -51,16 +49,20 @@ int usage() {
   return 2;
 }
 
+// The models as the engine loads them (ModelManager: NAME.cm beside a map
+// when it matches, else built with NAME.proc's pruning when there is one; a
+// .cm file as it is), in handle order, which query lines' model= name.
 cmkit::Result<std::vector<cmkit::ModelPtr>> loadModels(const std::string& path) {
   const cmkit::MaterialTable materials;
+  cmkit::ModelManager manager;
   if (path.size() > 3 && path.ends_with(".cm")) {
-    auto cm = cmkit::loadCmFile(path, materials);
-    if (!cm) return cm.error();
-    return std::move(cm->models);
+    if (auto handles = manager.loadCm(path, materials); !handles) return handles.error();
+  } else if (auto loaded = manager.loadMap(path, materials); !loaded) {
+    return loaded.error();
   }
-  auto map = cmkit::loadMapFile(path);
-  if (!map) return map.error();
-  return cmkit::buildCollisionModels(*map, materials);
+  std::vector<cmkit::ModelPtr> models;
+  for (const cmkit::ModelListEntry& entry : manager.list()) models.push_back(entry.model);
+  return models;
 }
 
 // B branches whose outcomes come from a pseudo-random sequence (the state
