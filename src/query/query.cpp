@@ -73,8 +73,7 @@ void setupPointTrace(TraceWork& tw) {
 void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation& o) {
   const TraceModel& trm = *q.trm;
   placeTrmFrame(tw, trm, o, q.start);
-  tw.placedTrm = &trm;
-  tw.placedOrientation = &o;
+  tw.placedTrm = &trm;  // (placeTranslationFeatures reads its edges' vertex numbers)
   tw.end = trmCentreInModel(trm, o, q.end);
   tw.dir = q.end - q.start;
   if (o.modelRotated) tw.dir = q.placement.axis * tw.dir;

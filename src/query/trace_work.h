@@ -206,8 +206,9 @@ struct TraceWork {
   std::array<WorkEdge, kMaxTrmEdges + 1>& edges;      ///< scratch.trm.edges
   std::array<WorkPolygon, kMaxTrmPolygons>& polys;    ///< scratch.trm.polys
 
-  /// A position test's or translation's trace model and orientations (they
-  /// outlive the query), for the parts placed only when a polygon needs them.
+  /// A position test's or translation's trace model, and a position test's
+  /// orientations (they outlive the query), for the parts placed only when
+  /// a polygon needs them.
   const TraceModel* placedTrm = nullptr;
   const Orientation* placedOrientation = nullptr;
 

@@ -9,7 +9,7 @@
 #include "query/trace_work.h"
 
 // SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time;
-// blockMayTouch: four polygons' culls at a time); any other target, or
+// translateTrmThroughCullBlocks: four polygons' culls at a time); any other target, or
 // -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic. The
 // lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
 #include "model/query_data.h"  // CMKIT_QUERY_LANES: SSE2, float lanes
