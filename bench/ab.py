@@ -16,7 +16,8 @@ Both CLIs must have `bench --suite --json` (commits from 2026-11 on); for an
 older commit use bench/compare.sh, which reads the text tables. This is the
 per-step measure of docs/performance.md: two builds of one machine in one
 run. Alternate runs and several of them: on a 2-core VM one file's ratio
-moves by a few per cent between runs, the geometric mean by about 1%.
+moves by a few per cent between runs, the geometric mean by up to about 2.5%
+(docs/performance.md): a step of 1% needs repeated runs to show.
 """
 import argparse
 import json
