@@ -103,7 +103,10 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
   }
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
 #ifdef CMKIT_SIDES_SSE2
-  const bool almostAllMove = std::popcount(tw.movingVertices) + 1 >= tw.numVerts;
+  // At most one vertex does not move. (Not std::popcount: without the POPCNT
+  // instruction, which baseline x86-64 lacks, it is a library call per polygon.)
+  const std::uint32_t still = allTrmVertices(tw.numVerts) & ~tw.movingVertices;
+  const bool almostAllMove = (still & (still - 1)) == 0;
 #endif
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
