@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 
+#include "query/cull_lanes.h"
 #include "query/trace_work.h"
 
 // SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time;
@@ -492,57 +493,11 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 }
 
 #ifdef CMKIT_SIDES_SSE2
-// boxBeyondPlane in four lanes (boxes given by their centres and half sizes).
-inline __m128 boxesBeyondPlane(const __m128 centre[3], const __m128 reach[3], const Plane& plane,
-                               Real maxDist) {
-  const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-  const __m128 signMask = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000u)));
-  const __m128 nx = _mm_set1_ps(plane.normal.x), ny = _mm_set1_ps(plane.normal.y);
-  const __m128 nz = _mm_set1_ps(plane.normal.z);
-  const __m128 d1 = _mm_sub_ps(
-      _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, centre[0]), _mm_mul_ps(ny, centre[1])), _mm_mul_ps(nz, centre[2])),
-      _mm_set1_ps(plane.dist));
-  const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_mul_ps(reach[0], nx), absMask),
-                                          _mm_and_ps(_mm_mul_ps(reach[1], ny), absMask)),
-                               _mm_and_ps(_mm_mul_ps(reach[2], nz), absMask));
-  const __m128 limit = _mm_set1_ps(maxDist);
-  return _mm_or_ps(_mm_cmpgt_ps(_mm_sub_ps(d1, d2), limit),
-                   _mm_cmpgt_ps(_mm_xor_ps(_mm_add_ps(d1, d2), signMask), limit));
-}
-
-// mayTouch's culls four polygons at a time, in two parts: the contents and
-// bounds (most blocks stop there), with the trace bounds and the content mask
-// broadcast once per node and again when a hit shrinks the bounds; then, out
-// of line, the back faces and heart planes. Each lane does mayTouch's
-// arithmetic, operation for operation, so the same answers.
 namespace {
 
-struct BoundsLanes {
-  __m128 min[3], max[3];
-  __m128i contentMask;
-  explicit BoundsLanes(const TraceWork& tw) { load(tw); }
-  void load(const TraceWork& tw) {
-    for (int k = 0; k < 3; ++k) {
-      min[k] = _mm_set1_ps(tw.bounds.min[k]);
-      max[k] = _mm_set1_ps(tw.bounds.max[k]);
-    }
-    contentMask = _mm_set1_epi32(int(tw.contentMask));
-  }
-  /// Lanes whose polygon shares a content flag and whose bounds touch the
-  /// trace bounds (bit j for lane j).
-  unsigned pass(const CullBlock& b) const {
-    const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
-    __m128 culled =
-        _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(contents, contentMask), _mm_setzero_si128()));
-    for (int k = 0; k < 3; ++k) {  // boxesTouch(tw.bounds, polygon bounds)
-      culled = _mm_or_ps(culled, _mm_cmplt_ps(_mm_load_ps(b.max[k]), min[k]));
-      culled = _mm_or_ps(culled, _mm_cmpgt_ps(_mm_load_ps(b.min[k]), max[k]));
-    }
-    return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
-  }
-};
-
-// The lanes of a cull block that pass the back-face and heart-plane culls.
+// The lanes of a cull block that pass the back-face and heart-plane culls
+// (each lane mayTouch's arithmetic, operation for operation, so the same
+// answers).
 [[gnu::noinline]] unsigned blockFacesPass(TraceWork& tw, const CullBlock& b) {
   if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
   // Back faces: normal . dir > 0.
@@ -550,14 +505,9 @@ struct BoundsLanes {
                                               _mm_mul_ps(_mm_load_ps(b.normal[1]), _mm_set1_ps(tw.dir.y))),
                                    _mm_mul_ps(_mm_load_ps(b.normal[2]), _mm_set1_ps(tw.dir.z)));
   __m128 culled = _mm_cmpgt_ps(facing, _mm_setzero_ps());
-  // The heart planes (boxPlaneSpan: the box's centre and half size).
-  const __m128 half = _mm_set1_ps(Real(0.5));
+  // The heart planes.
   __m128 centre[3], reach[3];
-  for (int k = 0; k < 3; ++k) {
-    const __m128 min = _mm_load_ps(b.min[k]), max = _mm_load_ps(b.max[k]);
-    centre[k] = _mm_mul_ps(_mm_add_ps(min, max), half);
-    reach[k] = _mm_sub_ps(max, centre[k]);
-  }
+  blockBoxes(b, centre, reach);
   culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1));
   culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2));
   return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
@@ -576,26 +526,14 @@ struct BoundsLanes {
 bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
   QueryScratch& s = tw.scratch;
   const std::size_t first = node.firstPolygonRef, end = first + node.numPolygonRefs;
-  if constexpr (kQueryStats) {  // polygons met for the first time (their own marks)
-    for (const std::int32_t polyNum : tw.model.polygonsAt(node))
-      if (!s.testAndMark(s.polygonMet, std::size_t(polyNum))) count(s, &QueryStats::polygonsMet);
-  }
+  countPolygonsMet(tw, node);
   BoundsLanes bounds(tw);
-  // The contents and bounds of up to 16 blocks at a time, without a branch
-  // per block (which pass is unpredictable), then the blocks with a lane
-  // left, in order. A hit shrinks the bounds: the blocks after it are
-  // culled again with the new ones.
-  constexpr std::size_t kChunk = 64 / kLanes;
+  // The contents and bounds of up to 16 blocks at a time (chunkPass), then
+  // the blocks with a lane left, in order. A hit shrinks the bounds: the
+  // blocks after it are culled again with the new ones.
   const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
-  for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunk) {
-    const std::size_t numBlocks = std::min(kChunk, endBlock - chunk);
-    std::uint64_t mask = 0;
-    for (std::size_t k = 0; k < numBlocks; ++k)
-      mask |= std::uint64_t(bounds.pass(d.culls[chunk + k])) << (kLanes * k);
-    // Only the node's entries: lanes from `first` to `end`.
-    const std::size_t base = chunk * kLanes;
-    const std::size_t lo = first > base ? first - base : 0, hi = std::min(end - base, std::size_t(64));
-    mask &= (hi == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << hi) - 1) & ~((std::uint64_t(1) << lo) - 1);
+  for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunkBlocks) {
+    std::uint64_t mask = chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end);
     const Real maskFraction = tw.fraction;
     while (mask) {
       const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
