@@ -13,6 +13,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "query/cull_lanes.h"
 #include "query/rotate_work.h"
 
 // SSE2 on x86-64 (boxesCrossing, boxesTouching: four feature boxes at a
@@ -655,6 +656,50 @@ bool rotateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polyg
     const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
     return rotationMayTouch(tw, poly) && rotateTrmThroughPolygon(tw, polyNum, poly);
   });
+}
+
+#ifdef CMKIT_QUERY_LANES
+// rotateTrmThroughPolygons for a node of a model with query data:
+// rotationMayTouch's culls four polygons at a time from the node's cull
+// blocks (contents and bounds of up to 16 blocks before any branch, then the
+// heart plane for the blocks with a lane left), then the polygons past them
+// in list order. Only those are marked: a rotation part's bounds do not
+// change, so a polygon culled here is culled again at any other node that
+// lists it, and the polygons tested, and their order, are those of
+// rotateTrmThroughPolygons.
+bool rotateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
+  QueryScratch& s = tw.scratch;
+  const std::size_t first = node.firstPolygonRef, end = first + node.numPolygonRefs;
+  countPolygonsMet(tw, node);
+  const BoundsLanes bounds(tw);
+  const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
+  for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunkBlocks) {
+    for (std::uint64_t mask = chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end); mask;) {
+      const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
+      unsigned pass = unsigned(mask >> (kLanes * k)) & 0xFu;
+      mask &= ~(std::uint64_t(0xF) << (kLanes * k));
+      const CullBlock& b = d.culls[chunk + k];
+      __m128 centre[3], reach[3];
+      blockBoxes(b, centre, reach);
+      pass &= ~unsigned(
+          _mm_movemask_ps(boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1)));
+      const std::size_t entry = (chunk + k) * kLanes;
+      for (; pass; pass &= pass - 1) {
+        const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
+        if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+        if (rotateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+      }
+    }
+  }
+  return false;
+}
+#endif
+
+bool rotateTrmThroughNode(TraceWork& tw, const CmNode& node) {
+#ifdef CMKIT_QUERY_LANES
+  if (tw.queryData) return rotateTrmThroughCullBlocks(tw, *tw.queryData, node);
+#endif
+  return rotateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
 }
 
 }  // namespace cmkit::detail

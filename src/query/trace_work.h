@@ -289,6 +289,8 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 /// Rotation tests of a list of polygons (a node's; rotate.cpp); true when
 /// one blocks completely.
 bool rotateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
+/// The same for a node's polygons (from the model's query data when it has it).
+bool rotateTrmThroughNode(TraceWork& tw, const CmNode& node);
 
 /// Position tests (contents.cpp); true when stuck.
 /// testTrmVertsInBrushes: a trace-model vertex inside one of the brushes?

@@ -78,9 +78,7 @@ struct PositionItems {
 /// A rotation part: the node's polygons.
 struct RotateItems {
   static bool has(const CmNode& node) { return node.numPolygonRefs != 0; }
-  static void test(TraceWork& tw, const CmNode& node) {
-    rotateTrmThroughPolygons(tw, tw.model.polygonsAt(node));
-  }
+  static void test(TraceWork& tw, const CmNode& node) { rotateTrmThroughNode(tw, node); }
 };
 
 // Visits every node whose region the box touches (closed: a box touching a
