@@ -212,8 +212,17 @@ std::vector<std::string> generatedQueries(const Bounds& b, int count) {
                       double(s.z));
         break;
       default:
-        std::snprintf(buf, sizeof buf, "contacts trm=%s start=%.9g,%.9g,%.9g dir=0,0,-1 depth=16", trm,
-                      double(s.x), double(s.y), double(s.z));
+        if (i % 8 == 7) {  // a rotation about a point near the start, about an axis from the end
+          const Vec3 axis = (e - s).normalized();
+          std::snprintf(buf, sizeof buf,
+                        "rotation trm=%s start=%.9g,%.9g,%.9g rotorigin=%.9g,%.9g,%.9g "
+                        "rotaxis=%.9g,%.9g,%.9g angle=%d",
+                        trm, double(s.x), double(s.y), double(s.z), double(s.x + 20), double(s.y), double(s.z),
+                        double(axis.x), double(axis.y), double(axis.z), (i * 37) % 400 - 200);
+        } else {
+          std::snprintf(buf, sizeof buf, "contacts trm=%s start=%.9g,%.9g,%.9g dir=0,0,-1 depth=16", trm,
+                        double(s.x), double(s.y), double(s.z));
+        }
     }
     lines.emplace_back(buf);
   }
@@ -250,12 +259,16 @@ void expectPreparedAndBareAlike(const std::vector<ModelPtr>& prepared) {
   const auto lines = generatedQueries(prepared[0]->bounds, 6000);
   const auto a = answerAll(prepared, lines, 1);
   const auto b = answerAll(bare, lines, 1);
-  int hits = 0;
+  int hits = 0, rotationHits = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i], b[i]) << lines[i];
-    hits += a[i].find("type=none") == std::string::npos;
+    ASSERT_EQ(a[i].find("error"), std::string::npos) << lines[i] << " -> " << a[i];
+    const bool hit = a[i].find("type=none") == std::string::npos;
+    hits += hit;
+    rotationHits += hit && lines[i].starts_with("rotation");
   }
   EXPECT_GT(hits, 600);
+  EXPECT_GT(rotationHits, 25);  // the rotations' culls (cull blocks or not) are exercised
 }
 
 TEST(QueryData, PreparedAndBareModelsAnswerAlikeGeneratedScene) {
