@@ -70,10 +70,10 @@ void writeEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges
 /// What a translation's culls read of kLanes polygonRefs entries' polygons:
 /// lane j of each array is entry j's (lanes past the last entry are 0).
 struct alignas(16) CullBlock {
-  Real min[3][kLanes];              ///< bounds.min, per axis
-  Real max[3][kLanes];              ///< bounds.max, per axis
+  Real min[3][kLanes];             ///< bounds.min, per axis
+  Real max[3][kLanes];             ///< bounds.max, per axis
   std::uint32_t contents[kLanes];  ///< (beside the bounds: the first cull reads these 112 bytes)
-  Real normal[3][kLanes];           ///< plane.normal, per axis
+  Real normal[3][kLanes];          ///< plane.normal, per axis
 };
 
 /// Where a model's arrays are and how long they are (vertices, edges,

@@ -80,10 +80,12 @@ inline std::uint64_t chunkPass(const BoundsLanes& bounds, const CullBlock* block
                                std::size_t endBlock, std::size_t first, std::size_t end) {
   const std::size_t numBlocks = std::min(kChunkBlocks, endBlock - chunk);
   std::uint64_t mask = 0;
-  for (std::size_t k = 0; k < numBlocks; ++k) mask |= std::uint64_t(bounds.pass(blocks[chunk + k])) << (kLanes * k);
+  for (std::size_t k = 0; k < numBlocks; ++k)
+    mask |= std::uint64_t(bounds.pass(blocks[chunk + k])) << (kLanes * k);
   const std::size_t base = chunk * kLanes;
   const std::size_t lo = first > base ? first - base : 0, hi = std::min(end - base, std::size_t(64));
-  return mask & (hi == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << hi) - 1) & ~((std::uint64_t(1) << lo) - 1);
+  return mask & (hi == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << hi) - 1) &
+         ~((std::uint64_t(1) << lo) - 1);
 }
 
 /// Counts a node's polygons met for the first time in the query (their own

@@ -217,8 +217,8 @@ std::vector<std::string> generatedQueries(const Bounds& b, int count) {
           std::snprintf(buf, sizeof buf,
                         "rotation trm=%s start=%.9g,%.9g,%.9g rotorigin=%.9g,%.9g,%.9g "
                         "rotaxis=%.9g,%.9g,%.9g angle=%d",
-                        trm, double(s.x), double(s.y), double(s.z), double(s.x + 20), double(s.y), double(s.z),
-                        double(axis.x), double(axis.y), double(axis.z), (i * 37) % 400 - 200);
+                        trm, double(s.x), double(s.y), double(s.z), double(s.x + 20), double(s.y),
+                        double(s.z), double(axis.x), double(axis.y), double(axis.z), (i * 37) % 400 - 200);
         } else {
           std::snprintf(buf, sizeof buf, "contacts trm=%s start=%.9g,%.9g,%.9g dir=0,0,-1 depth=16", trm,
                         double(s.x), double(s.y), double(s.z));
