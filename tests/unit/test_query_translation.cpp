@@ -170,19 +170,24 @@ TEST(Translation, ModelVertexHitsATraceModelFace) {
 TEST(Translation, ModelVertexNearTheSweptEdgeIsNotCulled) {
   // The box moves down and sideways, dir (40, 30, -200): its first heart
   // plane (through the move, normal (-0.6, 0.8, 0)) has the moving corner
-  // (32, -32) 44.8 units away, the model-vertex cull's limit 45.8. A thin
+  // (32, -32) 44.8 units away, the model-vertex cull's limit 45.8. A low
   // spike's apex meets the bottom face 0.2 inside that corner, 1.4 * 31.8 =
   // 44.52 units from the plane: it must be tested (a limit short of the
   // farthest moving vertex by 0.3, or the wrong plane, would drop it). The
   // bottom face gets within the clip epsilon of the apex (z = 10) after 89.75
-  // of 200 units down, the box then at (17.95, 13.4625, 10.25).
+  // of 200 units down, the box then at (17.95, 13.4625, 10.25); the corner is
+  // then still 0.2 * 0.196 + 0.25 * 0.981 = 0.284 from the spike's two
+  // nearest faces (slope 10 in 50), beyond their clip epsilon.
+  auto spikeAt = [](const Vec3& apex) {
+    const Vec3 points[5] = {{apex.x - 50, apex.y - 50, 0},
+                            {apex.x + 50, apex.y - 50, 0},
+                            {apex.x + 50, apex.y + 50, 0},
+                            {apex.x - 50, apex.y + 50, 0},
+                            apex};
+    return ModelMaker().addConvex(*TraceModel::convexHull(points)).build();
+  };
   const Vec3 apex{17.95f + 31.8f, 13.4625f - 31.8f, 10};
-  const Vec3 spike[5] = {{apex.x - 1, apex.y - 1, 0},
-                         {apex.x + 1, apex.y - 1, 0},
-                         {apex.x + 1, apex.y + 1, 0},
-                         {apex.x - 1, apex.y + 1, 0},
-                         apex};
-  const CollisionModel m = ModelMaker().addConvex(*TraceModel::convexHull(spike)).build();
+  const CollisionModel m = spikeAt(apex);
   const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
   QueryWork work;
   TranslationQuery q;
@@ -194,16 +199,12 @@ TEST(Translation, ModelVertexNearTheSweptEdgeIsNotCulled) {
   EXPECT_EQ(r.contact.type, ContactType::ModelVertex);
   EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));  // the box's bottom face, negated
   EXPECT_EQ(r.contact.modelFeature, 4);        // the apex
-  // A unit further out the apex misses the bottom face: the box goes on
-  // past it (it meets the spike's side later, or nothing).
-  const Vec3 outside{apex.x + 1, apex.y - 1, 10};
-  const Vec3 spike2[5] = {{outside.x - 1, outside.y - 1, 0},
-                          {outside.x + 1, outside.y - 1, 0},
-                          {outside.x + 1, outside.y + 1, 0},
-                          {outside.x - 1, outside.y + 1, 0},
-                          outside};
-  const CollisionModel m2 = ModelMaker().addConvex(*TraceModel::convexHull(spike2)).build();
-  EXPECT_GT(translate(m2, q, work).fraction, 89.75f / 200 + 1e-3f);
+  // A unit further out the apex misses the bottom face: the box comes down
+  // on the spike's sides later.
+  const CollisionModel m2 = spikeAt({apex.x + 1, apex.y - 1, 10});
+  const TraceResult r2 = translate(m2, q, work);
+  EXPECT_GT(r2.fraction, 89.75f / 200 + 1e-4f);
+  EXPECT_NE(r2.contact.type, ContactType::ModelVertex);
 }
 
 TEST(Translation, RotatedTraceModel) {
