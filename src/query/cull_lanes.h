@@ -5,6 +5,8 @@
 // with query data; only where CMKIT_QUERY_LANES is defined.
 #pragma once
 
+#include <bit>
+
 #include "model/query_data.h"
 #include "query/trace_work.h"
 
@@ -86,6 +88,20 @@ inline std::uint64_t chunkPass(const BoundsLanes& bounds, const CullBlock* block
   const std::size_t lo = first > base ? first - base : 0, hi = std::min(end - base, std::size_t(64));
   return mask & (hi == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << hi) - 1) &
          ~((std::uint64_t(1) << lo) - 1);
+}
+
+/// Calls f(k, pass) for each block k of a chunk (k = 0 .. kChunkBlocks - 1)
+/// with a lane left in `mask` (chunkPass's), in order, `pass` its lanes (bit
+/// j for lane j); stops when f returns true, and returns whether it did.
+template <class F>
+bool forEachBlockPassing(std::uint64_t mask, F f) {
+  while (mask) {
+    const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
+    const unsigned pass = unsigned(mask >> (kLanes * k)) & 0xFu;
+    mask &= ~(std::uint64_t(0xF) << (kLanes * k));
+    if (f(k, pass)) return true;
+  }
+  return false;
 }
 
 /// Counts a node's polygons met for the first time in the query (their own

@@ -674,22 +674,22 @@ bool rotateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode&
   const BoundsLanes bounds(tw);
   const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
   for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunkBlocks) {
-    for (std::uint64_t mask = chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end); mask;) {
-      const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
-      unsigned pass = unsigned(mask >> (kLanes * k)) & 0xFu;
-      mask &= ~(std::uint64_t(0xF) << (kLanes * k));
-      const CullBlock& b = d.culls[chunk + k];
-      __m128 centre[3], reach[3];
-      blockBoxes(b, centre, reach);
-      pass &= ~unsigned(
-          _mm_movemask_ps(boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1)));
-      const std::size_t entry = (chunk + k) * kLanes;
-      for (; pass; pass &= pass - 1) {
-        const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
-        if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-        if (rotateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
-      }
-    }
+    const bool blocked = forEachBlockPassing(
+        chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end), [&](std::size_t k, unsigned pass) {
+          const CullBlock& b = d.culls[chunk + k];
+          __m128 centre[3], reach[3];
+          blockBoxes(b, centre, reach);
+          pass &= ~unsigned(
+              _mm_movemask_ps(boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1)));
+          const std::size_t entry = (chunk + k) * kLanes;
+          for (; pass; pass &= pass - 1) {
+            const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
+            if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+            if (rotateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+          }
+          return false;
+        });
+    if (blocked) return true;
   }
   return false;
 }

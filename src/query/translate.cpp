@@ -533,28 +533,27 @@ bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNo
   // blocks after it are culled again with the new ones.
   const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
   for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunkBlocks) {
-    std::uint64_t mask = chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end);
     const Real maskFraction = tw.fraction;
-    while (mask) {
-      const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
-      unsigned pass = unsigned(mask >> (kLanes * k)) & 0xFu;
-      mask &= ~(std::uint64_t(0xF) << (kLanes * k));
-      const CullBlock& b = d.culls[chunk + k];
-      if (tw.fraction != maskFraction && (pass &= bounds.pass(b)) == 0) continue;
-      pass &= blockFacesPass(tw, b);
-      const std::size_t entry = (chunk + k) * kLanes;
-      while (pass) {
-        const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
-        pass &= pass - 1;
-        if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-        const Real before = tw.fraction;
-        if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
-        if (tw.fraction != before) {  // the bounds may have shrunk
-          bounds.load(tw);
-          pass &= bounds.pass(b);
-        }
-      }
-    }
+    const bool blocked = forEachBlockPassing(
+        chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end), [&](std::size_t k, unsigned pass) {
+          const CullBlock& b = d.culls[chunk + k];
+          if (tw.fraction != maskFraction && (pass &= bounds.pass(b)) == 0) return false;
+          pass &= blockFacesPass(tw, b);
+          const std::size_t entry = (chunk + k) * kLanes;
+          while (pass) {
+            const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
+            pass &= pass - 1;
+            if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+            const Real before = tw.fraction;
+            if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+            if (tw.fraction != before) {  // the bounds may have shrunk
+              bounds.load(tw);
+              pass &= bounds.pass(b);
+            }
+          }
+          return false;
+        });
+    if (blocked) return true;
   }
   return false;
 }

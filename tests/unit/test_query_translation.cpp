@@ -24,6 +24,17 @@ void expectVecNear(const Vec3& a, const Vec3& b, float eps) {
 
 CollisionModel floorModel() { return ModelMaker().addBox({{-256, -256, -16}, {256, 256, 0}}).build(); }
 
+/// A low square pyramid: its apex (model vertex 4) above the middle of a
+/// 100-unit base at z = 0 (its sides slope 10 in 50 for an apex at z = 10).
+CollisionModel spikeUnder(const Vec3& apex) {
+  const Vec3 points[5] = {{apex.x - 50, apex.y - 50, 0},
+                          {apex.x + 50, apex.y - 50, 0},
+                          {apex.x + 50, apex.y + 50, 0},
+                          {apex.x - 50, apex.y + 50, 0},
+                          apex};
+  return ModelMaker().addConvex(*TraceModel::convexHull(points)).build();
+}
+
 }  // namespace
 
 TEST(Translation, BoxDroppedOnAFloorStopsAQuarterUnitAbove) {
@@ -148,8 +159,7 @@ TEST(Translation, CylinderIntoAStairRiser) {
 
 TEST(Translation, ModelVertexHitsATraceModelFace) {
   // A spike with its apex at (0,0,10) under a wide flat box falling onto it.
-  const Vec3 spike[5] = {{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}, {0, 0, 10}};
-  const CollisionModel m = ModelMaker().addConvex(*TraceModel::convexHull(spike)).build();
+  const CollisionModel m = spikeUnder({0, 0, 10});
   const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
   QueryWork work;
   TranslationQuery q;
@@ -178,16 +188,8 @@ TEST(Translation, ModelVertexNearTheSweptEdgeIsNotCulled) {
   // of 200 units down, the box then at (17.95, 13.4625, 10.25); the corner is
   // then still 0.2 * 0.196 + 0.25 * 0.981 = 0.284 from the spike's two
   // nearest faces (slope 10 in 50), beyond their clip epsilon.
-  auto spikeAt = [](const Vec3& apex) {
-    const Vec3 points[5] = {{apex.x - 50, apex.y - 50, 0},
-                            {apex.x + 50, apex.y - 50, 0},
-                            {apex.x + 50, apex.y + 50, 0},
-                            {apex.x - 50, apex.y + 50, 0},
-                            apex};
-    return ModelMaker().addConvex(*TraceModel::convexHull(points)).build();
-  };
   const Vec3 apex{17.95f + 31.8f, 13.4625f - 31.8f, 10};
-  const CollisionModel m = spikeAt(apex);
+  const CollisionModel m = spikeUnder(apex);
   const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
   QueryWork work;
   TranslationQuery q;
@@ -201,7 +203,7 @@ TEST(Translation, ModelVertexNearTheSweptEdgeIsNotCulled) {
   EXPECT_EQ(r.contact.modelFeature, 4);        // the apex
   // A unit further out the apex misses the bottom face: the box comes down
   // on the spike's sides later.
-  const CollisionModel m2 = spikeAt({apex.x + 1, apex.y - 1, 10});
+  const CollisionModel m2 = spikeUnder({apex.x + 1, apex.y - 1, 10});
   const TraceResult r2 = translate(m2, q, work);
   EXPECT_GT(r2.fraction, 89.75f / 200 + 1e-4f);
   EXPECT_NE(r2.contact.type, ContactType::ModelVertex);
