@@ -243,8 +243,8 @@ TEST(BuildReference, CliInfoMemoryLine) {
 
 TEST(BuildReference, CliRejectsBrokenMapsWithFileAndLine) {
   CMKIT_REQUIRE_CLI();
-  const fs::path dir = fs::temp_directory_path() / "cmkit_build_cli_test";
-  fs::create_directories(dir);
+  const test::ScratchDir scratch("build_cli");
+  const fs::path& dir = scratch.path();
   const fs::path bad = dir / "bad.map";
   {
     std::ofstream f(bad);
@@ -265,7 +265,8 @@ TEST(BuildReference, CliCompileWritesTheCmFile) {
   CMKIT_FLOAT_BUILD_ONLY();
   CMKIT_REQUIRE_SHARED();
   CMKIT_REQUIRE_CLI();
-  const fs::path out = fs::temp_directory_path() / "cmkit_build_cli_box_room.cm";
+  const test::ScratchDir scratch("build_cli_box_room");
+  const fs::path out = scratch.path() / "box_room.cm";
   int status = 0;
   const fs::path map = sharedDir() / "maps" / "synthetic" / "box_room.map";
   test::runCapture(

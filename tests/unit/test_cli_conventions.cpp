@@ -20,14 +20,14 @@ std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 class CliConventions : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "cmkit_cli_conventions";
-    fs::create_directories(dir_);
     map_ = test::testDataDir() / "maps" / "features.map";
     std::ofstream(dir_ / "good.txt") << "translation trm=box:-8,-8,0,8,8,16 start=0,0,64 end=0,0,-64\n";
     std::ofstream(dir_ / "bad.txt") << "translation trm=box:-8,-8,0,8,8,16 start=0,0,64 end=0,0,-64\n"
                                        "translation trm=box:1,1,1,0,0,0 start=0,0,0 end=1,1,1\n";
   }
-  fs::path dir_, map_;
+  test::ScratchDir scratch_{"cli_conventions"};
+  const fs::path& dir_ = scratch_.path();
+  fs::path map_;
 };
 
 TEST_F(CliConventions, AnUnknownCommandIsNamedAndExitsWith2) {

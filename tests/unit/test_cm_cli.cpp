@@ -25,8 +25,8 @@ TEST(CmCli, ValidateAcceptsGoodFilesAndReportsViolations) {
   EXPECT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("4 model(s), all invariants hold"), std::string::npos) << out;
 
-  const fs::path dir = fs::temp_directory_path() / "cmkit_cm_cli_test";
-  fs::create_directories(dir);
+  const cmkit::test::ScratchDir scratch("cm_cli");
+  const fs::path& dir = scratch.path();
   const fs::path bad = dir / "bad.cm";
   std::ofstream(bad) << "CM \"1.00\" 0 collisionModel \"x\" { vertices { 3 ( 0 0 0 ) ( 1 0 0 ) ( 0 1 5 ) }\n"
                         "edges { 4 ( 0 0 ) 0 0 ( 0 1 ) 0 1 ( 1 2 ) 0 1 ( 2 0 ) 0 1 }\n"

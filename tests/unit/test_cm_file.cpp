@@ -317,8 +317,8 @@ TEST(CmFile, BlenderModelHasNoBrushes) {
 }
 
 TEST(CmFile, LoadAndSaveFiles) {
-  const auto dir = std::filesystem::temp_directory_path() / "cmkit_test_cm_file";
-  std::filesystem::create_directories(dir);
+  const test::ScratchDir scratch("cm_file");
+  const std::filesystem::path& dir = scratch.path();
   const CmFile f = mustParse(kFloorCm);
   ASSERT_TRUE(saveCmFile((dir / "floor.cm").string(), f.models, 77).ok());
   Result<CmFile> loaded = loadCmFile((dir / "floor.cm").string(), MaterialTable{});

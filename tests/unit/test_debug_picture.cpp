@@ -99,12 +99,6 @@ int runCli(const std::string& args) {
   return std::system(("\"" + cli + "\" " + args + " > /dev/null").c_str());
 }
 
-fs::path scratchDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("cmkit_test_debug_picture_" + name);
-  fs::create_directories(dir);
-  return dir;
-}
-
 TEST(DebugPicture, RendersAHandBuiltModel) {
   const ModelPtr m =
       std::make_shared<const CollisionModel>(test::ModelMaker()
@@ -147,7 +141,8 @@ TEST(DebugPicture, EmptyPictureIsRejectedByTheEncoder) { EXPECT_FALSE(encodePng(
 
 TEST(DebugPicture, CliRendersABoxRoomWithTraces) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the cmkit CLI is not built";
-  const fs::path dir = scratchDir("box_room");
+  const test::ScratchDir scratch("debug_picture_box_room");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "box_room.map") << boxRoomMap();
   std::ofstream(dir / "q.txt")
       << "translation trm=box:-16,-16,0,16,16,72 start=-300,-300,200 end=300,300,-50\n"
@@ -177,7 +172,8 @@ TEST(DebugPicture, CliRendersABoxRoomWithTraces) {
 
 TEST(DebugPicture, CliViewRemovesItsSceneFolderWhenStopped) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the cmkit CLI is not built";
-  const fs::path dir = scratchDir("view");
+  const test::ScratchDir scratch("debug_picture_view");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "box_room.map") << boxRoomMap();
   const fs::path viewer = dir / "viewer";  // a stand-in for the built viewer
   fs::create_directories(viewer);
@@ -209,7 +205,8 @@ TEST(DebugPicture, CliRendersLt4) {
   const fs::path map = test::sharedDir() / "maps" / "lt4" / "lt4.map";
   if (!fs::exists(map)) GTEST_SKIP() << map << " is absent (shared data beside the clone); skipped";
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the cmkit CLI is not built";
-  const fs::path png = scratchDir("lt4") / "lt4.png";
+  const test::ScratchDir scratch("debug_picture_lt4");
+  const fs::path png = scratch.path() / "lt4.png";
   ASSERT_EQ(runCli("render " + map.string() + " --top --size 400x300 -o " + png.string()), 0);
   const Decoded d = decodePng(png);
   ASSERT_EQ(d.width, 400);
@@ -220,7 +217,8 @@ TEST(DebugPicture, CliRendersLt4) {
 
 TEST(DebugPicture, CliRejectsABadSize) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the cmkit CLI is not built";
-  const fs::path dir = scratchDir("bad_size");
+  const test::ScratchDir scratch("debug_picture_bad_size");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "room.map") << boxRoomMap();
   EXPECT_NE(runCli("render " + (dir / "room.map").string() + " --size 12 -o " + (dir / "x.png").string() +
                    " 2>/dev/null"),

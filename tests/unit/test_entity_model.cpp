@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using namespace cmkit;
 
 fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / "cmkit_entity_model_test";
+  const fs::path dir = test::uniqueTempPath("entity_model");
   fs::create_directories(dir);
   return dir;
 }

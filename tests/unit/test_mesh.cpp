@@ -412,7 +412,8 @@ TEST(MeshFile, GltfExportImportExportIsStable) {
   ExportOptions options;
   options.edges = false;
   options.internalEdges = false;
-  const fs::path path = fs::temp_directory_path() / "cmkit_test_export_import.glb";
+  const test::ScratchDir scratch("export_import");
+  const fs::path path = scratch.path() / "model.glb";
   auto roundTrip = [&](const ModelPtr& m) -> ModelPtr {
     std::vector<std::uint8_t> glb = exportGlb(std::span<const ModelPtr>(&m, 1), {}, options);
     std::ofstream(path, std::ios::binary)
@@ -467,12 +468,13 @@ TEST(MeshFile, MalformedAndMissingFilesNameTheFile) {
   auto missing = loadMeshFile((test::testDataDir() / "meshes" / "no_such_mesh.obj").string());
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().toString().find("no_such_mesh.obj"), std::string::npos);
-  const fs::path notAMesh = fs::temp_directory_path() / "cmkit_test_not_a_mesh.glb";
+  const test::ScratchDir scratch("not_a_mesh");
+  const fs::path notAMesh = scratch.path() / "not_a_mesh.glb";
   std::ofstream(notAMesh) << "this is not glTF\n";
   auto garbage = loadMeshFile(notAMesh.string());
   fs::remove(notAMesh);
   ASSERT_FALSE(garbage.ok());
-  EXPECT_NE(garbage.error().toString().find("cmkit_test_not_a_mesh.glb"), std::string::npos);
+  EXPECT_NE(garbage.error().toString().find("not_a_mesh.glb"), std::string::npos);
 }
 
 TEST(MeshFile, MeshFileNames) {
@@ -485,9 +487,8 @@ TEST(MeshFile, MeshFileNames) {
 
 TEST(MeshManager, LoadModelConvertsAMeshOnceAndPrefersACmFile) {
   CMKIT_REQUIRE_ASSIMP();
-  const fs::path dir = fs::temp_directory_path() / "cmkit_test_load_model";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const test::ScratchDir scratch("load_model");
+  const fs::path& dir = scratch.path();
   fs::copy_file(meshData("cube.obj"), dir / "cube.obj");
   const std::string name = (dir / "cube.obj").string();
   {
@@ -540,9 +541,8 @@ TEST(MeshCli, CompileInfoValidateAndQueryTakeMeshFiles) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
   const std::string cli = CMKIT_CLI_PATH;
   const std::string cube = meshData("cube.obj").string();
-  const fs::path dir = fs::temp_directory_path() / "cmkit_test_mesh_cli";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const test::ScratchDir scratch("mesh_cli");
+  const fs::path& dir = scratch.path();
   int rc = -1;
   std::string out =
       test::runCapture(cli + " compile '" + cube + "' -o '" + (dir / "cube.cm").string() + "'", rc);

@@ -216,8 +216,8 @@ TEST(ProcPruning, TheManagerUsesTheProcBesideTheMapUnlessTurnedOff) {
 }
 
 TEST(ProcPruning, AMalformedProcBesideTheMapIsAnErrorOfTheLoad) {
-  const fs::path dir = fs::temp_directory_path() / "cmkit_proc_test";
-  fs::create_directories(dir);
+  const test::ScratchDir scratch("proc");
+  const fs::path& dir = scratch.path();
   fs::copy_file(procData() / "box_room_proc.map", dir / "room.map", fs::copy_options::overwrite_existing);
   {
     std::ofstream f(dir / "room.proc");
@@ -247,7 +247,8 @@ TEST(ProcPruning, CliSaysWhetherTheProcWasUsed) {
   EXPECT_NE(out.find("proc BSP used for pruning: no"), std::string::npos) << out;
   EXPECT_NE(out.find("box_room_proc.proc ignored (--no-proc)"), std::string::npos) << out;
   // query: the note on stderr only, stdout holds the result lines
-  const fs::path queries = fs::temp_directory_path() / "cmkit_proc_cli_queries.txt";
+  const test::ScratchDir scratch("proc_cli");
+  const fs::path queries = scratch.path() / "queries.txt";
   {
     std::ofstream f(queries);
     f << "pointcontents pos=0,0,-8\n";

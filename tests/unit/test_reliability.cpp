@@ -476,8 +476,8 @@ TEST_F(QueryGuards, RotationAxisMustBeUnitAndAngleFinite) {
 
 TEST(QueryGuardsCli, QueryShowsTheRefusal) {
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cmkit_guards_cli";
-  std::filesystem::create_directories(dir);
+  const test::ScratchDir scratch("guards_cli");
+  const std::filesystem::path& dir = scratch.path();
   {
     std::ofstream map(dir / "floor.map");
     map << "Version 2\n{\n\"classname\" \"worldspawn\"\n"

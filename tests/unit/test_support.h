@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +30,39 @@
   static_assert(true)
 
 namespace cmkit::test {
+
+/// A path in the temporary directory of its own for the running test:
+/// "cmkit_<stem>_<process id>_<suite>_<test>". ctest runs the tests side by
+/// side, each in a process of its own, so two tests must never share a file
+/// (two tests of one fixture did: one read the other's half-written query
+/// file). Not created.
+inline std::filesystem::path uniqueTempPath(const std::string& stem) {
+  std::string name = "cmkit_" + stem + "_" + std::to_string(::getpid());
+  if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
+    name += std::string("_") + info->test_suite_name() + "_" + info->name();
+  for (char& c : name)
+    if (c == '/') c = '_';  // (parameterised tests' names)
+  return std::filesystem::temp_directory_path() / name;
+}
+
+/// uniqueTempPath(stem) as a directory, made empty, removed with this object.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& stem) : path_(uniqueTempPath(stem)) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 /// The shared data folder beside the clone (../shared): maps, reference
 /// results, specs. Absent in a user's clone.
