@@ -18,16 +18,6 @@ namespace {
 
 std::string cmData(const char* name) { return (test::testDataDir() / "cm" / name).string(); }
 
-// A scratch directory removed at the end of the test.
-struct TempDir {
-  std::filesystem::path path;
-  explicit TempDir(const char* name) : path(std::filesystem::temp_directory_path() / name) {
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-};
-
 TEST(Manager, LoadFindFreeClearList) {
   ModelManager mm;
   const MaterialTable materials;
@@ -109,8 +99,8 @@ TEST(Manager, LoadFindFreeClearList) {
 }
 
 TEST(Manager, LoadMapBuildsOrUsesAnUpToDateCm) {
-  TempDir dir("cmkit_test_manager_map");
-  const auto mapPath = (dir.path / "features.map").string();
+  const test::ScratchDir dir("manager_map");
+  const auto mapPath = (dir.path() / "features.map").string();
   std::filesystem::copy_file(test::testDataDir() / "maps" / "features.map", mapPath);
   const MaterialTable materials;
   ModelManager mm;
@@ -125,7 +115,7 @@ TEST(Manager, LoadMapBuildsOrUsesAnUpToDateCm) {
   ASSERT_FALSE(built->handles.empty());
   EXPECT_EQ(built->handles[0], kWorldModelHandle);
   EXPECT_EQ(mm.size(), built->handles.size());  // the map replaced everything
-  const auto cmPath = dir.path / "features.cm";
+  const auto cmPath = dir.path() / "features.cm";
   ASSERT_TRUE(std::filesystem::exists(cmPath));
   EXPECT_EQ(*readCmFileCrc(cmPath.string()), built->geometryCrc);
   const ModelPtr builtWorld = mm.get(kWorldModelHandle);
@@ -157,7 +147,7 @@ TEST(Manager, LoadMapBuildsOrUsesAnUpToDateCm) {
 
   // A missing map is an error and leaves the manager as it was.
   const std::size_t before = mm.size();
-  EXPECT_FALSE(mm.loadMap((dir.path / "missing.map").string(), materials).ok());
+  EXPECT_FALSE(mm.loadMap((dir.path() / "missing.map").string(), materials).ok());
   EXPECT_EQ(mm.size(), before);
 }
 
