@@ -35,6 +35,28 @@ CollisionModel spikeUnder(const Vec3& apex) {
   return ModelMaker().addConvex(*TraceModel::convexHull(points)).build();
 }
 
+/// A flat 64 x 64 x 16 box (its bottom at its origin) moved from (0, 0, 100)
+/// to `end` over spikeUnder(apex).
+TraceResult boxOverSpike(const Vec3& apex, const Vec3& end) {
+  const CollisionModel m = spikeUnder(apex);
+  const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
+  QueryWork work;
+  TranslationQuery q;
+  q.trm = &box;
+  q.start = {0, 0, 100};
+  q.end = end;
+  return translate(m, q, work);
+}
+
+/// boxOverSpike's result when the apex (z = 10) meets the box's bottom face:
+/// within the clip epsilon after 89.75 of the 200 units down.
+void expectApexMeetsTheBottomFace(const TraceResult& r) {
+  EXPECT_NEAR(r.fraction, 89.75f / 200, 1e-6f);
+  EXPECT_EQ(r.contact.type, ContactType::ModelVertex);
+  EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));  // the box's bottom face, negated
+  EXPECT_EQ(r.contact.modelFeature, 4);        // the apex
+}
+
 }  // namespace
 
 TEST(Translation, BoxDroppedOnAFloorStopsAQuarterUnitAbove) {
@@ -159,20 +181,10 @@ TEST(Translation, CylinderIntoAStairRiser) {
 
 TEST(Translation, ModelVertexHitsATraceModelFace) {
   // A spike with its apex at (0,0,10) under a wide flat box falling onto it.
-  const CollisionModel m = spikeUnder({0, 0, 10});
-  const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
-  QueryWork work;
-  TranslationQuery q;
-  q.trm = &box;
-  q.start = {0, 0, 100};
-  q.end = {0, 0, -100};
-  const TraceResult r = translate(m, q, work);
-  EXPECT_NEAR(r.fraction, 89.75f / 200, 1e-6f);
+  const TraceResult r = boxOverSpike({0, 0, 10}, {0, 0, -100});
+  expectApexMeetsTheBottomFace(r);
   EXPECT_NEAR(r.endPos.z, 10.25f, 1e-4f);
-  EXPECT_EQ(r.contact.type, ContactType::ModelVertex);
-  EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));  // the box's bottom face, negated
-  EXPECT_EQ(r.contact.modelFeature, 4);        // the apex
-  EXPECT_EQ(r.contact.trmFeature, 0);          // the box's bottom polygon
+  EXPECT_EQ(r.contact.trmFeature, 0);  // the box's bottom polygon
   // The original reports the vertex relative to the trace model's start.
   expectVecNear(r.contact.point, {0, 0, 10 + 200 * r.fraction}, 1e-3f);
 }
@@ -189,24 +201,13 @@ TEST(Translation, ModelVertexNearTheSweptEdgeIsNotCulled) {
   // then still 0.2 * 0.196 + 0.25 * 0.981 = 0.284 from the spike's two
   // nearest faces (slope 10 in 50), beyond their clip epsilon.
   const Vec3 apex{17.95f + 31.8f, 13.4625f - 31.8f, 10};
-  const CollisionModel m = spikeUnder(apex);
-  const TraceModel box = *TraceModel::box({{-32, -32, 0}, {32, 32, 16}});
-  QueryWork work;
-  TranslationQuery q;
-  q.trm = &box;
-  q.start = {0, 0, 100};
-  q.end = {40, 30, -100};
-  const TraceResult r = translate(m, q, work);
-  EXPECT_NEAR(r.fraction, 89.75f / 200, 1e-6f);
-  EXPECT_EQ(r.contact.type, ContactType::ModelVertex);
-  EXPECT_EQ(r.contact.normal, Vec3(0, 0, 1));  // the box's bottom face, negated
-  EXPECT_EQ(r.contact.modelFeature, 4);        // the apex
+  const Vec3 end{40, 30, -100};
+  expectApexMeetsTheBottomFace(boxOverSpike(apex, end));
   // A unit further out the apex misses the bottom face: the box comes down
   // on the spike's sides later.
-  const CollisionModel m2 = spikeUnder({apex.x + 1, apex.y - 1, 10});
-  const TraceResult r2 = translate(m2, q, work);
-  EXPECT_GT(r2.fraction, 89.75f / 200 + 1e-4f);
-  EXPECT_NE(r2.contact.type, ContactType::ModelVertex);
+  const TraceResult outside = boxOverSpike({apex.x + 1, apex.y - 1, 10}, end);
+  EXPECT_GT(outside.fraction, 89.75f / 200 + 1e-4f);
+  EXPECT_NE(outside.contact.type, ContactType::ModelVertex);
 }
 
 TEST(Translation, RotatedTraceModel) {
