@@ -169,7 +169,7 @@ void runSpeedTestRays(benchmark::State& state, Lt4Scene& scene, SpeedTestRays ho
   constexpr int kRepeats = 100;          // TranslateRepeated: each move this many times in a row
   constexpr std::uint32_t kMask = cmkit::contents::kSolid | cmkit::contents::kPlayerClip;
   const cmkit::CollisionModel& world = *scene.models.front();
-  const cmkit::Vec3 origin = world.bounds.center();
+  const cmkit::Vec3 origin = world.bounds().center();
   cmkit::SpeedTestRandom random(0);
   std::vector<cmkit::Vec3> ends(kMoves);
   for (cmkit::Vec3& e : ends)

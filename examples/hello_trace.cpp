@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  std::printf("model %s: %zu polygons\n", (*models)[0]->name.c_str(), (*models)[0]->polygons.size());
+  std::printf("model %s: %zu polygons\n", (*models)[0]->name().c_str(), (*models)[0]->polygons().size());
   std::printf("fraction %.6f\n", double(r.fraction));
   std::printf("end      %.3f %.3f %.3f\n", double(r.endPos.x), double(r.endPos.y), double(r.endPos.z));
   if (r.fraction < 1) {

@@ -16,7 +16,7 @@ namespace {
 // Drops `box` from above the placed model's centre straight down through it.
 cmkit::TraceResult dropOnto(const cmkit::CollisionModel& model, const cmkit::Placement& placement,
                             const cmkit::TraceModel& box, cmkit::QueryWork& work) {
-  const cmkit::Vec3 centre = placement.origin + model.bounds.center() * placement.axis;  // body -> world
+  const cmkit::Vec3 centre = placement.origin + model.bounds().center() * placement.axis;  // body -> world
   const cmkit::Real reach = 512;
   cmkit::TranslationQuery q;
   q.trm = &box;
@@ -47,9 +47,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   const cmkit::CollisionModel& m = **model;
-  std::printf("entity model \"%s\": %zu polygons, bounds (%g %g %g)-(%g %g %g)\n", m.name.c_str(),
-              m.polygons.size(), double(m.bounds.min.x), double(m.bounds.min.y), double(m.bounds.min.z),
-              double(m.bounds.max.x), double(m.bounds.max.y), double(m.bounds.max.z));
+  std::printf("entity model \"%s\": %zu polygons, bounds (%g %g %g)-(%g %g %g)\n", m.name().c_str(),
+              m.polygons().size(), double(m.bounds().min.x), double(m.bounds().min.y),
+              double(m.bounds().min.z), double(m.bounds().max.x), double(m.bounds().max.y),
+              double(m.bounds().max.z));
 
   auto box = cmkit::TraceModel::box({{-8, -8, -8}, {8, 8, 8}});
   if (!box) {

@@ -32,8 +32,8 @@ void exerciseModels(std::span<const ModelPtr> models) {
   for (const ModelPtr& m : models.first(std::min(models.size(), kMaxModelsExercised))) {
     if (!m) continue;
     const RayIndex rays(*m);  // any model, even an empty one, can be indexed
-    if (m->bounds.isCleared()) continue;
-    const Vec3 lo = m->bounds.min, hi = m->bounds.max;
+    if (m->bounds().isCleared()) continue;
+    const Vec3 lo = m->bounds().min, hi = m->bounds().max;
     const Vec3 mid = (lo + hi) * Real(0.5);
     // Moves across the bounds along each axis and a diagonal, point and box.
     const Vec3 ends[][2] = {{{lo.x - 16, mid.y, mid.z}, {hi.x + 16, mid.y, mid.z}},

@@ -717,31 +717,35 @@ Coordinates are relative to the trace model's position in a query.)")
 Queries are methods taking numpy arrays; see translate, rotate, cast_rays, point_contents,
 contents, contacts. Models pickle as .cm text, so they travel to worker processes.)")
       .def_property_readonly(
-          "name", [](const PyModel& s) { return s.model->name; },
+          "name", [](const PyModel& s) { return s.model->name(); },
           "The model's name ('worldMap', an entity name).")
       .def_property_readonly(
-          "bounds", [](const PyModel& s) { return boundsArray(s.model->bounds); },
+          "bounds", [](const PyModel& s) { return boundsArray(s.model->bounds()); },
           "(2, 3) array: the minimum and maximum corners.")
       .def_property_readonly(
-          "content_flags", [](const PyModel& s) { return s.model->contents; },
+          "content_flags", [](const PyModel& s) { return s.model->contents(); },
           "The OR of the contents of all polygons and brushes (contents() is the position test).")
       .def_property_readonly(
-          "materials", [](const PyModel& s) { return s.model->materials; },
+          "materials",
+          [](const PyModel& s) {
+            const auto names = s.model->materials();
+            return std::vector<std::string>(names.begin(), names.end());
+          },
           "Material names; the 'material' result arrays index this list (-1: none).")
       .def_property_readonly(
-          "num_polygons", [](const PyModel& s) { return s.model->polygons.size(); }, "Number of polygons.")
+          "num_polygons", [](const PyModel& s) { return s.model->polygons().size(); }, "Number of polygons.")
       .def_property_readonly(
-          "num_brushes", [](const PyModel& s) { return s.model->brushes.size(); }, "Number of brushes.")
+          "num_brushes", [](const PyModel& s) { return s.model->brushes().size(); }, "Number of brushes.")
       .def_property_readonly(
-          "num_vertices", [](const PyModel& s) { return s.model->vertices.size(); }, "Number of vertices.")
+          "num_vertices", [](const PyModel& s) { return s.model->vertices().size(); }, "Number of vertices.")
       .def(
           "to_cm",
           [](const PyModel& s) { return cmkit::writeCmText(std::vector<cmkit::ModelPtr>{s.model}, 0); },
           "The model as .cm text (CRC 0).")
       .def("__repr__",
            [](const PyModel& s) {
-             return "<cmkit.Model '" + s.model->name + "', " + std::to_string(s.model->polygons.size()) +
-                    " polygons, " + std::to_string(s.model->brushes.size()) + " brushes>";
+             return "<cmkit.Model '" + s.model->name() + "', " + std::to_string(s.model->polygons().size()) +
+                    " polygons, " + std::to_string(s.model->brushes().size()) + " brushes>";
            })
       .def(py::pickle(
           [](const PyModel& s) { return cmkit::writeCmText(std::vector<cmkit::ModelPtr>{s.model}, 0); },

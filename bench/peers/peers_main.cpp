@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
   // The same geometry for the peers: every polygon matching the mask, as a
   // fan of triangles over the model's vertices.
   std::vector<std::uint32_t> indices;
-  for (const cmkit::CmPolygon& p : world.polygons) {
+  for (const cmkit::CmPolygon& p : world.polygons()) {
     if ((p.contents & kMask) == 0) continue;
     std::vector<std::uint32_t> v;
     for (std::int32_t e : world.edgesOf(p)) v.push_back(std::uint32_t(world.edgeStart(e)));
@@ -242,8 +242,8 @@ int main(int argc, char** argv) {
   const int triangles = int(indices.size() / 3);
   auto mesh = std::make_unique<btTriangleMesh>();
   for (std::size_t t = 0; t < indices.size(); t += 3)
-    mesh->addTriangle(bt(world.vertices[indices[t]]), bt(world.vertices[indices[t + 1]]),
-                      bt(world.vertices[indices[t + 2]]));
+    mesh->addTriangle(bt(world.vertices()[indices[t]]), bt(world.vertices()[indices[t + 1]]),
+                      bt(world.vertices()[indices[t + 2]]));
   auto shape = std::make_unique<btBvhTriangleMeshShape>(mesh.get(), true);
   shape->setMargin(0);
   btDefaultCollisionConfiguration config;
@@ -263,9 +263,9 @@ int main(int argc, char** argv) {
   {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world.vertices.size()));
-    for (std::size_t i = 0; i < world.vertices.size(); ++i)
-      for (int k = 0; k < 3; ++k) vertices[3 * i + std::size_t(k)] = world.vertices[i][k];
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world.vertices().size()));
+    for (std::size_t i = 0; i < world.vertices().size(); ++i)
+      for (int k = 0; k < 3; ++k) vertices[3 * i + std::size_t(k)] = world.vertices()[i][k];
     auto* tris = static_cast<std::uint32_t*>(
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                 3 * sizeof(std::uint32_t), std::size_t(triangles)));
@@ -278,7 +278,7 @@ int main(int argc, char** argv) {
 #endif
 
   // The speed test's translations: from the centre of the world, seed 0.
-  const cmkit::Vec3 origin = (world.bounds.min + world.bounds.max) * cmkit::Real(0.5);
+  const cmkit::Vec3 origin = (world.bounds().min + world.bounds().max) * cmkit::Real(0.5);
   const std::vector<cmkit::Vec3> ends = speedTestMoves(origin, std::size_t(times));
   auto boxTrm = cmkit::TraceModel::parse("box:-16,-16,0,16,16,64");
   if (!boxTrm) return 2;
@@ -286,7 +286,7 @@ int main(int argc, char** argv) {
   std::printf(
       "%s: world model %zu polygons -> %d triangles; %d translations from (%g %g %g), mask "
       "solid|playerclip; ray casts with the %s node test\n",
-      mapPath.c_str(), world.polygons.size(), triangles, times, origin.x, origin.y, origin.z,
+      mapPath.c_str(), world.polygons().size(), triangles, times, origin.x, origin.y, origin.z,
       rayIndex.usesAvx2() ? "AVX2" : "baseline (SSE2)");
 
   cmkit::QueryWork work;

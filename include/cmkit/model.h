@@ -1,10 +1,12 @@
 // model.h: collision models, the static geometry that trace models collide
 // with (the original's cm_model_t).
 //
-// A collision model is built from a map entity (compile.h) or read from a
-// .cm file (cm_file.h) and is IMMUTABLE afterwards: it is handed out as
-// std::shared_ptr<const CollisionModel>, and every query is a const function
-// of it, so any number of threads may query one model at once.
+// A collision model is built from a map entity (compile.h), a mesh (mesh.h)
+// or a trace model, read from a .cm file (cm_file.h), or made from arrays
+// (ModelArrays) by CollisionModel::create, and is SEALED: nothing can change
+// its arrays afterwards. It is handed out as std::shared_ptr<const
+// CollisionModel>, and every query is a const function of it, so any number
+// of threads may query one model at once.
 //
 // Storage is flat: arrays indexed by 32-bit numbers instead of pointers.
 //  - vertices: 0..n-1.
@@ -34,8 +36,9 @@
 namespace cmkit {
 
 namespace detail {
-struct QueryData;  // model/query_data.h
-}
+struct QueryData;    // model/query_data.h
+struct ModelAccess;  // model/model_access.h: the library's own way to seal arrays
+}  // namespace detail
 
 /// An edge between two model vertices.
 struct CmEdge {
@@ -116,9 +119,11 @@ struct ModelStats {
   int procPolygonsRemoved = 0;
 };
 
-/// A collision model. Build it with buildCollisionModels (compile.h) or read it with loadCmFile (cm_file.h);
-/// treat it as immutable afterwards.
-struct CollisionModel {
+/// The arrays of a collision model as plain, editable data: what the
+/// compiler and the .cm reader fill in, and what a tool or test fills in to
+/// make a model of its own (CollisionModel::create checks it and seals it).
+/// Fields as CollisionModel's read accessors describe them.
+struct ModelArrays {
   /// The model's name ("worldMap", an entity's model or name key, ...).
   std::string name;
   /// Bounds of all polygons and brushes.
@@ -142,16 +147,6 @@ struct CollisionModel {
 
   /// Statistics of the build (or load).
   ModelStats stats;
-
-  /// What the queries derive from the arrays above once instead of per query
-  /// (the polygons' edge lines and what the culls read of them, laid out for
-  /// SIMD: less memory than the arrays above), made by
-  /// prepareQueries(): the compiler, the .cm reader and the conversions call
-  /// it. Not part of the .cm format. It serves only the model whose arrays it
-  /// was made from: a copy, or a model whose arrays changed size, is queried
-  /// without it (the same results, a little slower) until prepareQueries()
-  /// is called on it.
-  std::shared_ptr<const detail::QueryData> queryData;
 
   /// The signed edge numbers of a polygon.
   std::span<const std::int32_t> edgesOf(const CmPolygon& p) const {
@@ -189,8 +184,90 @@ struct CollisionModel {
   std::string_view materialName(std::int32_t material) const {
     return material >= 0 ? std::string_view(materials[std::size_t(material)]) : std::string_view();
   }
-  /// Number of real edges (edges.size() - 1, or 0).
-  std::size_t numEdges() const { return edges.empty() ? 0 : edges.size() - 1; }
+};
+
+/// A collision model: SEALED. Its arrays cannot be changed once it is made;
+/// it is made only by the map compiler (buildCollisionModels), the .cm reader
+/// (cm_file.h), the mesh builder (mesh.h), collisionModelFromTraceModel, or
+/// create() from arrays of the caller's, which checks them first. What the
+/// queries derive from the arrays (edge lines, cull blocks) is made once,
+/// when the model is made, and shared by its copies: no query checks whether
+/// it is up to date, because nothing can make it stale.
+///
+/// Read access is through spans and const references (for drawing, export,
+/// validation); arrays() gives the whole ModelArrays read-only, e.g. to copy
+/// it, change the copy and create() a new model from it.
+class CollisionModel {
+ public:
+  /// A model from the caller's arrays, sealed. The arrays are taken as
+  /// given (no bounds, contents or edge normals are computed), after a check
+  /// of their STRUCTURE: every index, range, link and loop validateModel
+  /// checks (a model whose numbers are out of range would make queries read
+  /// the wrong memory). Odd geometry (a degenerate polygon, an empty brush)
+  /// is allowed, as real maps have some. Error: the first structural
+  /// violations found (validateModel's messages).
+  static Result<std::shared_ptr<const CollisionModel>> create(ModelArrays arrays);
+
+  /// The model's name ("worldMap", an entity's model or name key, ...).
+  const std::string& name() const { return data_.name; }
+  /// Bounds of all polygons and brushes.
+  const Bounds& bounds() const { return data_.bounds; }
+  /// OR of all polygon and brush contents.
+  std::uint32_t contents() const { return data_.contents; }
+  /// True only for models made from a trace model.
+  bool isConvex() const { return data_.isConvex; }
+
+  /// Vertex positions.
+  std::span<const Vec3> vertices() const { return data_.vertices; }
+  /// Edges; edges()[0] is a dummy.
+  std::span<const CmEdge> edges() const { return data_.edges; }
+  /// Signed edge numbers of all polygons.
+  std::span<const std::int32_t> polygonEdges() const { return data_.polygonEdges; }
+  /// The polygons.
+  std::span<const CmPolygon> polygons() const { return data_.polygons; }
+  /// Planes of all brushes, normals out of the brush.
+  std::span<const Plane> brushPlanes() const { return data_.brushPlanes; }
+  /// The brushes.
+  std::span<const CmBrush> brushes() const { return data_.brushes; }
+  /// Tree nodes; nodes()[0] is the root.
+  std::span<const CmNode> nodes() const { return data_.nodes; }
+  /// Node polygon lists.
+  std::span<const std::int32_t> polygonRefs() const { return data_.polygonRefs; }
+  /// Node brush lists.
+  std::span<const std::int32_t> brushRefs() const { return data_.brushRefs; }
+  /// Material names used by polygons and brushes.
+  std::span<const std::string> materials() const { return data_.materials; }
+  /// Statistics of the build (or load).
+  const ModelStats& stats() const { return data_.stats; }
+  /// All of the above, read-only (a copy of it can be changed and given to
+  /// create()).
+  const ModelArrays& arrays() const { return data_; }
+
+  /// The signed edge numbers of a polygon.
+  std::span<const std::int32_t> edgesOf(const CmPolygon& p) const { return data_.edgesOf(p); }
+  /// The planes of a brush.
+  std::span<const Plane> planesOf(const CmBrush& b) const { return data_.planesOf(b); }
+  /// The polygons listed at a node (indices into polygons()).
+  std::span<const std::int32_t> polygonsAt(const CmNode& n) const { return data_.polygonsAt(n); }
+  /// The brushes listed at a node (indices into brushes()).
+  std::span<const std::int32_t> brushesAt(const CmNode& n) const { return data_.brushesAt(n); }
+  /// The vertex a signed edge number starts at.
+  std::int32_t edgeStart(std::int32_t signedEdge) const { return data_.edgeStart(signedEdge); }
+  /// Where a polygon's edges stop outlining it (see ModelArrays::brokenEdgeLoopAt).
+  std::ptrdiff_t brokenEdgeLoopAt(const CmPolygon& p) const { return data_.brokenEdgeLoopAt(p); }
+  /// Material name, or "" for none.
+  std::string_view materialName(std::int32_t material) const { return data_.materialName(material); }
+  /// Number of real edges (edges().size() - 1, or 0).
+  std::size_t numEdges() const { return data_.edges.empty() ? 0 : data_.edges.size() - 1; }
+
+ private:
+  friend struct detail::ModelAccess;
+  explicit CollisionModel(ModelArrays arrays);
+
+  ModelArrays data_;
+  /// What the queries derive from the arrays (model/query_data.h); made by
+  /// the constructor, shared by copies (it is as immutable as the arrays).
+  std::shared_ptr<const detail::QueryData> queryData_;
 };
 
 using ModelPtr = std::shared_ptr<const CollisionModel>;
@@ -212,19 +289,13 @@ ModelPtr collisionModelFromTraceModel(const TraceModel& trm, std::uint32_t conte
 /// edges per polygon).
 Result<TraceModel> traceModelFromCollisionModel(const CollisionModel& model);
 
-/// Makes model.queryData from the model as it is now. Call it on a model
-/// made or changed by hand for the queries' full speed; they are right
-/// without it. A model with an edge, vertex or polygon number out of range
-/// gets none (validate() says what is wrong).
-void prepareQueries(CollisionModel& model);
-
 /// The memory a model takes in cmkit, in bytes (modelMemory()).
 struct ModelMemory {
   /// Its arrays: vertices, edges, polygon edges, polygons, brush planes,
   /// brushes, nodes, polygon and brush references (not names, materials or
   /// spare capacity).
   std::size_t arrays = 0;
-  /// Its query data (CollisionModel::queryData; 0 without).
+  /// What the queries derive from the arrays (edge lines, cull blocks).
   std::size_t queryData = 0;
 };
 /// The memory `model` takes in cmkit (`cmkit info FILE --memory` prints it).

@@ -57,5 +57,12 @@ struct Violation {
 /// Every violation of the model's invariants (empty: all hold). At most
 /// `maxViolations` are reported.
 std::vector<Violation> validateModel(const CollisionModel& model, std::size_t maxViolations = 1000);
+/// The same for arrays not (yet) sealed into a model: what
+/// CollisionModel::create checks (it refuses arrays with a violation of
+/// structure), and a way to see every violation of hand-made arrays.
+std::vector<Violation> validateModel(const ModelArrays& arrays, std::size_t maxViolations = 1000);
+/// Only the violations of structure (Violation::Kind::Structure) of `arrays`,
+/// at most `maxViolations`: empty when CollisionModel::create accepts them.
+std::vector<Violation> structureViolations(const ModelArrays& arrays, std::size_t maxViolations = 1000);
 
 }  // namespace cmkit

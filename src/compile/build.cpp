@@ -4,12 +4,13 @@
 
 #include "cmkit/cm_file.h"
 #include "compile/builder.h"
+#include "model/model_access.h"
 
 namespace cmkit {
 
 namespace detail {
 
-CollisionModel ModelBuilder::build() {
+ModelPtr ModelBuilder::build() {
   allocNode();  // the root
   if (mesh_) {
     // A render model: triangles -> polygons (welded, shared edges) in the
@@ -30,12 +31,12 @@ CollisionModel ModelBuilder::build() {
   mergePolygons();
   markInternalEdges();
   // The immutable layout: compacted arrays, the tree flattened in pre-order.
-  CollisionModel model;
+  ModelArrays model;
   model.name = name_;
   const Remap remap = compactVerticesAndEdges(model);
   flattenTree(model, remap);
   finishModel(model);
-  return model;
+  return ModelAccess::seal(std::move(model));
 }
 
 /// Error for the first brush of `entity` with more than kMaxBrushSides sides.
@@ -75,7 +76,7 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
       const ProcBsp* proc = models.empty() ? options.procBsp : nullptr;
       detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings, proc);
       builder.setRobustEdges(options.robustEdges);
-      models.push_back(std::make_shared<const CollisionModel>(builder.build()));
+      models.push_back(builder.build());
     }
     if (options.progress) options.progress(i + 1, total);
   }
@@ -99,7 +100,7 @@ Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityInd
   detail::MaterialCache cache(materials);
   detail::ModelBuilder builder(entity, path, cache, options.warnings);
   builder.setRobustEdges(options.robustEdges);
-  const ModelPtr model = std::make_shared<const CollisionModel>(builder.build());
+  const ModelPtr model = builder.build();
   if (options.report) {
     options.report->model = model;
     options.report->traceModel.reset();

@@ -6,7 +6,7 @@
 // are prepended, merged polygons replace references in place. The list order
 // decides the order of polygons in .cm files and of several results, so it is
 // reproduced exactly. build() (build.cpp) lists the steps; the last ones
-// flatten everything into a CollisionModel.
+// flatten everything into the arrays of a CollisionModel.
 #pragma once
 
 #include <cmath>
@@ -152,7 +152,7 @@ class ModelBuilder {
   ModelBuilder(const TriangleMesh& mesh, std::string name, MaterialCache& materials,
                std::vector<std::string>* warnings);
   /// Runs the whole pipeline (the list of steps) and returns the flattened model.
-  CollisionModel build();
+  ModelPtr build();
 
  private:
   // ---- brushes.cpp
@@ -250,11 +250,11 @@ class ModelBuilder {
     std::vector<int> edges;     ///< build edge -> model edge (0: dropped)
   };
   /// Vertices used by an edge, edges used by a polygon, into the model.
-  Remap compactVerticesAndEdges(CollisionModel& model) const;
+  Remap compactVerticesAndEdges(ModelArrays& model) const;
   /// Nodes in pre-order; polygons and brushes in the order of their first reference.
-  void flattenTree(CollisionModel& model, const Remap& remap) const;
+  void flattenTree(ModelArrays& model, const Remap& remap) const;
   /// Bounds, contents, edge normals and statistics of the flattened model.
-  void finishModel(CollisionModel& model) const;
+  void finishModel(ModelArrays& model) const;
 
   // ---- typed access to the build state (int indices, as in the original)
   Vec3& vertex(int v) { return vertices_[static_cast<std::size_t>(v)]; }

@@ -9,7 +9,7 @@
 
 namespace cmkit::detail {
 
-ModelBuilder::Remap ModelBuilder::compactVerticesAndEdges(CollisionModel& model) const {
+ModelBuilder::Remap ModelBuilder::compactVerticesAndEdges(ModelArrays& model) const {
   Remap remap;
   // Vertices: those referenced by any edge slot, including the dummy edge 0
   // and edges without users (they are compacted only afterwards).
@@ -69,7 +69,7 @@ int appended(std::vector<T>& v, const T& item) {
 
 }  // namespace
 
-void ModelBuilder::flattenTree(CollisionModel& model, const Remap& remap) const {
+void ModelBuilder::flattenTree(ModelArrays& model, const Remap& remap) const {
   // Nodes in pre-order (front child first); polygons, brushes and materials
   // in the order they are first met in that walk.
   IndexMap polygonIndex(polygons_.size());
@@ -140,14 +140,13 @@ void ModelBuilder::flattenTree(CollisionModel& model, const Remap& remap) const 
   }
 }
 
-void ModelBuilder::finishModel(CollisionModel& model) const {
+void ModelBuilder::finishModel(ModelArrays& model) const {
   computeModelBoundsAndContents(model);
   model.stats.sharpEdges = computeEdgeNormals(model);
   model.stats.internalEdges = counters_.numInternalEdges;
   model.stats.containedPolygonsRemoved = counters_.numRemovedPolys;
   model.stats.procPolygonsRemoved = counters_.numProcRemovedPolys;
   model.stats.polygonsMerged = counters_.numMergedPolys;
-  prepareQueries(model);
 }
 
 }  // namespace cmkit::detail

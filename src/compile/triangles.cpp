@@ -101,7 +101,7 @@ Result<ModelPtr> buildCollisionModelFromTriangles(const TriangleMesh& mesh, std:
   try {
     detail::MaterialCache cache(materials, options.contents);
     detail::ModelBuilder builder(mesh, std::move(name), cache, options.warnings);
-    return std::make_shared<const CollisionModel>(builder.build());
+    return builder.build();
   } catch (const std::bad_alloc&) {
     return Error("out of memory while building the model of a mesh", fileName);
   }

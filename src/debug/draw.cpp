@@ -57,19 +57,19 @@ class ModelWalk {
         placement_(placement),
         options_(o),
         viewLocal_(placement.axis * (o.viewOrigin - placement.origin)),
-        polygonDone_(model.polygons.size(), false),
-        edgeDone_(model.edges.size(), false) {}
+        polygonDone_(model.polygons().size(), false),
+        edgeDone_(model.edges().size(), false) {}
 
   void run() {
-    if (model_.nodes.empty()) {
-      for (std::size_t i = 0; i < model_.polygons.size(); ++i) visitPolygon(std::int32_t(i));
+    if (model_.nodes().empty()) {
+      for (std::size_t i = 0; i < model_.polygons().size(); ++i) visitPolygon(std::int32_t(i));
       return;
     }
     // Walk the tree from the root, both children unless the radius sphere's
     // box lies wholly on one side of the split.
     std::vector<std::int32_t> stack{0};
     while (!stack.empty()) {
-      const CmNode& node = model_.nodes[std::size_t(stack.back())];
+      const CmNode& node = model_.nodes()[std::size_t(stack.back())];
       stack.pop_back();
       for (std::int32_t p : model_.polygonsAt(node)) visitPolygon(p);
       if (node.isLeaf()) continue;
@@ -98,7 +98,7 @@ class ModelWalk {
 
   void visitPolygon(std::int32_t index) {
     if (polygonDone_[std::size_t(index)]) return;
-    const CmPolygon& p = model_.polygons[std::size_t(index)];
+    const CmPolygon& p = model_.polygons()[std::size_t(index)];
     if (outsideRadius(p)) return;
     polygonDone_[std::size_t(index)] = true;
     if ((p.contents & options_.contentMask) == 0) return;
@@ -114,7 +114,7 @@ class ModelWalk {
     const auto edges = model_.edgesOf(p);
     if (options_.normals) {
       Vec3 center;
-      for (std::int32_t e : edges) center += model_.vertices[std::size_t(model_.edgeStart(e))];
+      for (std::int32_t e : edges) center += model_.vertices()[std::size_t(model_.edgeStart(e))];
       center *= Real(1) / Real(edges.size());
       const Vec3 c = toWorld(center, placement_);
       draw_.line(c, c + (p.plane.normal * placement_.axis) * kDrawNormalLength, colors::kMagenta,
@@ -123,7 +123,7 @@ class ModelWalk {
     if (options_.filled) {
       points_.clear();
       for (std::int32_t e : edges)
-        points_.push_back(toWorld(model_.vertices[std::size_t(model_.edgeStart(e))], placement_));
+        points_.push_back(toWorld(model_.vertices()[std::size_t(model_.edgeStart(e))], placement_));
       draw_.polygon(points_, p.plane.normal * placement_.axis, polygonColor(p),
                     {DrawKind::Polygon, p.contents, index});
       return;
@@ -138,10 +138,10 @@ class ModelWalk {
 
   void drawEdge(std::int32_t signedEdge, const CmPolygon& p) {
     const auto edgeNum = std::int32_t(signedEdge < 0 ? -signedEdge : signedEdge);
-    const CmEdge& edge = model_.edges[std::size_t(edgeNum)];
+    const CmEdge& edge = model_.edges()[std::size_t(edgeNum)];
     const int side = signedEdge < 0 ? 1 : 0;
-    const Vec3 a = toWorld(model_.vertices[std::size_t(edge.vertex[side])], placement_);
-    const Vec3 b = toWorld(model_.vertices[std::size_t(edge.vertex[1 - side])], placement_);
+    const Vec3 a = toWorld(model_.vertices()[std::size_t(edge.vertex[side])], placement_);
+    const Vec3 b = toWorld(model_.vertices()[std::size_t(edge.vertex[1 - side])], placement_);
     if (edge.internal) {
       if (options_.internalEdges)
         draw_.line(a, b, kInternalEdgeColor, {DrawKind::InternalEdge, p.contents, edgeNum});

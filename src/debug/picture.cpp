@@ -248,9 +248,9 @@ Image renderPicture(std::span<const ModelPtr> models, std::span<const TraceRecor
     return i < options.placements.size() ? options.placements[i] : Placement{};
   };
   for (std::size_t i = 0; i < models.size(); ++i) {
-    if (!models[i] || models[i]->bounds.isCleared()) continue;
+    if (!models[i] || models[i]->bounds().isCleared()) continue;
     const Placement place = placementOf(i);
-    const Bounds& b = models[i]->bounds;
+    const Bounds& b = models[i]->bounds();
     for (int corner = 0; corner < 8; ++corner)
       scene.addPoint(Vec3{b[corner & 1].x, b[(corner >> 1) & 1].y, b[(corner >> 2) & 1].z} * place.axis +
                      place.origin);

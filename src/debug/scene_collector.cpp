@@ -97,7 +97,7 @@ std::vector<Group> collectScene(std::span<const ModelPtr> models, std::span<cons
     const ModelPtr& m = models[i];
     if (!m) continue;
     const Placement place = i < options.placements.size() ? options.placements[i] : Placement{};
-    collector.model = m->name;
+    collector.model = m->name();
     DrawOptions draw;
     draw.contentMask = options.contentMask;
     draw.filled = true;

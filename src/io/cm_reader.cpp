@@ -10,6 +10,7 @@
 #include "cmkit/tools/text_file.h"
 #include "model/edge_normals.h"
 #include "model/material_cache.h"
+#include "model/model_access.h"
 #include "model/tree_filter.h"
 #include "text/cm_cursor.h"
 
@@ -35,7 +36,7 @@ constexpr std::string_view kSections[5] = {"vertices", "edges", "nodes", "polygo
 struct ModelReader {
   CmCursor& in;
   detail::MaterialCache& materialCache;
-  CollisionModel model;
+  ModelArrays model;
   std::unordered_map<std::string, std::int32_t> materialIndex;
   std::vector<std::size_t> edgeOffsets;     // per edge
   std::vector<std::size_t> polygonOffsets;  // per polygon
@@ -255,7 +256,6 @@ struct ModelReader {
     model.stats.sharpEdges = detail::computeEdgeNormals(model);
     for (std::size_t i = 1; i < model.edges.size(); ++i) model.stats.internalEdges += model.edges[i].internal;
     detail::computeModelBoundsAndContents(model);
-    prepareQueries(model);
   }
 };
 
@@ -282,7 +282,7 @@ CmFile parseFile(CmCursor& in, const MaterialTable& materials) {
     }
     ModelReader reader{in, cache, {}, {}, {}, {}};
     reader.parse();
-    file.models.push_back(std::make_shared<const CollisionModel>(std::move(reader.model)));
+    file.models.push_back(detail::ModelAccess::seal(std::move(reader.model)));
   }
   return file;
 }

@@ -67,7 +67,7 @@ class CmWriter {
 
   void model(const CollisionModel& m, const CmWriteOptions& options) {
     text("collisionModel \"");
-    text(m.name);
+    text(m.name());
     text("\" {\n");
     vertices(m);
     edges(m);
@@ -80,13 +80,13 @@ class CmWriter {
  private:
   void vertices(const CollisionModel& m) {
     text("\tvertices { /* numVertices = */ ");
-    integer(static_cast<long long>(m.vertices.size()));
+    integer(static_cast<long long>(m.vertices().size()));
     text("\n");
-    for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    for (std::size_t i = 0; i < m.vertices().size(); ++i) {
       text("\t/* ");
       integer(static_cast<long long>(i));
       text(" */ ");
-      vec3(m.vertices[i]);
+      vec3(m.vertices()[i]);
       text("\n");
     }
     text("\t}\n");
@@ -95,12 +95,12 @@ class CmWriter {
   void edges(const CollisionModel& m) {
     // A model without edges still gets the dummy edge 0, as every model of
     // the original has it.
-    const std::size_t n = m.edges.empty() ? 1 : m.edges.size();
+    const std::size_t n = m.edges().empty() ? 1 : m.edges().size();
     text("\tedges { /* numEdges = */ ");
     integer(static_cast<long long>(n));
     text("\n");
     for (std::size_t i = 0; i < n; ++i) {
-      const CmEdge e = m.edges.empty() ? CmEdge{} : m.edges[i];
+      const CmEdge e = m.edges().empty() ? CmEdge{} : m.edges()[i];
       text("\t/* ");
       integer(static_cast<long long>(i));
       text(" */ ( ");
@@ -119,14 +119,14 @@ class CmWriter {
   // Pre-order, front child first: the stored order of the nodes.
   void nodes(const CollisionModel& m) {
     text("\tnodes {\n");
-    if (m.nodes.empty()) {
+    if (m.nodes().empty()) {
       text("\t( -1 0 )\n");
     } else {
       std::vector<std::int32_t> stack{0};
       while (!stack.empty()) {
         const std::int32_t n = stack.back();
         stack.pop_back();
-        const CmNode& node = m.nodes[std::size_t(n)];
+        const CmNode& node = m.nodes()[std::size_t(n)];
         text("\t( ");
         integer(node.planeType);
         text(" ");
@@ -145,13 +145,13 @@ class CmWriter {
     text("\tpolygons ");
     if (options.memoryHints) {
       std::size_t bytes = 0;
-      for (const CmPolygon& p : m.polygons) bytes += kPolygonBaseBytes + kPolygonEdgeBytes * p.numEdges;
+      for (const CmPolygon& p : m.polygons()) bytes += kPolygonBaseBytes + kPolygonEdgeBytes * p.numEdges;
       text("/* polygonMemory = */ ");
       integer(static_cast<long long>(bytes));
       text(" ");
     }
     text("{\n");
-    for (const CmPolygon& p : m.polygons) {
+    for (const CmPolygon& p : m.polygons()) {
       text("\t");
       integer(p.numEdges);
       text(" (");
@@ -178,13 +178,13 @@ class CmWriter {
     text("\tbrushes ");
     if (options.memoryHints) {
       std::size_t bytes = 0;
-      for (const CmBrush& b : m.brushes) bytes += kBrushBaseBytes + kBrushPlaneBytes * b.numPlanes;
+      for (const CmBrush& b : m.brushes()) bytes += kBrushBaseBytes + kBrushPlaneBytes * b.numPlanes;
       text("/* brushMemory = */ ");
       integer(static_cast<long long>(bytes));
       text(" ");
     }
     text("{\n");
-    for (const CmBrush& b : m.brushes) {
+    for (const CmBrush& b : m.brushes()) {
       text("\t");
       integer(b.numPlanes);
       text(" {\n");
@@ -217,8 +217,9 @@ std::size_t estimateSize(std::span<const ModelPtr> models) {
   std::size_t n = 64;
   for (const ModelPtr& m : models) {
     if (!m) continue;
-    n += 40 * m->vertices.size() + 32 * m->edges.size() + 16 * m->nodes.size() + 200 * m->polygons.size() +
-         16 * m->polygonEdges.size() + 64 * m->brushes.size() + 48 * m->brushPlanes.size();
+    n += 40 * m->vertices().size() + 32 * m->edges().size() + 16 * m->nodes().size() +
+         200 * m->polygons().size() + 16 * m->polygonEdges().size() + 64 * m->brushes().size() +
+         48 * m->brushPlanes().size();
   }
   return n;
 }

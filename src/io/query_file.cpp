@@ -163,7 +163,7 @@ const CollisionModel& selectModel(std::span<const ModelPtr> models, QueryFields&
     return *models[std::size_t(*n)];
   }
   for (const ModelPtr& m : models)
-    if (m->name == *name) return *m;
+    if (m->name() == *name) return *m;
   throw LineError{"unknown model " + std::string(*name)};
 }
 

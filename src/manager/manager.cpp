@@ -80,7 +80,7 @@ Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const Ma
       if (build.procBsp && build.procBsp->usable()) result.procPath = build.procBsp->fileName;
       Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, build);
       if (!built) return built.error();
-      if (!built->empty()) result.procPolygonsRemoved = built->front()->stats.procPolygonsRemoved;
+      if (!built->empty()) result.procPolygonsRemoved = built->front()->stats().procPolygonsRemoved;
       models = std::move(*built);
       if (options.writeCmFile) {
         Status saved = saveCmFile(cmPath, models, map->geometryCrc);
@@ -94,7 +94,7 @@ Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const Ma
     rayIndexes_.clear();
     for (ModelPtr& m : models) {
       const auto index = std::int32_t(models_.size());
-      byName_[m->name].push_back(index);
+      byName_[m->name()].push_back(index);
       models_.push_back(std::move(m));
       result.handles.push_back(ModelHandle{index});
     }
@@ -111,7 +111,7 @@ Result<std::vector<ModelHandle>> ModelManager::loadCm(const std::string& path,
     std::unique_lock lock(mutex_);
     for (ModelPtr& m : cm->models) {
       const auto index = std::int32_t(models_.size());
-      byName_[m->name].push_back(index);
+      byName_[m->name()].push_back(index);
       models_.push_back(std::move(m));
       handles.push_back(ModelHandle{index});
     }
@@ -143,7 +143,7 @@ Result<ModelHandle> ModelManager::loadModel(const std::string& name, const Mater
       Result<CmFile> cm = loadCmFile(cmPath, materials);
       if (!cm) return cm.error();
       for (std::size_t i = 0; i < cm->models.size(); ++i) {
-        if (cm->models[i]->name == name) {
+        if (cm->models[i]->name() == name) {
           models = std::move(cm->models);
           wanted = i;
           break;
@@ -160,7 +160,7 @@ Result<ModelHandle> ModelManager::loadModel(const std::string& name, const Mater
     ModelHandle result;
     for (std::size_t i = 0; i < models.size(); ++i) {
       const auto index = std::int32_t(models_.size());
-      byName_[models[i]->name].push_back(index);
+      byName_[models[i]->name()].push_back(index);
       models_.push_back(std::move(models[i]));
       if (i == wanted) result = ModelHandle{index};
     }
@@ -172,7 +172,7 @@ ModelHandle ModelManager::add(ModelPtr model) {
   if (!model) return {};
   std::unique_lock lock(mutex_);
   const auto index = std::int32_t(models_.size());
-  byName_[model->name].push_back(index);
+  byName_[model->name()].push_back(index);
   models_.push_back(std::move(model));
   return ModelHandle{index};
 }
@@ -217,7 +217,7 @@ Status ModelManager::free(ModelHandle handle) {
     return Error(handleError(handle));
   released = std::move(models_[std::size_t(handle.index)]);
   rayIndexes_.erase(handle.index);
-  auto it = byName_.find(released->name);
+  auto it = byName_.find(released->name());
   if (it != byName_.end()) {
     std::erase(it->second, handle.index);
     if (it->second.empty()) byName_.erase(it);
@@ -255,7 +255,7 @@ std::vector<ModelListEntry> ModelManager::list() const {
   std::shared_lock lock(mutex_);
   std::vector<ModelListEntry> out;
   for (std::size_t i = 0; i < models_.size(); ++i) {
-    if (models_[i]) out.push_back({ModelHandle{std::int32_t(i)}, models_[i]->name, models_[i]});
+    if (models_[i]) out.push_back({ModelHandle{std::int32_t(i)}, models_[i]->name(), models_[i]});
   }
   return out;
 }
@@ -270,45 +270,45 @@ std::size_t ModelManager::size() const {
 Result<std::string> ModelManager::name(ModelHandle handle) const {
   Result<ModelPtr> m = require(handle);
   if (!m) return m.error();
-  return (*m)->name;
+  return (*m)->name();
 }
 
 Result<Bounds> ModelManager::bounds(ModelHandle handle) const {
   Result<ModelPtr> m = require(handle);
   if (!m) return m.error();
-  return (*m)->bounds;
+  return (*m)->bounds();
 }
 
 Result<std::uint32_t> ModelManager::contents(ModelHandle handle) const {
   Result<ModelPtr> m = require(handle);
   if (!m) return m.error();
-  return (*m)->contents;
+  return (*m)->contents();
 }
 
 Result<std::vector<Vec3>> ModelManager::vertices(ModelHandle handle) const {
   Result<ModelPtr> m = require(handle);
   if (!m) return m.error();
-  return (*m)->vertices;
+  return std::vector<Vec3>((*m)->vertices().begin(), (*m)->vertices().end());
 }
 
 Result<std::array<Vec3, 2>> ModelManager::edge(ModelHandle handle, std::size_t e) const {
   Result<ModelPtr> m = require(handle);
   if (!m) return m.error();
   const CollisionModel& model = **m;
-  if (e == 0 || e >= model.edges.size())
-    return Error("model \"" + model.name + "\" has no edge " + std::to_string(e) + " (edges are 1.." +
+  if (e == 0 || e >= model.edges().size())
+    return Error("model \"" + model.name() + "\" has no edge " + std::to_string(e) + " (edges are 1.." +
                  std::to_string(model.numEdges()) + ")");
-  const CmEdge& edge = model.edges[e];
-  return std::array<Vec3, 2>{model.vertices[std::size_t(edge.vertex[0])],
-                             model.vertices[std::size_t(edge.vertex[1])]};
+  const CmEdge& edge = model.edges()[e];
+  return std::array<Vec3, 2>{model.vertices()[std::size_t(edge.vertex[0])],
+                             model.vertices()[std::size_t(edge.vertex[1])]};
 }
 
 Result<std::vector<Vec3>> ModelManager::polygonWinding(ModelHandle handle, std::size_t p) const {
   Result<ModelPtr> m = require(handle);
   if (!m) return m.error();
-  if (p >= (*m)->polygons.size())
-    return Error("model \"" + (*m)->name + "\" has no polygon " + std::to_string(p) + " (it has " +
-                 std::to_string((*m)->polygons.size()) + ")");
+  if (p >= (*m)->polygons().size())
+    return Error("model \"" + (*m)->name() + "\" has no polygon " + std::to_string(p) + " (it has " +
+                 std::to_string((*m)->polygons().size()) + ")");
   return cmkit::polygonWinding(**m, p);
 }
 

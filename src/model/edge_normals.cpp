@@ -10,7 +10,7 @@ namespace cmkit::detail {
 namespace {
 
 // Adds one polygon's contribution to the normals of its edges.
-void addPolygonToEdgeNormals(CollisionModel& model, const CmPolygon& polygon, int& sharpEdges) {
+void addPolygonToEdgeNormals(ModelArrays& model, const CmPolygon& polygon, int& sharpEdges) {
   const Vec3& n = polygon.plane.normal;
   // The original computes the sharp-edge scale in float: 0.5 / (0.5 + 0.5 * -0.7).
   const Real sharpScale = Real(0.5) / (Real(0.5) + Real(0.5) * tol::kSharpEdgeDot);
@@ -51,7 +51,7 @@ void addPolygonToEdgeNormals(CollisionModel& model, const CmPolygon& polygon, in
 
 }  // namespace
 
-int computeEdgeNormals(CollisionModel& model) {
+int computeEdgeNormals(ModelArrays& model) {
   for (CmEdge& edge : model.edges) edge.normal = Vec3{};
   if (model.nodes.empty()) return 0;
   int sharpEdges = 0;
@@ -78,7 +78,7 @@ int computeEdgeNormals(CollisionModel& model) {
   return sharpEdges;
 }
 
-void computeModelBoundsAndContents(CollisionModel& model) {
+void computeModelBoundsAndContents(ModelArrays& model) {
   Bounds bounds;
   std::uint32_t contents = 0;
   for (const CmPolygon& p : model.polygons) {

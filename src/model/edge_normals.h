@@ -25,11 +25,11 @@ namespace cmkit::detail {
 ///    (0.5 / (0.5 + 0.5 dot)) (normal + n).
 /// The order only matters for edges with more than two users. Polygons not
 /// referenced from the tree get no visit (as in the original).
-int computeEdgeNormals(CollisionModel& model);
+int computeEdgeNormals(ModelArrays& model);
 
 /// Sets model.bounds and model.contents from the polygons and brushes (the
 /// original's CM_GetNodeBounds: both corners of every item as points, so an
 /// empty brush's cleared bounds count; no items gives zero bounds).
-void computeModelBoundsAndContents(CollisionModel& model);
+void computeModelBoundsAndContents(ModelArrays& model);
 
 }  // namespace cmkit::detail

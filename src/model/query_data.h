@@ -1,5 +1,5 @@
 // Internal: what the queries derive from a built model once instead of per
-// query (CollisionModel::queryData, made by prepareQueries), in blocks of
+// query (made with the model by its constructor, makeQueryData), in blocks of
 // kLanes entries with one array per number, for SIMD loads:
 //  - the line of every polygonEdges entry's edge (a polygon's edge lines are
 //    the entries firstEdge .. firstEdge + numEdges - 1);
@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -27,7 +28,7 @@
 
 namespace cmkit::detail {
 
-/// Whether prepareQueries makes cull blocks (CMKIT_QUERY_LANES).
+/// Whether makeQueryData makes cull blocks (CMKIT_QUERY_LANES).
 #ifdef CMKIT_QUERY_LANES
 inline constexpr bool kCullBlocks = true;
 #else
@@ -57,15 +58,18 @@ inline Pluecker blockLine(const LineBlock* blocks, std::size_t i) {
 }
 
 /// The line of model edge e (unsigned number) in its stored direction.
-inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) {
+inline Pluecker modelEdgeLine(const ModelArrays& m, std::size_t e) {
   const CmEdge& edge = m.edges[e];
   return Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])]);
 }
 
+/// The line of model edge e (unsigned number) of a sealed model.
+inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) { return modelEdgeLine(m.arrays(), e); }
+
 /// Writes the lines of `edges` (signed edge numbers) as entries 0 ..
 /// edges.size() - 1 of the blocks at `out` (blocksSpanned(0, edges.size())
 /// of them; the lanes past the last are 0).
-void writeEdgeLines(const CollisionModel& m, std::span<const std::int32_t> edges, LineBlock* out);
+void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, LineBlock* out);
 
 /// What a translation's culls read of kLanes polygonRefs entries' polygons:
 /// lane j of each array is entry j's (lanes past the last entry are 0).
@@ -76,46 +80,18 @@ struct alignas(16) CullBlock {
   Real normal[3][kLanes];          ///< plane.normal, per axis
 };
 
-/// Where a model's arrays are and how long they are (vertices, edges,
-/// polygon edges, polygons, nodes, polygon references): what a QueryData was
-/// made from.
-struct ModelArrays {
-  std::array<const void*, 6> data{};
-  std::array<std::size_t, 6> size{};
-};
-inline ModelArrays modelArrays(const CollisionModel& m) {
-  return {{m.vertices.data(), m.edges.data(), m.polygonEdges.data(), m.polygons.data(), m.nodes.data(),
-           m.polygonRefs.data()},
-          {m.vertices.size(), m.edges.size(), m.polygonEdges.size(), m.polygons.size(), m.nodes.size(),
-           m.polygonRefs.size()}};
-}
-
 struct QueryData {
-  /// The arrays it was made from: it serves only the model that owns them.
-  ModelArrays source;
-
   /// Per polygonEdges entry: its edge's line.
   std::vector<LineBlock> lines;
   /// Per polygonRefs entry: its polygon's culls (kCullBlocks builds; else empty).
   std::vector<CullBlock> culls;
 };
 
-/// model.queryData when it was made from this model's arrays (not a copy's,
-/// nor before they changed size), else null: the queries then compute what
-/// they need themselves.
-inline const QueryData* queryDataOf(const CollisionModel& m) {
-  const QueryData* d = m.queryData.get();
-  if (!d) return nullptr;
-  // (Array by array, stopping at the first difference: what every query pays.)
-  const ModelArrays& s = d->source;
-  return s.data[0] == m.vertices.data() && s.size[0] == m.vertices.size() && s.data[1] == m.edges.data() &&
-                 s.size[1] == m.edges.size() && s.data[2] == m.polygonEdges.data() &&
-                 s.size[2] == m.polygonEdges.size() && s.data[3] == m.polygons.data() &&
-                 s.size[3] == m.polygons.size() && s.data[4] == m.nodes.data() &&
-                 s.size[4] == m.nodes.size() && s.data[5] == m.polygonRefs.data() &&
-                 s.size[5] == m.polygonRefs.size()
-             ? d
-             : nullptr;
-}
+/// The query data of arrays whose numbers are in range (a sealed model's).
+std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& m);
+
+/// The model's query data (null only for ModelAccess::withoutQueryData's
+/// copies, which tests use to compare the paths with and without it).
+const QueryData* queryDataOf(const CollisionModel& m);
 
 }  // namespace cmkit::detail

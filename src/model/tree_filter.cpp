@@ -20,7 +20,7 @@ struct SubtreeSplits {
   std::array<Real, 3> highest;
 };
 
-std::vector<SubtreeSplits> subtreeSplits(const CollisionModel& model) {
+std::vector<SubtreeSplits> subtreeSplits(const ModelArrays& model) {
   constexpr Real kNone = std::numeric_limits<Real>::infinity();
   std::vector<SubtreeSplits> splits(model.nodes.size(),
                                     SubtreeSplits{{kNone, kNone, kNone}, {-kNone, -kNone, -kNone}});
@@ -57,7 +57,7 @@ bool straddlesAllSplits(const SubtreeSplits& s, const Bounds& b) {
 // precomputed subtree splits (the same test as the walk of
 // detail::insideAllChildren, without walking the subtree).
 struct StoredTree {
-  const CollisionModel& model;
+  const ModelArrays& model;
   const std::vector<SubtreeSplits>& splits;
   bool isLeaf(std::int32_t n) const { return model.nodes[std::size_t(n)].isLeaf(); }
   int axis(std::int32_t n) const { return model.nodes[std::size_t(n)].planeType; }
@@ -70,7 +70,7 @@ struct StoredTree {
 
 // Builds the node ranges from (node, item) pairs given in item order; each
 // node's list is in reverse item order (items were prepended).
-void buildRanges(CollisionModel& model, const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+void buildRanges(ModelArrays& model, const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
                  std::vector<std::int32_t>& refs, bool polygons) {
   const std::size_t numNodes = model.nodes.size();
   std::vector<std::uint32_t> count(numNodes, 0);
@@ -95,7 +95,7 @@ void buildRanges(CollisionModel& model, const std::vector<std::pair<std::int32_t
 
 }  // namespace
 
-void filterItemsIntoTree(CollisionModel& model) {
+void filterItemsIntoTree(ModelArrays& model) {
   if (model.nodes.empty()) {
     model.nodes.emplace_back();  // a single leaf
   }

@@ -65,6 +65,6 @@ void filterIntoTree(const Tree& tree, std::int32_t node, const Bounds& b, std::v
 /// original's loader does. So each node's list runs in reverse index order.
 /// Requires a well-formed tree: nodes[0] the root, children after their
 /// parent (pre-order), child indices in range.
-void filterItemsIntoTree(CollisionModel& model);
+void filterItemsIntoTree(ModelArrays& model);
 
 }  // namespace cmkit::detail

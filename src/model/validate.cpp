@@ -18,7 +18,8 @@ namespace {
 
 class Validator {
  public:
-  Validator(const CollisionModel& m, std::size_t maxViolations) : m_(m), max_(maxViolations) {}
+  Validator(const ModelArrays& m, std::size_t maxViolations, bool structureOnly)
+      : m_(m), max_(maxViolations), structureOnly_(structureOnly) {}
 
   std::vector<Violation> run() {
     vertices();
@@ -32,6 +33,7 @@ class Validator {
  private:
   void report(const char* kind, std::int64_t item, std::string message,
               Violation::Kind violation = Violation::Kind::Structure) {
+    if (structureOnly_ && violation == Violation::Kind::Geometry) return;
     if (out_.size() < max_) out_.push_back({m_.name, kind, item, std::move(message), violation});
   }
   /// An odd shape rather than corrupt data (see Violation::Kind).
@@ -276,16 +278,25 @@ class Validator {
     }
   }
 
-  const CollisionModel& m_;
+  const ModelArrays& m_;
   std::size_t max_;
+  bool structureOnly_;
   std::vector<Violation> out_;
   std::vector<int> forward_, backward_;
 };
 
 }  // namespace
 
+std::vector<Violation> validateModel(const ModelArrays& arrays, std::size_t maxViolations) {
+  return Validator(arrays, maxViolations, false).run();
+}
+
 std::vector<Violation> validateModel(const CollisionModel& model, std::size_t maxViolations) {
-  return Validator(model, maxViolations).run();
+  return validateModel(model.arrays(), maxViolations);
+}
+
+std::vector<Violation> structureViolations(const ModelArrays& arrays, std::size_t maxViolations) {
+  return Validator(arrays, maxViolations, true).run();
 }
 
 }  // namespace cmkit

@@ -97,9 +97,9 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
       const std::size_t e = std::size_t(std::abs(edgeNum));
       if (s.isChecked(s.edges[e])) continue;
       for (int j = 0; j < 2; ++j) {
-        const std::size_t vn = std::size_t(m.edges[e].vertex[j]);
+        const std::size_t vn = std::size_t(m.edges()[e].vertex[j]);
         if (s.isChecked(s.vertexChecked, vn)) continue;
-        const Vec3& p = m.vertices[vn];
+        const Vec3& p = m.vertices()[vn];
         int bestPlane = 0;
         Real bestd = -tol::kBoundsInfinity;
         int k = 0;
@@ -146,13 +146,13 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edges[e])) continue;
-    const CmEdge& edge = m.edges[e];
+    const CmEdge& edge = m.edges()[e];
     const std::size_t v1 = std::size_t(edge.vertex[0]), v2 = std::size_t(edge.vertex[1]);
     for (int j = 0; j < tw.numPolys; ++j) {
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
       // side = distance < 0 (not the sign bit: -0 counts as in front)
-      const unsigned s1 = unsigned(tp.plane.distance(m.vertices[v1]) < 0);
-      const unsigned s2 = unsigned(tp.plane.distance(m.vertices[v2]) < 0);
+      const unsigned s1 = unsigned(tp.plane.distance(m.vertices()[v1]) < 0);
+      const unsigned s2 = unsigned(tp.plane.distance(m.vertices()[v2]) < 0);
       if (s1 == s2) continue;
       const unsigned flip = s1;
       int k = 0;
@@ -163,8 +163,8 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
         if (unsigned(trmEdgeNum < 0) ^ side ^ flip) break;
       }
       if (k >= tp.source->numEdges) {
-        return stuck(ContactType::Edge, -tp.plane.normal, -tp.plane.dist, m.vertices[flip ? v2 : v1], edgeNum,
-                     j);
+        return stuck(ContactType::Edge, -tp.plane.normal, -tp.plane.dist, m.vertices()[flip ? v2 : v1],
+                     edgeNum, j);
       }
     }
   }
@@ -176,7 +176,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
 bool testTrmVertsInBrushes(TraceWork& tw, std::span<const std::int32_t> brushes) {
   QueryScratch& s = tw.scratch;
   return forEachNewItem(s, s.brushChecked, &QueryStats::brushesMet, brushes, [&](std::int32_t brushNum) {
-    const CmBrush& b = tw.model.brushes[std::size_t(brushNum)];
+    const CmBrush& b = tw.model.brushes()[std::size_t(brushNum)];
     return (b.contents & tw.contentMask) && b.bounds.intersects(tw.bounds) && trmVertexInBrush(tw, b);
   });
 }
@@ -184,7 +184,7 @@ bool testTrmVertsInBrushes(TraceWork& tw, std::span<const std::int32_t> brushes)
 bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryScratch& s = tw.scratch;
   return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
-    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
     if (!(poly.contents & tw.contentMask) || !poly.bounds.intersects(tw.bounds)) return false;
     if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
       return cull == PlaneCull::Stop;

@@ -195,11 +195,11 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   // and most points are in no brush. A turned model's axis is checked first:
   // an axis that is no rotation would move the point anywhere.
   const bool rotated = isRotated(placement.axis);
-  if (model.nodes.empty() || (rotated && !validateAxis(placement.axis).ok())) return 0;
+  if (model.nodes().empty() || (rotated && !validateAxis(placement.axis).ok())) return 0;
   Vec3 p = point - placement.origin;
   if (rotated) p = placement.axis * p;    // world -> model frame
   const Real coord[3] = {p.x, p.y, p.z};  // indexed by split axis below
-  const bool prefetchBrushes = model.brushes.size() > kPointContentsCachedBrushes;
+  const bool prefetchBrushes = model.brushes().size() > kPointContentsCachedBrushes;
 
   // Every brush on the path from the root to the point's leaf: brushes
   // straddling a split are stored at interior nodes (the original looked at
@@ -216,11 +216,11 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   while (!atLeaf) {
     int count = 0;
     while (count < kPath) {
-      const CmNode& node = model.nodes[std::size_t(n)];
+      const CmNode& node = model.nodes()[std::size_t(n)];
       if (node.numBrushRefs != 0) {
         withBrushes[count++] = &node;
         if (prefetchBrushes)
-          for (std::int32_t b : model.brushesAt(node)) prefetch(&model.brushes[std::size_t(b)]);
+          for (std::int32_t b : model.brushesAt(node)) prefetch(&model.brushes()[std::size_t(b)]);
       }
       if (node.isLeaf()) {
         atLeaf = true;
@@ -230,7 +230,7 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
     }
     while (count > 0) {
       for (std::int32_t brushNum : model.brushesAt(*withBrushes[--count])) {
-        const CmBrush& b = model.brushes[std::size_t(brushNum)];
+        const CmBrush& b = model.brushes()[std::size_t(brushNum)];
         if (!(b.contents & mask & ~contents) || !b.bounds.containsPoint(p) || b.numPlanes == 0) continue;
         if (behindAllPlanes(model.planesOf(b), p)) contents |= b.contents;
       }
@@ -371,7 +371,7 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& query,
   // index on equal depths (as a scan of all brushes in order would choose).
   std::int32_t chosen = -1;
   const auto testBrush = [&](std::int32_t bi) {
-    const CmBrush& b = model.brushes[std::size_t(bi)];
+    const CmBrush& b = model.brushes()[std::size_t(bi)];
     if (!(b.contents & q.contentMask) || !b.bounds.intersects(tb) || b.numPlanes == 0) return;
     Real best = tol::kBoundsInfinity;
     Vec3 bestNormal;
@@ -397,8 +397,8 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& query,
       result.contents = b.contents;
     }
   };
-  if (model.nodes.empty()) {  // no tree (a hand-made model): every brush
-    for (std::size_t bi = 0; bi < model.brushes.size(); ++bi) testBrush(std::int32_t(bi));
+  if (model.nodes().empty()) {  // no tree (a hand-made model): every brush
+    for (std::size_t bi = 0; bi < model.brushes().size(); ++bi) testBrush(std::int32_t(bi));
     return result;
   }
   // The brushes come from the tree: every node whose region the trace
@@ -412,7 +412,7 @@ Penetration penetration(const CollisionModel& model, const ContentsQuery& query,
     std::int32_t n = pending.back();
     pending.pop_back();
     while (true) {
-      const CmNode& node = model.nodes[std::size_t(n)];
+      const CmNode& node = model.nodes()[std::size_t(n)];
       for (const std::int32_t b : model.brushesAt(node))
         if (!s.testAndMark(s.brushChecked, std::size_t(b))) testBrush(b);
       if (node.isLeaf()) break;

@@ -222,10 +222,10 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
                               const ModelEdgeLines& lines, int trmEdgeNum) {
   const CollisionModel& m = tw.model;
   count(tw.scratch, &QueryStats::edgePairs);
-  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const Vec3& c0 = m.vertices[std::size_t(edge.vertex[0])];
-  const Vec3& d0 = m.vertices[std::size_t(edge.vertex[1])];
+  const Vec3& c0 = m.vertices()[std::size_t(edge.vertex[0])];
+  const Vec3& d0 = m.vertices()[std::size_t(edge.vertex[1])];
   const EdgeTurn& turn = rw.edgeTurn(tw, trmEdgeNum);
   const double sign = rw.sign;
 
@@ -606,14 +606,14 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
   for (std::size_t i = 0; i < edges.size() && trmEdgesHere; ++i) {
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
-    const CmEdge& edge = m.edges[e];
+    const CmEdge& edge = m.edges()[e];
     if (edge.internal) continue;
     std::uint32_t& tested = s.testedPairs(s.edges[e]);
     const std::uint32_t todo = trmEdgesHere & ~tested;
     if (!todo) continue;
     tested |= todo;
-    const Vec3& v0 = m.vertices[std::size_t(edge.vertex[0])];
-    const Vec3& v1 = m.vertices[std::size_t(edge.vertex[1])];
+    const Vec3& v0 = m.vertices()[std::size_t(edge.vertex[0])];
+    const Vec3& v1 = m.vertices()[std::size_t(edge.vertex[1])];
     Bounds modelEdgeBox = Bounds::ofPoint(v0);
     modelEdgeBox.addPoint(v1);
     const Vec3 shift = edge.normal * (tol::kClipEpsilon + tol::kPluckerRangeEpsilon);
@@ -653,7 +653,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
 bool rotateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryScratch& s = tw.scratch;
   return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
-    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
     return rotationMayTouch(tw, poly) && rotateTrmThroughPolygon(tw, polyNum, poly);
   });
 }
@@ -683,9 +683,9 @@ bool rotateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode&
               _mm_movemask_ps(boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1)));
           const std::size_t entry = (chunk + k) * kLanes;
           for (; pass; pass &= pass - 1) {
-            const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
+            const std::int32_t polyNum = tw.model.polygonRefs()[entry + std::size_t(std::countr_zero(pass))];
             if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-            if (rotateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+            if (rotateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
           }
           return false;
         });

@@ -94,7 +94,7 @@ struct QueryScratch {
   std::vector<std::uint64_t> edgesReversed;  ///< per group: edges used backwards (negative edge number)
   std::vector<std::uint64_t> edgesToTest;    ///< per group: edges to test against the trace-model edges
   /// The current polygon's edge lines (model/query_data.h), for a model
-  /// without CollisionModel::queryData.
+  /// without query data (ModelAccess::withoutQueryData: tests of that path).
   std::vector<LineBlock> edgeLines;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
@@ -352,12 +352,12 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
   for (const std::int32_t edgeNum : edges) {
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edges[e])) continue;
-    const CmEdge& edge = m.edges[e];
+    const CmEdge& edge = m.edges()[e];
     if (edge.internal) continue;
     for (int k = 0; k < 2; ++k) {
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
       if (s.testAndMark(s.vertexChecked, vn)) continue;
-      const Vec3& p = m.vertices[vn];
+      const Vec3& p = m.vertices()[vn];
       if (insideBox(tw.bounds, p)) f(vn, p);
     }
   }
@@ -376,7 +376,7 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
     case Side::Cross:
       return PlaneCull::Test;
     case Side::Front:
-      if (tw.model.isConvex) {
+      if (tw.model.isConvex()) {
         tw.quickExit = true;
         return PlaneCull::Stop;
       }

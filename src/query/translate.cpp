@@ -230,9 +230,9 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
                                             int trmEdgeNum, Real f2) {
   const CollisionModel& m = tw.model;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
-  const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
-  const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
+  const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
+  const Vec3& start = m.vertices()[std::size_t(edge.vertex[0])];
+  const Vec3& end = m.vertices()[std::size_t(edge.vertex[1])];
   tw.fraction = f2;
   // Contact plane: through the model edge, orthogonal to both edges, facing the trm.
   Vec3 normal = (end - start).cross(te.end - te.start);
@@ -264,14 +264,14 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   count(s, &QueryStats::edgePairs);
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::int32_t edgeNum = m.edgesOf(poly)[i];
-  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
   // The polygon edge's two vertices must pass the trm edge on different sides.
   const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
   const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
-  if (modelVertexSide(te, m.vertices[v1], tw.dir) == modelVertexSide(te, m.vertices[v2], tw.dir)) return;
+  if (modelVertexSide(te, m.vertices()[v1], tw.dir) == modelVertexSide(te, m.vertices()[v2], tw.dir)) return;
 
-  const Vec3& start = m.vertices[std::size_t(edge.vertex[0])];
-  const Vec3& end = m.vertices[std::size_t(edge.vertex[1])];
+  const Vec3& start = m.vertices()[std::size_t(edge.vertex[0])];
+  const Vec3& end = m.vertices()[std::size_t(edge.vertex[1])];
   Real f1;
   if (!translateEdgeThroughEdge(te.cross, te.pl, lines.line(i), f1)) return;
   if (f1 < 0) return;  // moving away from the edge
@@ -441,7 +441,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
       for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size()); ++i) {
         const std::size_t e = std::size_t(std::abs(edges[i]));
         // (& not &&: whether an edge was met before is unpredictable.)
-        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edges[e])) & unsigned(!m.edges[e].internal))
+        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edges[e])) & unsigned(!m.edges()[e].internal))
                   << (i - first);
       }
       s.edgesToTest[first / kEdgeGroup] = toTest;
@@ -482,7 +482,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
   QueryScratch& s = tw.scratch;
   return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
-    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
     if (!pointMayTouch(tw, poly)) return false;
     count(s, &QueryStats::polygonsTested);
     count(s, &QueryStats::vertexTests);
@@ -543,11 +543,12 @@ bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNo
           pass &= blockFacesPass(tw, b);
           const std::size_t entry = (chunk + k) * kLanes;
           while (pass) {
-            const std::int32_t polyNum = tw.model.polygonRefs[entry + std::size_t(std::countr_zero(pass))];
+            const std::int32_t polyNum = tw.model.polygonRefs()[entry + std::size_t(std::countr_zero(pass))];
             pass &= pass - 1;
             if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
             const Real before = tw.fraction;
-            if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons[std::size_t(polyNum)])) return true;
+            if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)]))
+              return true;
             if (tw.fraction != before) {  // the bounds may have shrunk
               bounds.load(tw);
               pass &= bounds.pass(b);
@@ -572,9 +573,9 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
   QueryScratch& s = tw.scratch;
   // The culls' loads, started together (a mispredicted cull would otherwise
   // hold up the next polygon's).
-  for (const std::int32_t polyNum : polygons) prefetch(&tw.model.polygons[std::size_t(polyNum)]);
+  for (const std::int32_t polyNum : polygons) prefetch(&tw.model.polygons()[std::size_t(polyNum)]);
   return forEachNewItem(s, s.polygonChecked, &QueryStats::polygonsMet, polygons, [&](std::int32_t polyNum) {
-    const CmPolygon& poly = tw.model.polygons[std::size_t(polyNum)];
+    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
     return mayTouch(tw, poly) && translateTrmThroughPolygon(tw, polyNum, poly);
   });
 }

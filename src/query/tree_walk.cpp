@@ -25,8 +25,8 @@ void QueryScratch::begin(const CollisionModel& model) {
   auto grow = [](auto& v, std::size_t n) {
     if (v.size() < n) v.resize(n);
   };
-  const std::size_t np = model.polygons.size(), nb = model.brushes.size();
-  const std::size_t ne = model.edges.size(), nv = model.vertices.size();
+  const std::size_t np = model.polygons().size(), nb = model.brushes().size();
+  const std::size_t ne = model.edges().size(), nv = model.vertices().size();
   grow(polygonChecked, np);
   if constexpr (kQueryStats) grow(polygonMet, np);
   grow(brushChecked, nb);
@@ -87,7 +87,7 @@ template <class Items>
 void walkBox(TraceWork& tw, std::int32_t nodeNum, const Bounds& box) {
   while (nodeNum >= 0) {
     if (tw.quickExit || tw.fraction == 0) return;  // fraction 0: blocked completely
-    const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+    const CmNode& node = tw.model.nodes()[std::size_t(nodeNum)];
     count(tw.scratch, &QueryStats::nodesVisited);
     if (Items::has(node)) Items::test(tw, node);
     if (node.isLeaf() || tw.quickExit || tw.fraction == 0) return;
@@ -116,11 +116,11 @@ void walkSegment(TraceWork& tw) {
     while (nodeNum >= 0) {
       if (tw.quickExit) return;
       if (tw.fraction <= cur.p1f) break;  // something nearer was hit already
-      const CmNode& node = tw.model.nodes[std::size_t(nodeNum)];
+      const CmNode& node = tw.model.nodes()[std::size_t(nodeNum)];
       count(tw.scratch, &QueryStats::nodesVisited);
       // The walk goes on to one child or both: start loading the back one
       // (the front one follows in memory) while this node's items are tested.
-      if (!node.isLeaf()) prefetch(&tw.model.nodes[std::size_t(node.children[1])]);
+      if (!node.isLeaf()) prefetch(&tw.model.nodes()[std::size_t(node.children[1])]);
       if (Items::has(node)) Items::test(tw, node);
       if (Items::kStopWhenStuck && tw.fraction == 0) break;
       if (node.isLeaf()) break;
@@ -187,7 +187,7 @@ PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly) {
   std::vector<LineBlock>& blocks = tw.scratch.edgeLines;
   const std::size_t size = blocksSpanned(0, edges.size());
   if (blocks.size() < size) blocks.resize(size);
-  writeEdgeLines(tw.model, edges, blocks.data());
+  writeEdgeLines(tw.model.arrays(), edges, blocks.data());
   return {blocks.data(), 0};
 }
 
@@ -199,7 +199,7 @@ void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {
 }
 
 void translateThroughModel(TraceWork& tw) {
-  if (tw.model.nodes.empty()) return;
+  if (tw.model.nodes().empty()) return;
   if (tw.pointTrace)
     walkSegment<TranslatePointItems>(tw);
   else
@@ -207,12 +207,12 @@ void translateThroughModel(TraceWork& tw) {
 }
 
 void positionTestThroughModel(TraceWork& tw) {
-  if (tw.model.nodes.empty()) return;
+  if (tw.model.nodes().empty()) return;
   walkSegment<PositionItems>(tw);
 }
 
 void rotateThroughBox(TraceWork& tw, const Bounds& box) {
-  if (tw.model.nodes.empty()) return;
+  if (tw.model.nodes().empty()) return;
   walkBox<RotateItems>(tw, 0, box);
 }
 

@@ -277,8 +277,8 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest) {
   std::vector<std::uint32_t> usable;
   std::vector<Bounds> boxes;
   std::vector<std::uint32_t> contents;
-  for (std::size_t i = 0; i < model.polygons.size(); ++i) {
-    const CmPolygon& p = model.polygons[i];
+  for (std::size_t i = 0; i < model.polygons().size(); ++i) {
+    const CmPolygon& p = model.polygons()[i];
     if (p.numEdges < 3 || !isFinite(p.bounds) || !p.plane.normal.isFinite() || !std::isfinite(p.plane.dist))
       continue;
     usable.push_back(std::uint32_t(i));
@@ -294,7 +294,7 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest) {
   d.polygons.reserve(usable.size());
   d.details.reserve(usable.size());
   for (const std::uint32_t k : binary.order()) {
-    const CmPolygon& p = model.polygons[usable[k]];
+    const CmPolygon& p = model.polygons()[usable[k]];
     Index::Polygon r;
     r.normal = p.plane.normal;
     r.dist = p.plane.dist;
@@ -303,9 +303,9 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest) {
     r.firstEdge = std::uint32_t(d.edges.size());
     r.numEdges = p.numEdges;
     for (const std::int32_t e : model.edgesOf(p)) {
-      const CmEdge& edge = model.edges[std::size_t(std::abs(e))];
-      const Pluecker line = Pluecker::fromLine(model.vertices[std::size_t(edge.vertex[0])],
-                                               model.vertices[std::size_t(edge.vertex[1])]);
+      const CmEdge& edge = model.edges()[std::size_t(std::abs(e))];
+      const Pluecker line = Pluecker::fromLine(model.vertices()[std::size_t(edge.vertex[0])],
+                                               model.vertices()[std::size_t(edge.vertex[1])]);
       Index::EdgeLine l{};
       for (int c = 0; c < 6; ++c) l.p[c] = line[c];
       l.reversed = e < 0;

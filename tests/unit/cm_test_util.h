@@ -25,7 +25,7 @@ inline bool sameBits(const Plane& a, const Plane& b) {
 
 /// Empty when the models are identical in every stored field; otherwise the
 /// first difference.
-inline std::string modelDifference(const CollisionModel& a, const CollisionModel& b) {
+inline std::string modelDifference(const ModelArrays& a, const ModelArrays& b) {
   if (a.name != b.name) return "name";
   if (!sameBits(a.bounds, b.bounds)) return "bounds";
   if (a.contents != b.contents) return "contents";
@@ -72,6 +72,11 @@ inline std::string modelDifference(const CollisionModel& a, const CollisionModel
   if (a.stats.sharpEdges != b.stats.sharpEdges || a.stats.internalEdges != b.stats.internalEdges)
     return "stats";
   return {};
+}
+
+/// modelDifference of two sealed models.
+inline std::string modelDifference(const CollisionModel& a, const CollisionModel& b) {
+  return modelDifference(a.arrays(), b.arrays());
 }
 
 /// The text without the numbers of the memory-size hints.

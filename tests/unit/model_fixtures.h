@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "cmkit/contents.h"
 #include "cmkit/model.h"
 #include "cmkit/trace_model.h"
@@ -20,7 +22,7 @@ class ModelMaker {
   ModelMaker& addConvex(const TraceModel& shape,
                         std::uint32_t contents = contents::kSolid | contents::kOpaque,
                         const std::string& material = "textures/test/wall") {
-    CollisionModel& m = model_;
+    ModelArrays& m = model_;
     if (m.edges.empty()) m.edges.emplace_back();  // the dummy edge 0
     const auto matIndex = std::int32_t(m.materials.size());
     m.materials.push_back(material);
@@ -63,12 +65,12 @@ class ModelMaker {
     model_.edges[std::size_t(e)].internal = true;
     return *this;
   }
-  CollisionModel& model() { return model_; }
+  ModelArrays& model() { return model_; }
 
-  /// The finished model: one leaf holding everything, bounds, contents and
+  /// The finished arrays: one leaf holding everything, bounds, contents and
   /// edge normals computed.
-  CollisionModel build() {
-    CollisionModel m = model_;
+  ModelArrays buildArrays() const {
+    ModelArrays m = model_;
     m.name = "test";
     m.nodes.assign(1, CmNode{});
     for (std::size_t i = 0; i < m.polygons.size(); ++i) m.polygonRefs.push_back(std::int32_t(i));
@@ -81,12 +83,20 @@ class ModelMaker {
       m.contents |= p.contents;
     }
     detail::computeEdgeNormals(m);
-    prepareQueries(m);
     return m;
+  }
+  /// The finished model (buildArrays, sealed by CollisionModel::create).
+  CollisionModel build() const {
+    Result<ModelPtr> m = CollisionModel::create(buildArrays());
+    if (!m) {
+      ADD_FAILURE() << m.error().toString();
+      std::abort();
+    }
+    return **m;
   }
 
  private:
-  CollisionModel model_;
+  ModelArrays model_;
 };
 
 }  // namespace cmkit::test

@@ -101,8 +101,8 @@ constexpr std::size_t kQueries = 3000;
 TEST(Batch, TranslationsEqualSingleQueriesAtAnyThreadCount) {
   ASSERT_FALSE(lt4().empty());
   const CollisionModel& world = *lt4()[0];
-  const auto starts = randomPoints(world.bounds, kQueries, 1);
-  const auto ends = randomPoints(world.bounds.expanded(64), kQueries, 2);
+  const auto starts = randomPoints(world.bounds(), kQueries, 1);
+  const auto ends = randomPoints(world.bounds().expanded(64), kQueries, 2);
   TranslationBatch batch;
   batch.trm = &playerBox();
   batch.starts = starts;
@@ -127,8 +127,8 @@ TEST(Batch, TranslationsEqualSingleQueriesAtAnyThreadCount) {
 TEST(Batch, OneStartManyEnds) {
   ASSERT_FALSE(lt4().empty());
   const CollisionModel& world = *lt4()[0];
-  const std::vector<Vec3> start{world.bounds.center()};
-  const auto ends = randomPoints(world.bounds, 500, 3);
+  const std::vector<Vec3> start{world.bounds().center()};
+  const auto ends = randomPoints(world.bounds(), 500, 3);
   std::vector<TraceResult> out(ends.size());
   TranslationBatch batch;
   batch.starts = start;  // a point trace from one start
@@ -144,7 +144,7 @@ TEST(Batch, OneStartManyEnds) {
 TEST(Batch, RotationsEqualSingleQueriesAtAnyThreadCount) {
   ASSERT_FALSE(lt4().empty());
   const CollisionModel& world = *lt4()[0];
-  const auto starts = randomPoints(world.bounds, 600, 4);
+  const auto starts = randomPoints(world.bounds(), 600, 4);
   std::vector<Rotation> rotations;
   for (std::size_t i = 0; i < starts.size(); ++i)
     rotations.emplace_back(starts[i] + Vec3{Real(i % 7), 3, 0}, Vec3{0, 0, 1}, Real(int(i % 360) - 180));
@@ -172,7 +172,7 @@ TEST(Batch, RotationsEqualSingleQueriesAtAnyThreadCount) {
 TEST(Batch, ContentsPointContentsAndContactsEqualSingleQueries) {
   ASSERT_FALSE(lt4().empty());
   const CollisionModel& world = *lt4()[0];
-  const auto points = randomPoints(world.bounds, kQueries, 5);
+  const auto points = randomPoints(world.bounds(), kQueries, 5);
   QueryWork work;
 
   std::vector<ContentsResult> contentsLoop(points.size());
@@ -219,8 +219,8 @@ TEST(Batch, RayCastsEqualSingleCasts) {
   ASSERT_FALSE(lt4().empty());
   const CollisionModel& world = *lt4()[0];
   const RayIndex index(world);
-  const auto starts = randomPoints(world.bounds, kQueries, 6);
-  const auto ends = randomPoints(world.bounds, kQueries, 7);
+  const auto starts = randomPoints(world.bounds(), kQueries, 6);
+  const auto ends = randomPoints(world.bounds(), kQueries, 7);
   std::vector<RayHit> loop(kQueries);
   int hits = 0;
   for (std::size_t i = 0; i < kQueries; ++i) {
@@ -240,7 +240,7 @@ TEST(Batch, RayCastsEqualSingleCasts) {
 
 TEST(Batch, ProgressCountsUpToTheBatchSize) {
   ASSERT_FALSE(lt4().empty());
-  const auto points = randomPoints(lt4()[0]->bounds, 1000, 8);
+  const auto points = randomPoints(lt4()[0]->bounds(), 1000, 8);
   std::vector<std::uint32_t> out(points.size());
   std::vector<std::size_t> seen;
   BatchOptions options = threadsAndChunk(1, 100);
@@ -258,7 +258,7 @@ TEST(Batch, ProgressCountsUpToTheBatchSize) {
 TEST(Batch, CancelStopsTheBatch) {
   ASSERT_FALSE(lt4().empty());
   const CollisionModel& world = *lt4()[0];
-  const auto starts = randomPoints(world.bounds, 1000, 9);
+  const auto starts = randomPoints(world.bounds(), 1000, 9);
   TranslationBatch batch;
   batch.trm = &playerBox();
   batch.starts = starts;

@@ -62,23 +62,23 @@ Built buildText(const std::string& body) {
 
 /// Structural invariants every built model satisfies.
 void checkInvariants(const CollisionModel& m) {
-  ASSERT_FALSE(m.nodes.empty());
+  ASSERT_FALSE(m.nodes().empty());
   std::set<int> referencedPolygons;
   std::set<int> referencedBrushes;
-  for (std::size_t i = 0; i < m.nodes.size(); ++i) {
-    const CmNode& n = m.nodes[i];
+  for (std::size_t i = 0; i < m.nodes().size(); ++i) {
+    const CmNode& n = m.nodes()[i];
     if (!n.isLeaf()) {
       ASSERT_GT(n.children[0], static_cast<int>(i));  // pre-order
       ASSERT_GT(n.children[1], n.children[0]);        // front child first
-      EXPECT_EQ(m.nodes[static_cast<std::size_t>(n.children[0])].parent, static_cast<int>(i));
-      EXPECT_EQ(m.nodes[static_cast<std::size_t>(n.children[1])].parent, static_cast<int>(i));
+      EXPECT_EQ(m.nodes()[static_cast<std::size_t>(n.children[0])].parent, static_cast<int>(i));
+      EXPECT_EQ(m.nodes()[static_cast<std::size_t>(n.children[1])].parent, static_cast<int>(i));
     }
     for (const int p : m.polygonsAt(n)) referencedPolygons.insert(p);
     for (const int b : m.brushesAt(n)) referencedBrushes.insert(b);
   }
-  EXPECT_EQ(referencedPolygons.size(), m.polygons.size());
-  EXPECT_EQ(referencedBrushes.size(), m.brushes.size());
-  for (const CmPolygon& p : m.polygons) {
+  EXPECT_EQ(referencedPolygons.size(), m.polygons().size());
+  EXPECT_EQ(referencedBrushes.size(), m.brushes().size());
+  for (const CmPolygon& p : m.polygons()) {
     ASSERT_GE(p.numEdges, 3u);
     // consecutive edges are connected
     const auto edges = m.edgesOf(p);
@@ -86,7 +86,7 @@ void checkInvariants(const CollisionModel& m) {
       const std::int32_t e = edges[i];
       const std::int32_t next = edges[(i + 1) % edges.size()];
       ASSERT_NE(e, 0);
-      const CmEdge& ce = m.edges[static_cast<std::size_t>(std::abs(e))];
+      const CmEdge& ce = m.edges()[static_cast<std::size_t>(std::abs(e))];
       const int end = e > 0 ? ce.vertex[1] : ce.vertex[0];
       EXPECT_EQ(end, m.edgeStart(next));
     }
@@ -97,29 +97,29 @@ TEST(BuildBasic, SingleCube) {
   const Built b = buildText(world(box({-64, -64, -64}, {64, 64, 64})));
   ASSERT_EQ(b.models.size(), 1u);
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.name, "worldMap");
-  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.name(), "worldMap");
+  EXPECT_EQ(m.vertices().size(), 8u);
   EXPECT_EQ(m.numEdges(), 12u);
-  EXPECT_EQ(m.edges.size(), 13u);  // with the dummy edge 0
-  EXPECT_EQ(m.polygons.size(), 6u);
-  EXPECT_EQ(m.brushes.size(), 1u);
-  EXPECT_EQ(m.nodes.size(), 1u);
-  EXPECT_TRUE(m.nodes[0].isLeaf());
-  EXPECT_EQ(m.polygonRefs.size(), 6u);
-  EXPECT_EQ(m.contents, 3u);  // solid | opaque
-  EXPECT_EQ(m.bounds, Bounds({-64, -64, -64}, {64, 64, 64}));
-  for (std::size_t e = 1; e < m.edges.size(); ++e) {
-    EXPECT_EQ(m.edges[e].numUsers, 2);
-    EXPECT_FALSE(m.edges[e].internal);
+  EXPECT_EQ(m.edges().size(), 13u);  // with the dummy edge 0
+  EXPECT_EQ(m.polygons().size(), 6u);
+  EXPECT_EQ(m.brushes().size(), 1u);
+  EXPECT_EQ(m.nodes().size(), 1u);
+  EXPECT_TRUE(m.nodes()[0].isLeaf());
+  EXPECT_EQ(m.polygonRefs().size(), 6u);
+  EXPECT_EQ(m.contents(), 3u);  // solid | opaque
+  EXPECT_EQ(m.bounds(), Bounds({-64, -64, -64}, {64, 64, 64}));
+  for (std::size_t e = 1; e < m.edges().size(); ++e) {
+    EXPECT_EQ(m.edges()[e].numUsers, 2);
+    EXPECT_FALSE(m.edges()[e].internal);
   }
   // Node lists are prepended: the last side's polygon comes first.
-  EXPECT_EQ(m.polygons[0].plane.normal, Vec3(-1, 0, 0));
-  EXPECT_EQ(m.polygons[5].plane.normal, Vec3(0, 0, 1));
-  EXPECT_EQ(m.polygons[5].plane.dist, 64);
-  ASSERT_EQ(m.materials.size(), 1u);
-  EXPECT_EQ(m.materials[0], "textures/a");
-  EXPECT_EQ(m.stats.internalEdges, 0);
-  EXPECT_EQ(m.stats.sharpEdges, 0);
+  EXPECT_EQ(m.polygons()[0].plane.normal, Vec3(-1, 0, 0));
+  EXPECT_EQ(m.polygons()[5].plane.normal, Vec3(0, 0, 1));
+  EXPECT_EQ(m.polygons()[5].plane.dist, 64);
+  ASSERT_EQ(m.materials().size(), 1u);
+  EXPECT_EQ(m.materials()[0], "textures/a");
+  EXPECT_EQ(m.stats().internalEdges, 0);
+  EXPECT_EQ(m.stats().sharpEdges, 0);
   checkInvariants(m);
   EXPECT_TRUE(b.warnings.empty());
 }
@@ -128,18 +128,18 @@ TEST(BuildBasic, TouchingCubesLoseSharedFacesAndMerge) {
   const Built b = buildText(world(box({-64, -64, -64}, {64, 64, 64}) + box({64, -64, -64}, {192, 64, 64})));
   ASSERT_EQ(b.models.size(), 1u);
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.brushes.size(), 2u);
+  EXPECT_EQ(m.brushes().size(), 2u);
   // the two faces at x = 64 are inside the other cube
-  EXPECT_EQ(m.stats.containedPolygonsRemoved, 2);
+  EXPECT_EQ(m.stats().containedPolygonsRemoved, 2);
   // top, bottom, front and back halves merge (collinear edges joined)
-  EXPECT_EQ(m.stats.polygonsMerged, 4);
-  EXPECT_EQ(m.polygons.size(), 6u);
-  for (const CmPolygon& p : m.polygons) EXPECT_EQ(p.numEdges, 4u);
+  EXPECT_EQ(m.stats().polygonsMerged, 4);
+  EXPECT_EQ(m.polygons().size(), 6u);
+  for (const CmPolygon& p : m.polygons()) EXPECT_EQ(p.numEdges, 4u);
   // vertices of the dropped middle edges survive (compaction keeps every
   // vertex of an edge slot, used or not), as in the original
-  EXPECT_EQ(m.vertices.size(), 12u);
+  EXPECT_EQ(m.vertices().size(), 12u);
   EXPECT_EQ(m.numEdges(), 12u);
-  EXPECT_EQ(m.bounds, Bounds({-64, -64, -64}, {192, 64, 64}));
+  EXPECT_EQ(m.bounds(), Bounds({-64, -64, -64}, {192, 64, 64}));
   checkInvariants(m);
 }
 
@@ -151,9 +151,9 @@ TEST(BuildBasic, CoplanarTouchingFacesFacingTheSameWaySurvive) {
       buildText(world(box({0, 0, 0}, {64, 64, 64}) +
                       box({0, 0, 64}, {64, 64, 72}, std::vector<std::string>(6, "textures/water"))));
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.stats.containedPolygonsRemoved, 0);
-  EXPECT_EQ(m.polygons.size(), 12u);
-  EXPECT_EQ(m.contents, 3u | 4u);
+  EXPECT_EQ(m.stats().containedPolygonsRemoved, 0);
+  EXPECT_EQ(m.polygons().size(), 12u);
+  EXPECT_EQ(m.contents(), 3u | 4u);
   checkInvariants(m);
 }
 
@@ -165,21 +165,21 @@ TEST(BuildBasic, RoomGetsBspTree) {
                             box({-64, -64, 0}, {64, 64, 128});
   const Built b = buildText(world(walls));
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.brushes.size(), 7u);
-  EXPECT_GT(m.nodes.size(), 1u);
-  EXPECT_FALSE(m.nodes[0].isLeaf());
-  EXPECT_GT(m.stats.internalEdges, 0);
-  EXPECT_GT(m.stats.containedPolygonsRemoved, 0);
+  EXPECT_EQ(m.brushes().size(), 7u);
+  EXPECT_GT(m.nodes().size(), 1u);
+  EXPECT_FALSE(m.nodes()[0].isLeaf());
+  EXPECT_GT(m.stats().internalEdges, 0);
+  EXPECT_GT(m.stats().containedPolygonsRemoved, 0);
   checkInvariants(m);
   // every leaf's polygons touch the leaf's region: walk down from the root
   // and check that split planes separate children
-  for (const CmNode& n : m.nodes) {
+  for (const CmNode& n : m.nodes()) {
     if (n.isLeaf()) continue;
-    for (const int p : m.polygonsAt(m.nodes[static_cast<std::size_t>(n.children[0])])) {
-      EXPECT_GE(m.polygons[static_cast<std::size_t>(p)].bounds.max[n.planeType], n.planeDist);
+    for (const int p : m.polygonsAt(m.nodes()[static_cast<std::size_t>(n.children[0])])) {
+      EXPECT_GE(m.polygons()[static_cast<std::size_t>(p)].bounds.max[n.planeType], n.planeDist);
     }
-    for (const int p : m.polygonsAt(m.nodes[static_cast<std::size_t>(n.children[1])])) {
-      EXPECT_LE(m.polygons[static_cast<std::size_t>(p)].bounds.min[n.planeType], n.planeDist);
+    for (const int p : m.polygonsAt(m.nodes()[static_cast<std::size_t>(n.children[1])])) {
+      EXPECT_LE(m.polygons()[static_cast<std::size_t>(p)].bounds.min[n.planeType], n.planeDist);
     }
   }
 }
@@ -188,9 +188,9 @@ TEST(BuildBasic, FourBrushesGetNoTreeFiveMayGetOne) {
   std::string four;
   for (int i = 0; i < 4; ++i) four += box({i * 256.0f, 0, 0}, {i * 256.0f + 64, 64, 64});
   const Built b4 = buildText(world(four));
-  EXPECT_EQ(b4.models[0]->nodes.size(), 1u);
+  EXPECT_EQ(b4.models[0]->nodes().size(), 1u);
   const Built b5 = buildText(world(four + box({1024, 0, 0}, {1088, 64, 64})));
-  EXPECT_GT(b5.models[0]->nodes.size(), 1u);
+  EXPECT_GT(b5.models[0]->nodes().size(), 1u);
 }
 
 TEST(BuildBasic, FlatPatchIsOneQuad) {
@@ -203,10 +203,10 @@ TEST(BuildBasic, FlatPatchIsOneQuad) {
   const Built b = buildText(world(patch));
   ASSERT_EQ(b.models.size(), 1u);
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.brushes.size(), 0u);
-  ASSERT_EQ(m.polygons.size(), 1u);
-  EXPECT_EQ(m.polygons[0].numEdges, 4u);
-  EXPECT_EQ(std::fabs(m.polygons[0].plane.normal.z), 1.0f);
+  EXPECT_EQ(m.brushes().size(), 0u);
+  ASSERT_EQ(m.polygons().size(), 1u);
+  EXPECT_EQ(m.polygons()[0].numEdges, 4u);
+  EXPECT_EQ(std::fabs(m.polygons()[0].plane.normal.z), 1.0f);
   checkInvariants(m);
 }
 
@@ -219,9 +219,9 @@ TEST(BuildBasic, CurvedPatchMakesManyPolygons) {
       ")\n}\n}\n";
   const Built b = buildText(world(patch));
   const CollisionModel& m = *b.models[0];
-  EXPECT_GT(m.polygons.size(), 4u);
+  EXPECT_GT(m.polygons().size(), 4u);
   // all patch cells are planar quads here (the curve is along one axis)
-  for (const CmPolygon& p : m.polygons) EXPECT_EQ(p.numEdges, 4u);
+  for (const CmPolygon& p : m.polygons()) EXPECT_EQ(p.numEdges, 4u);
   // neighbouring cells share edges, some of them internal (concave side)
   checkInvariants(m);
 }
@@ -235,18 +235,18 @@ TEST(BuildBasic, ModelNames) {
                 entity("\"classname\" \"func_static\"\n\"model\" \"models/a.lwo\"\n", "") +
                 entity("\"classname\" \"func_static\"\n", cube));
   ASSERT_EQ(b.models.size(), 5u);  // the entity that only names a mesh gets none
-  EXPECT_EQ(b.models[0]->name, "worldMap");
-  EXPECT_EQ(b.models[1]->name, "door");
-  EXPECT_EQ(b.models[2]->name, "lift");
-  EXPECT_EQ(b.models[3]->name, "unnamed inline model");
-  EXPECT_EQ(b.models[4]->name, "unnamed inline model");
+  EXPECT_EQ(b.models[0]->name(), "worldMap");
+  EXPECT_EQ(b.models[1]->name(), "door");
+  EXPECT_EQ(b.models[2]->name(), "lift");
+  EXPECT_EQ(b.models[3]->name(), "unnamed inline model");
+  EXPECT_EQ(b.models[4]->name(), "unnamed inline model");
 }
 
 TEST(BuildBasic, FirstModelIsWorldMapEvenWhenNotTheWorldspawn) {
   const std::string cube = box({0, 0, 0}, {16, 16, 16});
   const Built b = buildText(world("") + entity("\"classname\" \"func_static\"\n", cube));
   ASSERT_EQ(b.models.size(), 1u);
-  EXPECT_EQ(b.models[0]->name, "worldMap");
+  EXPECT_EQ(b.models[0]->name(), "worldMap");
 }
 
 TEST(BuildBasic, PrimitivesWithoutContentsGiveAnEmptyModel) {
@@ -256,14 +256,14 @@ TEST(BuildBasic, PrimitivesWithoutContentsGiveAnEmptyModel) {
                        box({0, 0, 0}, {16, 16, 16}, std::vector<std::string>(6, "textures/common/noclip"))));
   ASSERT_EQ(b.models.size(), 2u);
   const CollisionModel& m = *b.models[1];
-  EXPECT_EQ(m.name, "ghost");
-  EXPECT_EQ(m.polygons.size(), 0u);
-  EXPECT_EQ(m.brushes.size(), 0u);
-  EXPECT_EQ(m.vertices.size(), 0u);
-  EXPECT_EQ(m.edges.size(), 0u);
-  EXPECT_EQ(m.nodes.size(), 1u);
-  EXPECT_EQ(m.bounds, Bounds(Vec3{}, Vec3{}));
-  EXPECT_EQ(m.contents, 0u);
+  EXPECT_EQ(m.name(), "ghost");
+  EXPECT_EQ(m.polygons().size(), 0u);
+  EXPECT_EQ(m.brushes().size(), 0u);
+  EXPECT_EQ(m.vertices().size(), 0u);
+  EXPECT_EQ(m.edges().size(), 0u);
+  EXPECT_EQ(m.nodes().size(), 1u);
+  EXPECT_EQ(m.bounds(), Bounds(Vec3{}, Vec3{}));
+  EXPECT_EQ(m.contents(), 0u);
 }
 
 TEST(BuildBasic, BrushContentsIgnoreTheLastSide) {
@@ -272,9 +272,9 @@ TEST(BuildBasic, BrushContentsIgnoreTheLastSide) {
   mats[5] = "textures/a";
   const Built b = buildText(world(box({0, 0, 0}, {16, 16, 16}, mats)));
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.brushes.size(), 0u);
-  ASSERT_EQ(m.polygons.size(), 1u);
-  EXPECT_EQ(m.polygons[0].plane.normal, Vec3(-1, 0, 0));
+  EXPECT_EQ(m.brushes().size(), 0u);
+  ASSERT_EQ(m.polygons().size(), 1u);
+  EXPECT_EQ(m.polygons()[0].plane.normal, Vec3(-1, 0, 0));
 
   // Contents are the OR of sides 0..n-2; the material is side n-2's.
   std::vector<std::string> mixed(6, "textures/a");
@@ -283,10 +283,10 @@ TEST(BuildBasic, BrushContentsIgnoreTheLastSide) {
   mixed[5] = "textures/common/monster_clip";  // -x, the last side: ignored
   const Built b2 = buildText(world(box({0, 0, 0}, {16, 16, 16}, mixed)));
   const CollisionModel& m2 = *b2.models[0];
-  ASSERT_EQ(m2.brushes.size(), 1u);
-  EXPECT_EQ(m2.brushes[0].contents, 3u | 8u);
-  EXPECT_EQ(m2.materialName(m2.brushes[0].material), "textures/b");
-  EXPECT_EQ(m2.contents, 3u | 8u | 16u);  // the -x polygon is monster clip
+  ASSERT_EQ(m2.brushes().size(), 1u);
+  EXPECT_EQ(m2.brushes()[0].contents, 3u | 8u);
+  EXPECT_EQ(m2.materialName(m2.brushes()[0].material), "textures/b");
+  EXPECT_EQ(m2.contents(), 3u | 8u | 16u);  // the -x polygon is monster clip
 }
 
 TEST(BuildBasic, VerticesWeldAcrossHashCells) {
@@ -294,9 +294,9 @@ TEST(BuildBasic, VerticesWeldAcrossHashCells) {
   // only, then in x and y): the original's one-cell lookup misses them;
   // cmkit finds them (dhewm3's neighbour-cell search).
   const Built one = buildText(world(box({0, 0, 0}, {5.6f, 16, 16}) + box({5.65f, 0, 0}, {16, 16, 16})));
-  EXPECT_EQ(one.models[0]->vertices.size(), 12u);
+  EXPECT_EQ(one.models[0]->vertices().size(), 12u);
   const Built two = buildText(world(box({0, 0, 0}, {5.6f, 5.6f, 16}) + box({5.65f, 5.65f, 0}, {16, 16, 16})));
-  EXPECT_EQ(two.models[0]->vertices.size(), 14u);
+  EXPECT_EQ(two.models[0]->vertices().size(), 14u);
 }
 
 TEST(BuildBasic, PatchPolygonsAreFilteredIntoTheBrushTree) {
@@ -310,8 +310,8 @@ TEST(BuildBasic, PatchPolygonsAreFilteredIntoTheBrushTree) {
       ")\n}\n}\n";
   const Built b = buildText(world(walls + patch));
   const CollisionModel& m = *b.models[0];
-  EXPECT_GT(m.nodes.size(), 1u);
-  EXPECT_EQ(m.polygons.size(), 6u * 6u + 1u);
+  EXPECT_GT(m.nodes().size(), 1u);
+  EXPECT_EQ(m.polygons().size(), 6u * 6u + 1u);
   checkInvariants(m);
 }
 
@@ -330,8 +330,8 @@ TEST(BuildBadInput, BrushesWithTooFewSides) {
   const CollisionModel& m = *b.models[0];
   // the open brushes' polygons reach the world limit and are dropped (with a
   // warning each); the cube survives
-  EXPECT_EQ(m.polygons.size(), 6u);
-  EXPECT_EQ(m.brushes.size(), 2u);  // the open 3-sided brush and the cube
+  EXPECT_EQ(m.polygons().size(), 6u);
+  EXPECT_EQ(m.brushes().size(), 2u);  // the open 3-sided brush and the cube
   checkInvariants(m);
 }
 
@@ -343,8 +343,8 @@ TEST(BuildBadInput, DuplicatePlanes) {
   const CollisionModel& m = *b.models[0];
   // each duplicate clips the other away (ClipInPlace keeps nothing on the
   // plane): the top face is lost, as in the original
-  EXPECT_EQ(m.brushes.size(), 1u);
-  EXPECT_EQ(m.polygons.size(), 5u);
+  EXPECT_EQ(m.brushes().size(), 1u);
+  EXPECT_EQ(m.polygons().size(), 5u);
   checkInvariants(m);
 }
 
@@ -355,11 +355,11 @@ TEST(BuildBadInput, InvertedBrushIsEmptyAndMakesInfiniteModelBounds) {
                                side(0, 0, -1, -16) + side(0, -1, 0, -16) + side(-1, 0, 0, -16) + "}\n}\n";
   const Built b = buildText(world(inverted));
   const CollisionModel& m = *b.models[0];
-  EXPECT_EQ(m.polygons.size(), 0u);
-  ASSERT_EQ(m.brushes.size(), 1u);
-  EXPECT_TRUE(m.brushes[0].bounds.isCleared());
-  EXPECT_EQ(m.bounds.min.x, -tol::kBoundsInfinity);
-  EXPECT_EQ(m.bounds.max.x, tol::kBoundsInfinity);
+  EXPECT_EQ(m.polygons().size(), 0u);
+  ASSERT_EQ(m.brushes().size(), 1u);
+  EXPECT_TRUE(m.brushes()[0].bounds.isCleared());
+  EXPECT_EQ(m.bounds().min.x, -tol::kBoundsInfinity);
+  EXPECT_EQ(m.bounds().max.x, tol::kBoundsInfinity);
   EXPECT_FALSE(b.warnings.empty());
 }
 
@@ -367,7 +367,7 @@ TEST(BuildBadInput, HugeCoordinatesAreDroppedWithAWarning) {
   const Built b = buildText(world(box({0, 0, 0}, {200000, 16, 16})));
   const CollisionModel& m = *b.models[0];
   EXPECT_FALSE(b.warnings.empty());
-  EXPECT_LT(m.polygons.size(), 6u);
+  EXPECT_LT(m.polygons().size(), 6u);
 }
 
 // Found by fuzzing: a patch point at 6.5e13 makes welded vertices whose
@@ -386,7 +386,7 @@ TEST(BuildBadInput, EnormousPatchPointsStillGiveClosedOutlines) {
   // In float the patch keeps some polygons; in double the welded vertices
   // differ and every winding may reach beyond kMaxWorldCoord and be dropped.
   if constexpr (!kDoublePrecision) {
-    EXPECT_GT(b.models[1]->polygons.size(), 0u);
+    EXPECT_GT(b.models[1]->polygons().size(), 0u);
   }
   // Hundreds of dropped polygons give one line per message, with a count.
   const std::set<std::string> distinct(b.warnings.begin(), b.warnings.end());

@@ -66,23 +66,23 @@ std::string g(float v) {
 }
 
 std::string header(const CollisionModel& m) {
-  return "\"" + m.name + "\": bounds (" + g(m.bounds.min.x) + " " + g(m.bounds.min.y) + " " +
-         g(m.bounds.min.z) + ")-(" + g(m.bounds.max.x) + " " + g(m.bounds.max.y) + " " + g(m.bounds.max.z) +
-         ") contents " + std::to_string(m.contents);
+  return "\"" + m.name() + "\": bounds (" + g(m.bounds().min.x) + " " + g(m.bounds().min.y) + " " +
+         g(m.bounds().min.z) + ")-(" + g(m.bounds().max.x) + " " + g(m.bounds().max.y) + " " +
+         g(m.bounds().max.z) + ") contents " + std::to_string(m.contents());
 }
 
 std::map<std::string, long long> counts(const CollisionModel& m) {
-  return {{"vertices", static_cast<long long>(m.vertices.size())},
-          {"edges", static_cast<long long>(m.edges.size())},
-          {"polygons", static_cast<long long>(m.polygons.size())},
-          {"brushes", static_cast<long long>(m.brushes.size())},
-          {"nodes", static_cast<long long>(m.nodes.size()) - 1},
-          {"polygon refs", static_cast<long long>(m.polygonRefs.size())},
-          {"brush refs", static_cast<long long>(m.brushRefs.size())},
-          {"internal edges", m.stats.internalEdges},
-          {"sharp edges", m.stats.sharpEdges},
-          {"contained polygons removed", m.stats.containedPolygonsRemoved},
-          {"polygons merged", m.stats.polygonsMerged}};
+  return {{"vertices", static_cast<long long>(m.vertices().size())},
+          {"edges", static_cast<long long>(m.edges().size())},
+          {"polygons", static_cast<long long>(m.polygons().size())},
+          {"brushes", static_cast<long long>(m.brushes().size())},
+          {"nodes", static_cast<long long>(m.nodes().size()) - 1},
+          {"polygon refs", static_cast<long long>(m.polygonRefs().size())},
+          {"brush refs", static_cast<long long>(m.brushRefs().size())},
+          {"internal edges", m.stats().internalEdges},
+          {"sharp edges", m.stats().sharpEdges},
+          {"contained polygons removed", m.stats().containedPolygonsRemoved},
+          {"polygons merged", m.stats().polygonsMerged}};
 }
 
 /// A map with a stats file: its reference folder ("reference", or
@@ -139,7 +139,7 @@ TEST(BuildReference, EveryModelOfEveryMapMatchesTheOriginalsStatistics) {
         ASSERT_NE(it, ref[i].counts.end()) << key;
         if (it->second != value) {
           ++mismatches;
-          ADD_FAILURE() << "model " << i << " \"" << m.name << "\": " << key << " " << value
+          ADD_FAILURE() << "model " << i << " \"" << m.name() << "\": " << key << " " << value
                         << ", the original " << it->second;
         }
       }

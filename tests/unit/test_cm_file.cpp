@@ -81,25 +81,25 @@ TEST(CmFile, SpecExampleLoadsWithRecomputedData) {
   ASSERT_EQ(f.models.size(), 1u);
   const CollisionModel& m = *f.models[0];
   EXPECT_EQ(f.crc, 0u);
-  EXPECT_EQ(m.name, "worldMap");
-  EXPECT_EQ(m.vertices.size(), 4u);
+  EXPECT_EQ(m.name(), "worldMap");
+  EXPECT_EQ(m.vertices().size(), 4u);
   EXPECT_EQ(m.numEdges(), 4u);
-  ASSERT_EQ(m.polygons.size(), 1u);
-  ASSERT_EQ(m.brushes.size(), 1u);
+  ASSERT_EQ(m.polygons().size(), 1u);
+  ASSERT_EQ(m.brushes().size(), 1u);
   // Polygon contents from the material (default rules: solid, opaque);
   // brushes get no material.
-  EXPECT_EQ(m.polygons[0].contents, contents::kSolid | contents::kOpaque);
-  EXPECT_EQ(m.materialName(m.polygons[0].material), "textures/example/floor");
-  EXPECT_EQ(m.brushes[0].material, -1);
-  EXPECT_EQ(m.brushes[0].contents, contents::kSolid | contents::kOpaque);
-  EXPECT_EQ(m.contents, contents::kSolid | contents::kOpaque);
-  EXPECT_EQ(m.bounds, Bounds(Vec3(-64, -64, -16), Vec3(64, 64, 0)));
+  EXPECT_EQ(m.polygons()[0].contents, contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(m.materialName(m.polygons()[0].material), "textures/example/floor");
+  EXPECT_EQ(m.brushes()[0].material, -1);
+  EXPECT_EQ(m.brushes()[0].contents, contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(m.contents(), contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(m.bounds(), Bounds(Vec3(-64, -64, -16), Vec3(64, 64, 0)));
   // Boundary edges get their outward in-plane normal: edge 1 runs along y = -64.
-  EXPECT_EQ(m.edges[1].normal, Vec3(0, -1, 0));
-  EXPECT_EQ(m.edges[2].normal, Vec3(1, 0, 0));
-  EXPECT_EQ(m.nodes.size(), 1u);
-  EXPECT_EQ(m.polygonRefs, std::vector<std::int32_t>{0});
-  EXPECT_EQ(m.brushRefs, std::vector<std::int32_t>{0});
+  EXPECT_EQ(m.edges()[1].normal, Vec3(0, -1, 0));
+  EXPECT_EQ(m.edges()[2].normal, Vec3(1, 0, 0));
+  EXPECT_EQ(m.nodes().size(), 1u);
+  EXPECT_EQ(test::toVector(m.polygonRefs()), std::vector<std::int32_t>{0});
+  EXPECT_EQ(test::toVector(m.brushRefs()), std::vector<std::int32_t>{0});
   EXPECT_TRUE(validateModel(m).empty());
   EXPECT_EQ(writeCmText(f.models, f.crc), kFloorCm);
 }
@@ -120,13 +120,13 @@ collisionModel "m" { }
   EXPECT_EQ(f.crc, 12345u);
   ASSERT_EQ(f.models.size(), 2u);
   const CollisionModel& m = *f.models[0];
-  EXPECT_EQ(m.brushes[0].contents, contents::kSolid | contents::kPlayerClip);  // the integer 9
-  EXPECT_EQ(m.materialName(m.polygons[0].material), "textures/base/floor");    // canonical, as the decl name
+  EXPECT_EQ(m.brushes()[0].contents, contents::kSolid | contents::kPlayerClip);  // the integer 9
+  EXPECT_EQ(m.materialName(m.polygons()[0].material), "textures/base/floor");  // canonical, as the decl name
   // A model with no sections at all: one empty leaf, zero bounds.
   const CollisionModel& empty = *f.models[1];
-  EXPECT_EQ(empty.name, "m");
-  EXPECT_EQ(empty.nodes.size(), 1u);
-  EXPECT_EQ(empty.bounds, Bounds(Vec3{}, Vec3{}));
+  EXPECT_EQ(empty.name(), "m");
+  EXPECT_EQ(empty.nodes().size(), 1u);
+  EXPECT_EQ(empty.bounds(), Bounds(Vec3{}, Vec3{}));
 }
 
 // Items are filtered into the stored tree by their bounds and prepended to
@@ -150,14 +150,14 @@ collisionModel "t" {
 )";
   const CmFile f = mustParse(text);
   const CollisionModel& m = *f.models[0];
-  ASSERT_EQ(m.nodes.size(), 5u);
-  EXPECT_EQ(m.nodes[0].children[0], 1);
-  EXPECT_EQ(m.nodes[0].children[1], 4);
-  EXPECT_EQ(m.nodes[1].children[0], 2);
-  EXPECT_EQ(m.nodes[1].children[1], 3);
-  EXPECT_EQ(m.nodes[3].parent, 1);
+  ASSERT_EQ(m.nodes().size(), 5u);
+  EXPECT_EQ(m.nodes()[0].children[0], 1);
+  EXPECT_EQ(m.nodes()[0].children[1], 4);
+  EXPECT_EQ(m.nodes()[1].children[0], 2);
+  EXPECT_EQ(m.nodes()[1].children[1], 3);
+  EXPECT_EQ(m.nodes()[3].parent, 1);
   auto at = [&](int n) {
-    const auto s = m.polygonsAt(m.nodes[std::size_t(n)]);
+    const auto s = m.polygonsAt(m.nodes()[std::size_t(n)]);
     return std::vector<std::int32_t>(s.begin(), s.end());
   };
   // Polygon 3 straddles both planes: it stays at the root. Polygon 5
@@ -194,8 +194,8 @@ TEST(CmFile, NegativeZeroAndLargeValuesSurviveTheRoundTrip) {
   const std::string text = replaced(replaced(kFloorCm, "( 0 0 1 ) 0 ( -64", "( 0 -0 1 ) -0 ( -64"),
                                     "( 64 64 0 ) \"t", "( 1000000015047466219876688855040 64 0 ) \"t");
   const CmFile f = mustParse(text);
-  EXPECT_TRUE(std::signbit(f.models[0]->polygons[0].plane.dist));
-  EXPECT_EQ(f.models[0]->polygons[0].bounds.max.x, 1e30f);
+  EXPECT_TRUE(std::signbit(f.models[0]->polygons()[0].plane.dist));
+  EXPECT_EQ(f.models[0]->polygons()[0].bounds.max.x, 1e30f);
   EXPECT_EQ(writeCmText(f.models, f.crc), text);
 }
 
@@ -237,7 +237,7 @@ TEST(CmFile, ErrorsNameFileLineAndColumn) {
 TEST(CmFile, EdgeNormalsOfAFoldAndASharpEdge) {
   // Two triangles sharing edge 1 (0 -> 1 along x): one in z = 0 facing +z,
   // the other folded back onto it (facing -z, slightly tilted): sharp.
-  CollisionModel m;
+  ModelArrays m;
   m.vertices = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 10, 1}};
   m.edges.resize(6);
   m.edges[1] = CmEdge{{0, 1}, false, 2, {}};
@@ -300,10 +300,11 @@ TEST(CmFile, Ep1ModelZeroIsNotWorldMapAndNamesRepeat) {
   const CmFile f = mustParse(test::readFile(test::testDataDir() / "cm" / "ep1.cm"));
   ASSERT_EQ(f.models.size(), 4u);
   EXPECT_EQ(f.crc, 4280070210u);
-  EXPECT_EQ(f.models[0]->name, "func_static_2");
+  EXPECT_EQ(f.models[0]->name(), "func_static_2");
   int repeated = 0;
   for (std::size_t i = 0; i < f.models.size(); ++i)
-    for (std::size_t j = i + 1; j < f.models.size(); ++j) repeated += f.models[i]->name == f.models[j]->name;
+    for (std::size_t j = i + 1; j < f.models.size(); ++j)
+      repeated += f.models[i]->name() == f.models[j]->name();
   EXPECT_GT(repeated, 0);
 }
 
@@ -311,8 +312,8 @@ TEST(CmFile, BlenderModelHasNoBrushes) {
   const CmFile f = mustParse(test::readFile(test::testDataDir() / "cm" / "blender_misc_model1.cm"));
   ASSERT_FALSE(f.models.empty());
   for (const ModelPtr& m : f.models) {
-    EXPECT_TRUE(m->brushes.empty());
-    EXPECT_FALSE(m->polygons.empty());
+    EXPECT_TRUE(m->brushes().empty());
+    EXPECT_FALSE(m->polygons().empty());
   }
 }
 

@@ -126,7 +126,7 @@ TEST(CmFuzz, DeepNodeTreesDoNotExhaustTheStack) {
   text += " ( -1 0 ) } }";
   Result<CmFile> r = parseCmText(text, "deep.cm", MaterialTable{});
   ASSERT_TRUE(r.ok()) << r.error().toString();
-  EXPECT_EQ(r->models[0]->nodes.size(), std::size_t(2 * depth + 1));
+  EXPECT_EQ(r->models[0]->nodes().size(), std::size_t(2 * depth + 1));
   // A truncated one is an error.
   EXPECT_FALSE(parseCmText(text.substr(0, text.size() - 12), "deep.cm", MaterialTable{}).ok());
 }

@@ -238,7 +238,7 @@ TEST(DebugExport, GltfRoundTripMatchesTheModel) {
   // 12 quads: 48 vertices, 2 triangles each.
   EXPECT_EQ(t.triangleVertices, 48u);
   EXPECT_EQ(t.triangleIndices, 12u * 2u * 3u);
-  EXPECT_EQ(t.bounds, m->bounds);
+  EXPECT_EQ(t.bounds, m->bounds());
   // 24 edges, one internal: 23 edge lines + 1 internal line.
   EXPECT_EQ(t.lineIndices, 24u * 2u);
   EXPECT_TRUE(t.materials.count("contents solid"));
@@ -274,7 +274,7 @@ TEST(DebugExport, GlbHasTheSameContent) {
   EXPECT_FALSE(doc["buffers"][0].has("uri"));
   const Totals t = checkDocument(doc, bin);
   EXPECT_EQ(t.triangleVertices, 48u);
-  EXPECT_EQ(t.bounds, m->bounds);
+  EXPECT_EQ(t.bounds, m->bounds());
 }
 
 TEST(DebugExport, TracesBecomeNodesWithTheirContact) {

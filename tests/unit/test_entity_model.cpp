@@ -62,19 +62,19 @@ TEST(EntityModel, TheWrittenModelEqualsTheEntitysModelInTheFullCompile) {
     ASSERT_EQ(file->models.size(), 1u);
     const CollisionModel& written = *file->models[0];
     const CollisionModel& full = *(*all)[model++];
-    EXPECT_EQ(written.name, path);
-    EXPECT_EQ(report.model->name, path);
-    EXPECT_EQ(written.vertices.size(), full.vertices.size());
-    EXPECT_EQ(written.edges.size(), full.edges.size());
-    EXPECT_EQ(written.polygons.size(), full.polygons.size());
-    EXPECT_EQ(written.brushes.size(), full.brushes.size());
-    EXPECT_EQ(written.nodes.size(), full.nodes.size());
-    EXPECT_EQ(written.bounds.min, full.bounds.min);
-    EXPECT_EQ(written.bounds.max, full.bounds.max);
+    EXPECT_EQ(written.name(), path);
+    EXPECT_EQ(report.model->name(), path);
+    EXPECT_EQ(written.vertices().size(), full.vertices().size());
+    EXPECT_EQ(written.edges().size(), full.edges().size());
+    EXPECT_EQ(written.polygons().size(), full.polygons().size());
+    EXPECT_EQ(written.brushes().size(), full.brushes().size());
+    EXPECT_EQ(written.nodes().size(), full.nodes().size());
+    EXPECT_EQ(written.bounds().min, full.bounds().min);
+    EXPECT_EQ(written.bounds().max, full.bounds().max);
     // the same text as the full compile's model renamed
-    CollisionModel renamed = full;
+    ModelArrays renamed = full.arrays();
     renamed.name = path;
-    const ModelPtr one = std::make_shared<const CollisionModel>(renamed);
+    const ModelPtr one = *CollisionModel::create(std::move(renamed));
     EXPECT_EQ(test::readFile(path), writeCmText(std::span<const ModelPtr>(&one, 1), 0));
     EXPECT_FALSE(report.traceModel.has_value());  // not asked
   }

@@ -49,18 +49,18 @@ TEST(Manager, LoadFindFreeClearList) {
   EXPECT_EQ(*mm.name(ModelHandle{4}), "worldMap");
   const ModelPtr world = mm.get(ModelHandle{4});
   ASSERT_TRUE(world);
-  EXPECT_EQ(*mm.bounds(ModelHandle{4}), world->bounds);
-  EXPECT_EQ(*mm.contents(ModelHandle{4}), world->contents);
-  EXPECT_EQ(mm.vertices(ModelHandle{4})->size(), world->vertices.size());
+  EXPECT_EQ(*mm.bounds(ModelHandle{4}), world->bounds());
+  EXPECT_EQ(*mm.contents(ModelHandle{4}), world->contents());
+  EXPECT_EQ(mm.vertices(ModelHandle{4})->size(), world->vertices().size());
   Result<std::array<Vec3, 2>> edge = mm.edge(ModelHandle{4}, 1);
   ASSERT_TRUE(edge.ok());
-  EXPECT_EQ((*edge)[0], world->vertices[std::size_t(world->edges[1].vertex[0])]);
+  EXPECT_EQ((*edge)[0], world->vertices()[std::size_t(world->edges()[1].vertex[0])]);
   EXPECT_FALSE(mm.edge(ModelHandle{4}, 0).ok());
   Result<std::vector<Vec3>> winding = mm.polygonWinding(ModelHandle{4}, 0);
   ASSERT_TRUE(winding.ok());
-  EXPECT_EQ(winding->size(), world->polygons[0].numEdges);
-  for (const Vec3& v : *winding) EXPECT_LE(std::fabs(world->polygons[0].plane.distance(v)), 0.25f);
-  EXPECT_FALSE(mm.polygonWinding(ModelHandle{4}, world->polygons.size()).ok());
+  EXPECT_EQ(winding->size(), world->polygons()[0].numEdges);
+  for (const Vec3& v : *winding) EXPECT_LE(std::fabs(world->polygons()[0].plane.distance(v)), 0.25f);
+  EXPECT_FALSE(mm.polygonWinding(ModelHandle{4}, world->polygons().size()).ok());
   Result<std::string> stats = mm.printModel(ModelHandle{4});
   ASSERT_TRUE(stats.ok());
   EXPECT_EQ(stats->rfind("worldMap\n", 0), 0u);
@@ -86,7 +86,7 @@ TEST(Manager, LoadFindFreeClearList) {
   // holds stays alive.
   ASSERT_TRUE(mm.free(ModelHandle{4}).ok());
   EXPECT_EQ(mm.find("worldMap")->index, 5);
-  EXPECT_FALSE(world->polygons.empty());
+  EXPECT_FALSE(world->polygons().empty());
 
   mm.clear();
   EXPECT_EQ(mm.size(), 0u);
@@ -125,8 +125,8 @@ TEST(Manager, LoadMapBuildsOrUsesAnUpToDateCm) {
   ASSERT_TRUE(loaded.ok());
   EXPECT_TRUE(loaded->fromCmFile);
   EXPECT_EQ(loaded->handles.size(), built->handles.size());
-  EXPECT_EQ(mm.get(kWorldModelHandle)->polygons.size(), builtWorld->polygons.size());
-  EXPECT_EQ(mm.get(kWorldModelHandle)->name, builtWorld->name);
+  EXPECT_EQ(mm.get(kWorldModelHandle)->polygons().size(), builtWorld->polygons().size());
+  EXPECT_EQ(mm.get(kWorldModelHandle)->name(), builtWorld->name());
 
   // Forced: built again.
   LoadMapOptions force;
@@ -164,21 +164,21 @@ TEST(Manager, SeveralTraceModelModelsAtOnce) {
   for (const ModelHandle h : {a, b, c}) {
     const ModelPtr m = mm.get(h);
     ASSERT_TRUE(m);
-    EXPECT_TRUE(m->isConvex);
+    EXPECT_TRUE(m->isConvex());
     for (const Violation& v : validateModel(*m)) ADD_FAILURE() << v.toString();
   }
   const ModelPtr mb = mm.get(b);
-  EXPECT_EQ(mb->contents, contents::kWater);
-  EXPECT_EQ(mb->polygons.size(), std::size_t(cylinder.numPolygons()));
+  EXPECT_EQ(mb->contents(), contents::kWater);
+  EXPECT_EQ(mb->polygons().size(), std::size_t(cylinder.numPolygons()));
   EXPECT_EQ(mb->numEdges(), std::size_t(cylinder.numEdges()));
-  EXPECT_EQ(mb->materialName(mb->polygons[0].material), "textures/water");
-  EXPECT_EQ(mb->bounds, cylinder.bounds());
+  EXPECT_EQ(mb->materialName(mb->polygons()[0].material), "textures/water");
+  EXPECT_EQ(mb->bounds(), cylinder.bounds());
   // The box's edges keep the trace model's numbering and normals.
   const ModelPtr ma = mm.get(a);
   for (int e = 1; e <= box.numEdges(); ++e) {
-    EXPECT_EQ(ma->edges[std::size_t(e)].vertex[0], box.edge(e).v[0]);
-    EXPECT_EQ(ma->edges[std::size_t(e)].normal, box.edge(e).normal);
-    EXPECT_EQ(ma->edges[std::size_t(e)].numUsers, 2);
+    EXPECT_EQ(ma->edges()[std::size_t(e)].vertex[0], box.edge(e).v[0]);
+    EXPECT_EQ(ma->edges()[std::size_t(e)].normal, box.edge(e).normal);
+    EXPECT_EQ(ma->edges()[std::size_t(e)].numUsers, 2);
   }
 }
 
@@ -218,11 +218,11 @@ TEST(Manager, TrmFromModelRejectsConcaveOpenAndTooBigModels) {
   // A single polygon is not closed.
   const ModelPtr flat = collisionModelFromTraceModel(
       *TraceModel::polygon(std::vector<Vec3>{{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}}));
-  CollisionModel open = *flat;
+  ModelArrays open = flat->arrays();
   open.polygons.resize(1);
   open.nodes[0].numPolygonRefs = 1;
   open.polygonRefs.resize(1);
-  r = traceModelFromCollisionModel(open);
+  r = traceModelFromCollisionModel(**CollisionModel::create(std::move(open)));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("not closed"), std::string::npos) << r.error().message;
 
@@ -243,7 +243,7 @@ TEST(Manager, LoadingIsSafeWhileOtherThreadsQuery) {
   const MaterialTable materials;
   ASSERT_TRUE(mm.loadCm(cmData("ep1.cm"), materials).ok());
   const ModelHandle world = kWorldModelHandle;
-  const std::size_t polygons = mm.get(world)->polygons.size();
+  const std::size_t polygons = mm.get(world)->polygons().size();
   std::atomic<bool> stop{false};
   std::atomic<long> reads{0};
   std::vector<std::thread> readers;
@@ -251,7 +251,7 @@ TEST(Manager, LoadingIsSafeWhileOtherThreadsQuery) {
     readers.emplace_back([&] {
       while (!stop) {
         const ModelPtr m = mm.get(world);
-        if (!m || m->polygons.size() != polygons) ADD_FAILURE() << "world changed";
+        if (!m || m->polygons().size() != polygons) ADD_FAILURE() << "world changed";
         if (!mm.find("func_static_2").ok()) ADD_FAILURE() << "name lost";
         (void)mm.list();
         ++reads;
@@ -278,12 +278,12 @@ TEST(Manager, RayIndexIsBuiltOnceAndDroppedWithItsModel) {
   Result<std::shared_ptr<const RayIndex>> a = mm.rayIndex(world);
   ASSERT_TRUE(a.ok()) << a.error().toString();
   ASSERT_TRUE(*a);
-  EXPECT_EQ((*a)->numPolygons(), mm.get(world)->polygons.size());
+  EXPECT_EQ((*a)->numPolygons(), mm.get(world)->polygons().size());
   Result<std::shared_ptr<const RayIndex>> b = mm.rayIndex(world);
   ASSERT_TRUE(b.ok());
   EXPECT_EQ(a->get(), b->get()) << "built again";
   // A ray down through the middle of the world hits what the index says.
-  const Bounds box = mm.get(world)->bounds;
+  const Bounds box = mm.get(world)->bounds();
   const Vec3 mid = (box.min + box.max) * Real(0.5);
   const Vec3 from{mid.x, mid.y, box.max.z + 64}, to{mid.x, mid.y, box.min.z - 64};
   const RayHit hit = (*a)->cast({from, to, ~0u});
@@ -299,7 +299,7 @@ TEST(Manager, RayIndexIsBuiltOnceAndDroppedWithItsModel) {
   ASSERT_TRUE(mm.loadCm(cmData("blender_misc_model1.cm"), materials).ok());
   Result<std::shared_ptr<const RayIndex>> c = mm.rayIndex(world);
   ASSERT_TRUE(c.ok());
-  EXPECT_EQ((*c)->numPolygons(), mm.get(world)->polygons.size()) << "an index of the new model";
+  EXPECT_EQ((*c)->numPolygons(), mm.get(world)->polygons().size()) << "an index of the new model";
 }
 
 TEST(Manager, RayIndexFromManyThreadsAtOnce) {

@@ -265,11 +265,11 @@ TEST(MapParser, Valve220BrushesGiveThePlanesOfTheirPoints) {
   ASSERT_TRUE(models.ok());
   ASSERT_EQ(models->size(), 1u);
   const CollisionModel& m = *(*models)[0];
-  EXPECT_EQ(m.vertices.size(), 8u);
-  EXPECT_EQ(m.polygons.size(), 6u);
-  EXPECT_EQ(m.brushes.size(), 1u);
-  EXPECT_EQ(m.bounds.min, (Vec3{0, 0, 0}));
-  EXPECT_EQ(m.bounds.max, (Vec3{64, 64, 16}));
+  EXPECT_EQ(m.vertices().size(), 8u);
+  EXPECT_EQ(m.polygons().size(), 6u);
+  EXPECT_EQ(m.brushes().size(), 1u);
+  EXPECT_EQ(m.bounds().min, (Vec3{0, 0, 0}));
+  EXPECT_EQ(m.bounds().max, (Vec3{64, 64, 16}));
 }
 
 TEST(MapParser, Valve220ErrorsGiveFileAndLine) {

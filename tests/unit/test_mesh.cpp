@@ -45,8 +45,8 @@ TriangleMesh cubeMesh(Real lo = 0, Real hi = 64, std::string material = "texture
 
 /// How many polygons use each edge (index = edge number).
 std::vector<int> edgeUsers(const CollisionModel& m) {
-  std::vector<int> users(m.edges.size(), 0);
-  for (const std::int32_t e : m.polygonEdges) users[static_cast<std::size_t>(std::abs(e))]++;
+  std::vector<int> users(m.edges().size(), 0);
+  for (const std::int32_t e : m.polygonEdges()) users[static_cast<std::size_t>(std::abs(e))]++;
   return users;
 }
 
@@ -75,21 +75,21 @@ TraceResult pointTrace(const CollisionModel& m, Vec3 start, Vec3 end) {
 TEST(MeshBuild, CubeGivesSixQuadsEightVerticesTwelveEdges) {
   const ModelPtr m = build(cubeMesh());
   ASSERT_TRUE(m);
-  EXPECT_EQ(m->name, "mesh");
-  EXPECT_EQ(m->vertices.size(), 8u);
+  EXPECT_EQ(m->name(), "mesh");
+  EXPECT_EQ(m->vertices().size(), 8u);
   EXPECT_EQ(m->numEdges(), 12u);  // the 6 diagonals went with the merges
-  EXPECT_EQ(m->polygons.size(), 6u);
-  EXPECT_EQ(m->brushes.size(), 0u);
-  EXPECT_EQ(m->stats.polygonsMerged, 6);
+  EXPECT_EQ(m->polygons().size(), 6u);
+  EXPECT_EQ(m->brushes().size(), 0u);
+  EXPECT_EQ(m->stats().polygonsMerged, 6);
   EXPECT_TRUE(isClosed(*m));
   EXPECT_TRUE(validateModel(*m).empty());
-  EXPECT_EQ(m->bounds.min, (Vec3{0, 0, 0}));
-  EXPECT_EQ(m->bounds.max, (Vec3{64, 64, 64}));
-  EXPECT_EQ(m->contents, contents::kSolid | contents::kOpaque);
-  for (std::size_t p = 0; p < m->polygons.size(); ++p) {
-    EXPECT_EQ(m->polygons[p].numEdges, 4u) << "polygon " << p;
+  EXPECT_EQ(m->bounds().min, (Vec3{0, 0, 0}));
+  EXPECT_EQ(m->bounds().max, (Vec3{64, 64, 64}));
+  EXPECT_EQ(m->contents(), contents::kSolid | contents::kOpaque);
+  for (std::size_t p = 0; p < m->polygons().size(); ++p) {
+    EXPECT_EQ(m->polygons()[p].numEdges, 4u) << "polygon " << p;
     // every polygon faces out of the cube: its plane holds the face
-    const Plane& pl = m->polygons[p].plane;
+    const Plane& pl = m->polygons()[p].plane;
     const Real faceCoord = pl.normal.x + pl.normal.y + pl.normal.z > 0 ? 64 : 0;
     EXPECT_EQ(pl.dist, faceCoord * (pl.normal.x + pl.normal.y + pl.normal.z)) << "polygon " << p;
   }
@@ -144,10 +144,10 @@ TEST(MeshBuild, CoplanarTrianglesOfAGridMerge) {
   mesh.surfaces.push_back(s);
   const ModelPtr m = build(mesh);
   ASSERT_TRUE(m);
-  EXPECT_LT(m->polygons.size(), 32u);
-  EXPECT_GE(m->stats.polygonsMerged, 16);
+  EXPECT_LT(m->polygons().size(), 32u);
+  EXPECT_GE(m->stats().polygonsMerged, 16);
   EXPECT_TRUE(validateModel(*m).empty());
-  for (const CmPolygon& p : m->polygons) EXPECT_EQ(p.plane.normal, (Vec3{0, 0, 1}));
+  for (const CmPolygon& p : m->polygons()) EXPECT_EQ(p.plane.normal, (Vec3{0, 0, 1}));
 }
 
 /// A 64-unit cube of material "textures/test/visual" around a 32-unit box
@@ -167,33 +167,33 @@ TEST(MeshBuild, OnlyCollisionSurfacesCollideWhenThereAreAny) {
   // Without a declaration, no surface is a collision surface: both boxes.
   const ModelPtr both = build(mesh);
   ASSERT_TRUE(both);
-  EXPECT_EQ(both->polygons.size(), 12u);
+  EXPECT_EQ(both->polygons().size(), 12u);
   MaterialTable materials;
   materials.addMtrText("textures/test/collider { collision }\n", "test.mtr");
   ASSERT_TRUE(materials.warnings().empty());
   const ModelPtr onlyCollision = build(mesh, materials);
   ASSERT_TRUE(onlyCollision);
-  EXPECT_EQ(onlyCollision->polygons.size(), 6u);
-  EXPECT_EQ(onlyCollision->bounds.min, (Vec3{16, 16, 16}));
-  EXPECT_EQ(onlyCollision->bounds.max, (Vec3{48, 48, 48}));
-  EXPECT_EQ(onlyCollision->materials, std::vector<std::string>{"textures/test/collider"});
+  EXPECT_EQ(onlyCollision->polygons().size(), 6u);
+  EXPECT_EQ(onlyCollision->bounds().min, (Vec3{16, 16, 16}));
+  EXPECT_EQ(onlyCollision->bounds().max, (Vec3{48, 48, 48}));
+  EXPECT_EQ(test::toVector(onlyCollision->materials()), std::vector<std::string>{"textures/test/collider"});
   // textures/common/collision is a collision surface by default.
   const ModelPtr byDefault = build(cubeAroundBox("textures/common/collision"));
   ASSERT_TRUE(byDefault);
-  EXPECT_EQ(byDefault->polygons.size(), 6u);
-  EXPECT_EQ(byDefault->bounds.max, (Vec3{48, 48, 48}));
+  EXPECT_EQ(byDefault->polygons().size(), 6u);
+  EXPECT_EQ(byDefault->bounds().max, (Vec3{48, 48, 48}));
 }
 
 TEST(MeshBuild, SurfacesWithoutContentsAndTheContentsOverride) {
   const ModelPtr none = build(cubeMesh(0, 64, "textures/editor/invisible"));
   ASSERT_TRUE(none);
-  EXPECT_EQ(none->polygons.size(), 0u);
+  EXPECT_EQ(none->polygons().size(), 0u);
   MeshBuildOptions options;
   options.contents = contents::kPlayerClip;
   const ModelPtr clip = build(cubeMesh(), {}, options);
   ASSERT_TRUE(clip);
-  EXPECT_EQ(clip->contents, contents::kPlayerClip);
-  EXPECT_EQ(clip->polygons.size(), 6u);
+  EXPECT_EQ(clip->contents(), contents::kPlayerClip);
+  EXPECT_EQ(clip->polygons().size(), 6u);
 }
 
 TEST(MeshBuild, TwoSidedMaterialsGetBothFacings) {
@@ -207,9 +207,9 @@ TEST(MeshBuild, TwoSidedMaterialsGetBothFacings) {
   // Each triangle gets its reversed copy at once (as the original does), so
   // the shared diagonal already has two users when the second triangle
   // comes: it gets its own edges and nothing merges. 2 x 2 triangles.
-  ASSERT_EQ(m->polygons.size(), 4u);
+  ASSERT_EQ(m->polygons().size(), 4u);
   int up = 0;
-  for (const CmPolygon& p : m->polygons) up += p.plane.normal.z > 0 ? 1 : 0;
+  for (const CmPolygon& p : m->polygons()) up += p.plane.normal.z > 0 ? 1 : 0;
   EXPECT_EQ(up, 2);
   EXPECT_EQ(pointTrace(*m, {24, 8, 10}, {24, 8, -10}).contact.normal, (Vec3{0, 0, 1}));
   EXPECT_EQ(pointTrace(*m, {24, 8, -10}, {24, 8, 10}).contact.normal, (Vec3{0, 0, -1}));
@@ -244,7 +244,7 @@ TEST(MeshBuild, ZeroAreaTrianglesAreSkippedWithAWarning) {
   options.warnings = &warnings;
   const ModelPtr m = build(mesh, {}, options);
   ASSERT_TRUE(m);
-  EXPECT_EQ(m->polygons.size(), 6u);
+  EXPECT_EQ(m->polygons().size(), 6u);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("2 triangles without area"), std::string::npos) << warnings[0];
 }
@@ -320,7 +320,7 @@ TEST(MeshBuild, ClosedSphereIsClosedAndRaysAgreeWithBruteForce) {
   ASSERT_TRUE(m);
   EXPECT_TRUE(isClosed(*m));
   EXPECT_TRUE(validateModel(*m).empty());
-  EXPECT_EQ(m->vertices.size(), mesh.positions.size());
+  EXPECT_EQ(m->vertices().size(), mesh.positions.size());
   std::mt19937 rng(12345);
   std::uniform_real_distribution<float> u(-1, 1);
   int hits = 0;
@@ -357,7 +357,7 @@ TEST(MeshBuild, CmRoundTripIsStable) {
   ASSERT_TRUE(back.ok()) << back.error().toString();
   ASSERT_EQ(back->models.size(), 1u);
   EXPECT_EQ(writeCmText(back->models, 0), text);
-  EXPECT_EQ(back->models[0]->polygons.size(), m->polygons.size());
+  EXPECT_EQ(back->models[0]->polygons().size(), m->polygons().size());
 }
 
 // ---- mesh files (assimp)
@@ -371,12 +371,12 @@ TEST(MeshFile, CubeObjLoadsAndBuildsTheCube) {
   EXPECT_EQ(mesh->surfaces[0].indices.size(), 36u);
   auto m = loadMeshModel(meshData("cube.obj").string(), MaterialTable{});
   ASSERT_TRUE(m.ok()) << m.error().toString();
-  EXPECT_EQ((*m)->name, meshData("cube.obj").string());
-  EXPECT_EQ((*m)->vertices.size(), 8u);
+  EXPECT_EQ((*m)->name(), meshData("cube.obj").string());
+  EXPECT_EQ((*m)->vertices().size(), 8u);
   EXPECT_EQ((*m)->numEdges(), 12u);
-  EXPECT_EQ((*m)->polygons.size(), 6u);
+  EXPECT_EQ((*m)->polygons().size(), 6u);
   EXPECT_TRUE(isClosed(**m));
-  EXPECT_EQ((*m)->bounds.max, (Vec3{64, 64, 64}));
+  EXPECT_EQ((*m)->bounds().max, (Vec3{64, 64, 64}));
   EXPECT_FLOAT_EQ(pointTrace(**m, {32, 32, 100}, {32, 32, -100}).fraction,
                   (36.0f - tol::kClipEpsilon) / 200.0f);
 }
@@ -385,22 +385,22 @@ TEST(MeshFile, CubeGltfIsYUpAndGivesTheSameCube) {
   CMKIT_REQUIRE_ASSIMP();
   auto m = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{});
   ASSERT_TRUE(m.ok()) << m.error().toString();
-  EXPECT_EQ((*m)->polygons.size(), 6u);
+  EXPECT_EQ((*m)->polygons().size(), 6u);
   EXPECT_TRUE(isClosed(**m));
-  EXPECT_EQ((*m)->bounds.min, (Vec3{0, 0, 0}));
-  EXPECT_EQ((*m)->bounds.max, (Vec3{64, 64, 64}));
-  EXPECT_EQ((*m)->materials, std::vector<std::string>{"textures/test/cube"});
+  EXPECT_EQ((*m)->bounds().min, (Vec3{0, 0, 0}));
+  EXPECT_EQ((*m)->bounds().max, (Vec3{64, 64, 64}));
+  EXPECT_EQ(test::toVector((*m)->materials()), std::vector<std::string>{"textures/test/cube"});
   // As written (z up) the file's y is up: the cube lies at y in [-64, 0].
   MeshLoadOptions asWritten;
   asWritten.up = MeshUpAxis::Z;
   auto raw = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{}, asWritten);
   ASSERT_TRUE(raw.ok());
-  EXPECT_EQ((*raw)->bounds.min, (Vec3{0, 0, -64}));
+  EXPECT_EQ((*raw)->bounds().min, (Vec3{0, 0, -64}));
   MeshLoadOptions scaled;
   scaled.scale = 0.5f;
   auto half = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{}, scaled);
   ASSERT_TRUE(half.ok());
-  EXPECT_EQ((*half)->bounds.max, (Vec3{32, 32, 32}));
+  EXPECT_EQ((*half)->bounds().max, (Vec3{32, 32, 32}));
 }
 
 TEST(MeshFile, GltfExportImportExportIsStable) {
@@ -424,25 +424,25 @@ TEST(MeshFile, GltfExportImportExportIsStable) {
   };
   const ModelPtr m1 = roundTrip(m0);
   ASSERT_TRUE(m1);
-  EXPECT_EQ(m1->vertices.size(), m0->vertices.size());
+  EXPECT_EQ(m1->vertices().size(), m0->vertices().size());
   EXPECT_EQ(m1->numEdges(), m0->numEdges());
-  EXPECT_EQ(m1->polygons.size(), m0->polygons.size());
+  EXPECT_EQ(m1->polygons().size(), m0->polygons().size());
   EXPECT_TRUE(isClosed(*m1));
   for (int a = 0; a < 3; ++a) {
-    EXPECT_NEAR(m1->bounds.min[a], m0->bounds.min[a], 1e-3f);
-    EXPECT_NEAR(m1->bounds.max[a], m0->bounds.max[a], 1e-3f);
+    EXPECT_NEAR(m1->bounds().min[a], m0->bounds().min[a], 1e-3f);
+    EXPECT_NEAR(m1->bounds().max[a], m0->bounds().max[a], 1e-3f);
   }
   const ModelPtr m2 = roundTrip(m1);
   ASSERT_TRUE(m2);
   // The vertices are numbered in the order the export lists the polygons,
   // so each round can number them differently: each must be one of m0's.
   for (const ModelPtr& m : {m1, m2}) {
-    EXPECT_EQ(m->polygons.size(), m0->polygons.size());
+    EXPECT_EQ(m->polygons().size(), m0->polygons().size());
     EXPECT_EQ(m->numEdges(), m0->numEdges());
-    ASSERT_EQ(m->vertices.size(), m0->vertices.size());
-    for (std::size_t v = 0; v < m->vertices.size(); ++v) {
+    ASSERT_EQ(m->vertices().size(), m0->vertices().size());
+    for (std::size_t v = 0; v < m->vertices().size(); ++v) {
       Real nearest = 1e30f;
-      for (const Vec3& w : m0->vertices) nearest = std::min(nearest, (m->vertices[v] - w).length());
+      for (const Vec3& w : m0->vertices()) nearest = std::min(nearest, (m->vertices()[v] - w).length());
       EXPECT_LT(nearest, 1e-3f) << "vertex " << v;
     }
   }
@@ -455,8 +455,8 @@ TEST(MeshFile, CollisionSurfaceObj) {
   materials.addMtrText("textures/common/collision { collision }\n", "test.mtr");
   auto m = loadMeshModel(meshData("collision.obj").string(), materials);
   ASSERT_TRUE(m.ok()) << m.error().toString();
-  EXPECT_EQ((*m)->polygons.size(), 6u);
-  EXPECT_EQ((*m)->bounds.min, (Vec3{16, 16, 16}));
+  EXPECT_EQ((*m)->polygons().size(), 6u);
+  EXPECT_EQ((*m)->bounds().min, (Vec3{16, 16, 16}));
 }
 
 TEST(MeshFile, MalformedAndMissingFilesNameTheFile) {
@@ -495,7 +495,7 @@ TEST(MeshManager, LoadModelConvertsAMeshOnceAndPrefersACmFile) {
     ModelManager manager;
     auto h = manager.loadModel(name, MaterialTable{});
     ASSERT_TRUE(h.ok()) << h.error().toString();
-    EXPECT_EQ(manager.get(*h)->polygons.size(), 6u);
+    EXPECT_EQ(manager.get(*h)->polygons().size(), 6u);
     auto again = manager.loadModel(name, MaterialTable{});
     ASSERT_TRUE(again.ok());
     EXPECT_EQ(*again, *h);
@@ -510,7 +510,7 @@ TEST(MeshManager, LoadModelConvertsAMeshOnceAndPrefersACmFile) {
     ModelManager manager;
     auto h = manager.loadModel(name, MaterialTable{});
     ASSERT_TRUE(h.ok()) << h.error().toString();
-    EXPECT_EQ(manager.get(*h)->bounds.max, (Vec3{8, 8, 8}));
+    EXPECT_EQ(manager.get(*h)->bounds().max, (Vec3{8, 8, 8}));
   }
   {
     ModelManager manager;
@@ -529,7 +529,7 @@ TEST(MeshShared, CcMeshesBuildValidModels) {
     if (!fs::exists(p)) GTEST_SKIP() << p << " is absent";
     auto m = loadMeshModel(p.string(), MaterialTable{});
     ASSERT_TRUE(m.ok()) << m.error().toString();
-    EXPECT_GT((*m)->polygons.size(), 0u) << name;
+    EXPECT_GT((*m)->polygons().size(), 0u) << name;
     for (const Violation& v : validateModel(**m)) {
       EXPECT_NE(v.kind, Violation::Kind::Structure) << name << ": " << v.toString();
     }
@@ -552,7 +552,7 @@ TEST(MeshCli, CompileInfoValidateAndQueryTakeMeshFiles) {
   auto cm = loadCmFile((dir / "cube.cm").string(), MaterialTable{});
   ASSERT_TRUE(cm.ok()) << cm.error().toString();
   EXPECT_EQ(cm->models.size(), 1u);
-  EXPECT_EQ(cm->models[0]->name, cube);
+  EXPECT_EQ(cm->models[0]->name(), cube);
   // --contents replaces the materials' contents
   out = test::runCapture(cli + " info '" + cube + "' --contents playerclip", rc);
   EXPECT_EQ(rc, 0) << out;

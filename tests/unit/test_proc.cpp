@@ -44,7 +44,7 @@ std::vector<ModelPtr> build(const std::string& mapText, const std::string& procT
   options.procBsp = &*proc;
   auto models = buildCollisionModels(*map, MaterialTable{}, options);
   EXPECT_TRUE(models.ok());
-  if (dropped) *dropped = (*models)[0]->stats.procPolygonsRemoved;
+  if (dropped) *dropped = (*models)[0]->stats().procPolygonsRemoved;
   return *models;
 }
 
@@ -117,16 +117,16 @@ TEST(ProcPruning, AWindingOnAPlaneFollowsItsNormal) {
   int dropped = 0;
   const auto models = build(map, "mapProcFile003 nodes { 1 ( 0 0 1 0 ) -1 0 }", &dropped);
   const CollisionModel& world = *models[0];
-  ASSERT_EQ(world.polygons.size(), 1u);
-  EXPECT_EQ(world.polygons[0].plane.normal, Vec3(0, 0, 1));
+  ASSERT_EQ(world.polygons().size(), 1u);
+  EXPECT_EQ(world.polygons()[0].plane.normal, Vec3(0, 0, 1));
   EXPECT_EQ(dropped, 5);
-  EXPECT_EQ(world.stats.containedPolygonsRemoved, 5);
+  EXPECT_EQ(world.stats().containedPolygonsRemoved, 5);
   // the same slab above the plane: its bottom face (on the plane, facing
   // the solid side) goes, the others are in the area
   const auto above =
       build(worldWith(boxBrush({-64, -64, 0}, {64, 64, 16})), "mapProcFile003 nodes { 1 ( 0 0 1 0 ) -1 0 }");
-  EXPECT_EQ(above[0]->polygons.size(), 5u);
-  for (const CmPolygon& p : above[0]->polygons) EXPECT_NE(p.plane.normal, Vec3(0, 0, -1));
+  EXPECT_EQ(above[0]->polygons().size(), 5u);
+  for (const CmPolygon& p : above[0]->polygons()) EXPECT_NE(p.plane.normal, Vec3(0, 0, -1));
 }
 
 // A floor crossing the plane x = 0 with an area on its front side is kept
@@ -137,10 +137,10 @@ TEST(ProcPruning, AWindingReachingAnAreaIsKeptWhole) {
   int dropped = 0;
   const auto models = build(worldWith(boxBrush({-64, -64, -16}, {64, 64, 0})), proc, &dropped);
   const CollisionModel& world = *models[0];
-  ASSERT_EQ(world.polygons.size(), 5u);
+  ASSERT_EQ(world.polygons().size(), 5u);
   EXPECT_EQ(dropped, 1);
   int crossing = 0;
-  for (const CmPolygon& p : world.polygons) {
+  for (const CmPolygon& p : world.polygons()) {
     EXPECT_NE(p.plane.normal, Vec3(-1, 0, 0));
     if (p.plane.normal.x == 0) {  // top, bottom and the two y faces cross x = 0
       ++crossing;
@@ -150,7 +150,7 @@ TEST(ProcPruning, AWindingReachingAnAreaIsKeptWhole) {
   }
   EXPECT_EQ(crossing, 4);
   const auto solid = build(worldWith(boxBrush({-128, -64, -16}, {-64, 64, 0})), proc, &dropped);
-  EXPECT_EQ(solid[0]->polygons.size(), 0u);
+  EXPECT_EQ(solid[0]->polygons().size(), 0u);
   EXPECT_EQ(dropped, 6);
 }
 
@@ -163,12 +163,12 @@ TEST(ProcPruning, OnlyTheWorldsSolidWindings) {
                           boxBrush({-8, -8, -8}, {8, 8, 8}, "textures/liquids/water") + "}\n";
   const auto models = build(map, "mapProcFile003 nodes { 1 ( 0 0 1 1000 ) 0 0 }");  // all solid
   ASSERT_EQ(models.size(), 3u);
-  EXPECT_EQ(models[0]->polygons.size(), 0u);
-  EXPECT_EQ(models[1]->polygons.size(), 6u);
-  EXPECT_EQ(models[2]->polygons.size(), 6u);
+  EXPECT_EQ(models[0]->polygons().size(), 0u);
+  EXPECT_EQ(models[1]->polygons().size(), 6u);
+  EXPECT_EQ(models[2]->polygons().size(), 6u);
   const auto waterWorld = build(worldWith(boxBrush({-8, -8, -8}, {8, 8, 8}, "textures/liquids/water")),
                                 "mapProcFile003 nodes { 1 ( 0 0 1 1000 ) 0 0 }");
-  EXPECT_EQ(waterWorld[0]->polygons.size(), 6u);  // not solid: never pruned
+  EXPECT_EQ(waterWorld[0]->polygons().size(), 6u);  // not solid: never pruned
 }
 
 /// Builds a map of tests/data/proc as the original loads it (NAME.proc beside).
@@ -190,7 +190,7 @@ TEST(ProcPruning, TheTwoProcMapsGiveTheOriginalsCmFiles) {
     SCOPED_TRACE(name);
     const auto [text, models] = buildWithProcBeside(procData() / (std::string(name) + ".map"));
     EXPECT_EQ(text, test::readFile(procData() / (std::string(name) + ".cm")));
-    EXPECT_GT(models[0]->stats.procPolygonsRemoved, 0);
+    EXPECT_GT(models[0]->stats().procPolygonsRemoved, 0);
     if (test::haveShared()) {
       EXPECT_EQ(text, test::readFile(test::sharedDir() / "reference-proc" / (std::string(name) + ".cm")));
     }
@@ -206,13 +206,13 @@ TEST(ProcPruning, TheManagerUsesTheProcBesideTheMapUnlessTurnedOff) {
   ASSERT_TRUE(pruned.ok()) << pruned.error().toString();
   EXPECT_EQ(pruned->procPath, procPathForMap(map));
   EXPECT_GT(pruned->procPolygonsRemoved, 0);
-  const std::size_t prunedPolygons = manager.get(kWorldModelHandle)->polygons.size();
+  const std::size_t prunedPolygons = manager.get(kWorldModelHandle)->polygons().size();
   options.useProcFile = false;
   auto whole = manager.loadMap(map, MaterialTable{}, options);
   ASSERT_TRUE(whole.ok());
   EXPECT_TRUE(whole->procPath.empty());
   EXPECT_EQ(whole->procPolygonsRemoved, 0);
-  EXPECT_GT(manager.get(kWorldModelHandle)->polygons.size(), prunedPolygons);
+  EXPECT_GT(manager.get(kWorldModelHandle)->polygons().size(), prunedPolygons);
 }
 
 TEST(ProcPruning, AMalformedProcBesideTheMapIsAnErrorOfTheLoad) {

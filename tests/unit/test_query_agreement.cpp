@@ -70,10 +70,10 @@ std::uint32_t originalPointContents(const CollisionModel& m, const Fields& q, co
     for (int j = 0; j < 3; ++j) fp[j] = r[j];
   }
   std::size_t n = 0;
-  while (m.nodes[n].planeType >= 0)
-    n = std::size_t(m.nodes[n].children[fp[m.nodes[n].planeType] > m.nodes[n].planeDist ? 0 : 1]);
-  for (std::int32_t b : m.brushesAt(m.nodes[n])) {
-    const CmBrush& brush = m.brushes[std::size_t(b)];
+  while (m.nodes()[n].planeType >= 0)
+    n = std::size_t(m.nodes()[n].children[fp[m.nodes()[n].planeType] > m.nodes()[n].planeDist ? 0 : 1]);
+  for (std::int32_t b : m.brushesAt(m.nodes()[n])) {
+    const CmBrush& brush = m.brushes()[std::size_t(b)];
     bool inside = true;
     for (int i = 0; i < 3 && inside; ++i)
       inside = fp[i] >= brush.bounds.min[i] && fp[i] <= brush.bounds.max[i];
@@ -89,7 +89,7 @@ const CollisionModel& modelFor(const std::vector<ModelPtr>& models, const Fields
   const std::string_view name = q.value("model");
   if (name[0] == '#') return *models[std::size_t(detail::parseInt(name.substr(1)).value_or(0))];
   for (const auto& m : models)
-    if (m->name == name) return *m;
+    if (m->name() == name) return *m;
   return *models[0];
 }
 

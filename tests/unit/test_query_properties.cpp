@@ -11,6 +11,7 @@
 #include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
+#include "model/model_access.h"
 #include "model/query_data.h"
 #include "model_fixtures.h"
 #include "test_support.h"
@@ -53,7 +54,7 @@ void checkFreeMovesEndFree(const CollisionModel& m, unsigned seed, int count) {
     const TraceModel& trm = trms[std::size_t(i) % trms.size()];
     Mat3 axis;
     if (i % 3 == 0) axis = Mat3::fromAngles(float(i % 90), float(i * 7 % 360), float(i * 13 % 360));
-    const Vec3 start = randomIn(rng, m.bounds), end = randomIn(rng, m.bounds.expanded(64));
+    const Vec3 start = randomIn(rng, m.bounds()), end = randomIn(rng, m.bounds().expanded(64));
     if (contentsTest(m, {&trm, axis, start, contents::kMaskSolid, {}}, work).contents) continue;
     const TraceResult r = translate(m, {&trm, axis, start, end, contents::kMaskSolid, {}, false}, work);
     ASSERT_TRUE(finite(r)) << i;
@@ -130,7 +131,7 @@ TEST(QueryProperties, SealedRoomHolds) {
   const auto trms = shapes();
   for (int i = 0; i < 1500; ++i) {
     const TraceModel* trm = i % 4 == 3 ? nullptr : &trms[std::size_t(i) % trms.size()];
-    const Vec3 start = randomIn(rng, m.bounds.expanded(-40));
+    const Vec3 start = randomIn(rng, m.bounds().expanded(-40));
     if (contentsTest(m, {trm, {}, start, contents::kMaskSolid, {}}, work).contents) continue;
     Vec3 d{dir(rng), dir(rng), dir(rng)};
     if (d.normalize() == 0) continue;
@@ -139,7 +140,7 @@ TEST(QueryProperties, SealedRoomHolds) {
     ++tested;
     EXPECT_LT(r.fraction, 1.0f) << "escaped the sealed room from (" << start.x << " " << start.y << " "
                                 << start.z << ")";
-    EXPECT_TRUE(m.bounds.containsPoint(r.endPos)) << i;
+    EXPECT_TRUE(m.bounds().containsPoint(r.endPos)) << i;
   }
   EXPECT_GT(tested, 200);
 }
@@ -154,7 +155,7 @@ TEST(QueryProperties, TranslationAndContentsAgreeAtTheStop) {
   QueryWork work;
   int stopped = 0;
   for (int i = 0; i < 2000; ++i) {
-    const Vec3 start = randomIn(rng, m.bounds), end = randomIn(rng, m.bounds);
+    const Vec3 start = randomIn(rng, m.bounds()), end = randomIn(rng, m.bounds());
     if (contentsTest(m, {&box, {}, start, contents::kMaskSolid, {}}, work).contents) continue;
     const TraceResult r = translate(m, {&box, {}, start, end, contents::kMaskSolid, {}, false}, work);
     if (r.fraction >= 1 || r.fraction <= 0) continue;
@@ -233,7 +234,7 @@ std::vector<std::string> generatedQueries(const Bounds& b, int count) {
 
 TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsGeneratedScene) {
   const std::vector<ModelPtr> models{std::make_shared<const CollisionModel>(generatedScene())};
-  const auto lines = generatedQueries(models[0]->bounds, 10000);
+  const auto lines = generatedQueries(models[0]->bounds(), 10000);
   const auto one = answerAll(models, lines, 1);
   const auto many = answerAll(models, lines, 4);
   ASSERT_EQ(one.size(), many.size());
@@ -245,18 +246,21 @@ TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsGeneratedScene) {
   EXPECT_GT(hits, 1000);
 }
 
-// The queries' derived data (CollisionModel::queryData) only saves work: a
-// copy of a model (queried without it, computing the lines per polygon)
-// answers every query with the same bits as the prepared model.
+// The queries' derived data (made with every model) only saves work: a copy
+// of a model without it (ModelAccess::withoutQueryData: the queries compute
+// the lines per polygon and cull one polygon at a time) answers every query
+// with the same bits as the model.
 void expectPreparedAndBareAlike(const std::vector<ModelPtr>& prepared) {
   std::vector<ModelPtr> bare;
   for (const ModelPtr& m : prepared) {
-    ASSERT_NE(detail::queryDataOf(*m), nullptr) << m->name;
-    auto copy = std::make_shared<CollisionModel>(*m);
-    EXPECT_EQ(detail::queryDataOf(*copy), nullptr) << "a copy must not use the original's lines";
+    ASSERT_NE(detail::queryDataOf(*m), nullptr) << m->name();
+    auto copy = std::make_shared<CollisionModel>(detail::ModelAccess::withoutQueryData(*m));
+    ASSERT_EQ(detail::queryDataOf(*copy), nullptr);
+    EXPECT_EQ(detail::queryDataOf(CollisionModel(*m)), detail::queryDataOf(*m))
+        << "a copy shares the query data";
     bare.push_back(std::move(copy));
   }
-  const auto lines = generatedQueries(prepared[0]->bounds, 6000);
+  const auto lines = generatedQueries(prepared[0]->bounds(), 6000);
   const auto a = answerAll(prepared, lines, 1);
   const auto b = answerAll(bare, lines, 1);
   int hits = 0, rotationHits = 0;
@@ -284,21 +288,21 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
   const CollisionModel m = generatedScene();
   const detail::QueryData* d = detail::queryDataOf(m);
   ASSERT_NE(d, nullptr);
-  for (std::size_t p = 0; p < m.polygons.size(); ++p) {
-    const auto edges = m.edgesOf(m.polygons[p]);
+  for (std::size_t p = 0; p < m.polygons().size(); ++p) {
+    const auto edges = m.edgesOf(m.polygons()[p]);
     for (std::size_t j = 0; j < edges.size(); ++j) {
-      const CmEdge& e = m.edges[std::size_t(std::abs(edges[j]))];
+      const CmEdge& e = m.edges()[std::size_t(std::abs(edges[j]))];
       const Pluecker want =
-          Pluecker::fromLine(m.vertices[std::size_t(e.vertex[0])], m.vertices[std::size_t(e.vertex[1])]);
-      const Pluecker got = detail::blockLine(d->lines.data(), m.polygons[p].firstEdge + j);
+          Pluecker::fromLine(m.vertices()[std::size_t(e.vertex[0])], m.vertices()[std::size_t(e.vertex[1])]);
+      const Pluecker got = detail::blockLine(d->lines.data(), m.polygons()[p].firstEdge + j);
       for (int k = 0; k < 6; ++k) ASSERT_EQ(got[k], want[k]) << "polygon " << p << " edge " << j;
     }
   }
   // What the culls read of every node's polygons, entry by entry of polygonRefs
   // (in builds that cull four at a time).
-  ASSERT_EQ(d->culls.empty(), !detail::kCullBlocks || m.polygonRefs.empty());
-  for (std::size_t r = 0; r < d->culls.size() * detail::kLanes && r < m.polygonRefs.size(); ++r) {
-    const CmPolygon& p = m.polygons[std::size_t(m.polygonRefs[r])];
+  ASSERT_EQ(d->culls.empty(), !detail::kCullBlocks || m.polygonRefs().empty());
+  for (std::size_t r = 0; r < d->culls.size() * detail::kLanes && r < m.polygonRefs().size(); ++r) {
+    const CmPolygon& p = m.polygons()[std::size_t(m.polygonRefs()[r])];
     const detail::CullBlock& b = d->culls[r / detail::kLanes];
     const std::size_t j = r % detail::kLanes;
     for (int k = 0; k < 3; ++k) {
@@ -308,22 +312,19 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
     }
     ASSERT_EQ(b.contents[j], p.contents);
   }
-  // A model with a number out of range gets no query data (rather than reading
-  // outside its arrays).
-  CollisionModel broken = m;
+  // Arrays with a number out of range are refused (a model of them would make
+  // the query data and the queries read outside the arrays).
+  ModelArrays broken = m.arrays();
   broken.polygonEdges[0] = std::int32_t(broken.edges.size());
-  prepareQueries(broken);
-  EXPECT_EQ(broken.queryData, nullptr);
-  broken = m;
+  EXPECT_FALSE(CollisionModel::create(broken).ok());
+  broken = m.arrays();
   broken.polygonRefs.back() = std::int32_t(broken.polygons.size());
-  prepareQueries(broken);
-  EXPECT_EQ(broken.queryData, nullptr);
-  // A model whose arrays grew after prepareQueries is queried without its data.
-  CollisionModel grown = m;
-  prepareQueries(grown);
-  ASSERT_NE(detail::queryDataOf(grown), nullptr);
-  grown.vertices.push_back({0, 0, 0});
-  EXPECT_EQ(detail::queryDataOf(grown), nullptr);
+  EXPECT_FALSE(CollisionModel::create(broken).ok());
+  // The same arrays unchanged are accepted, with query data of their own.
+  Result<ModelPtr> again = CollisionModel::create(m.arrays());
+  ASSERT_TRUE(again.ok()) << again.error().toString();
+  ASSERT_NE(detail::queryDataOf(**again), nullptr);
+  EXPECT_EQ(detail::queryDataOf(**again)->lines.size(), d->lines.size());
 }
 
 // The query data adds less memory than the model's own arrays (the speed
@@ -334,12 +335,11 @@ TEST(QueryData, SmallerThanTheModelsArrays) {
   models.push_back(std::make_shared<const CollisionModel>(generatedScene()));
   for (const ModelPtr& m : models) {
     const ModelMemory memory = modelMemory(*m);
-    EXPECT_GT(memory.queryData, 0u) << m->name;
-    EXPECT_LE(memory.queryData, memory.arrays) << m->name;
+    EXPECT_GT(memory.queryData, 0u) << m->name();
+    EXPECT_LE(memory.queryData, memory.arrays) << m->name();
   }
   // A copy without it.
-  CollisionModel bare = *models.front();
-  bare.queryData.reset();
+  const CollisionModel bare = detail::ModelAccess::withoutQueryData(*models.front());
   EXPECT_EQ(modelMemory(bare).queryData, 0u);
   EXPECT_EQ(modelMemory(bare).arrays, modelMemory(*models.front()).arrays);
 }
@@ -348,7 +348,7 @@ TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsLt4) {
   CMKIT_REQUIRE_SHARED();
   const auto models = buildMap("lt4/lt4.map");
   ASSERT_FALSE(models.empty());
-  const auto lines = generatedQueries(models[0]->bounds, 10000);
+  const auto lines = generatedQueries(models[0]->bounds(), 10000);
   const auto one = answerAll(models, lines, 1);
   const auto many = answerAll(models, lines, 4);
   for (std::size_t i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], many[i]) << lines[i];

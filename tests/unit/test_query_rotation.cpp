@@ -321,7 +321,7 @@ TEST(RotationRegression, LongArcReachesLeavesItsChordMisses) {
   // axis: its chord (100, 0) -> (-98.5, -17.4) stays above y = -18, so the
   // original's walk (one chord, extents = 1 + the 64-unit-chord sagitta, a
   // few units) never enters the back leaf; the arc passes y = -100.
-  CollisionModel m = ModelMaker().addBox({{-10, -110, -50}, {10, -90, 50}}).build();
+  ModelArrays arrays = ModelMaker().addBox({{-10, -110, -50}, {10, -90, 50}}).buildArrays();
   CmNode root;
   root.planeType = 1;
   root.planeDist = -50;
@@ -329,9 +329,10 @@ TEST(RotationRegression, LongArcReachesLeavesItsChordMisses) {
   root.children[1] = 2;
   CmNode front, back;
   front.parent = back.parent = 0;
-  back.numPolygonRefs = std::uint32_t(m.polygons.size());
-  back.numBrushRefs = std::uint32_t(m.brushes.size());
-  m.nodes = {root, front, back};
+  back.numPolygonRefs = std::uint32_t(arrays.polygons.size());
+  back.numBrushRefs = std::uint32_t(arrays.brushes.size());
+  arrays.nodes = {root, front, back};
+  const CollisionModel m = **CollisionModel::create(std::move(arrays));
   QueryWork work;
   RotationQuery q;
   q.start = {100, 0, 0};
@@ -368,14 +369,15 @@ TEST(RotationRegression, ResultDoesNotDependOnPolygonOrder) {
     Vec3 axis{unit(rng), unit(rng), unit(rng)};
     if (axis.normalize() == 0) continue;
     q.rotation = Rotation(q.start + Vec3{unit(rng), unit(rng), unit(rng)} * 20, axis, ang(rng));
-    CollisionModel m = base;
-    const TraceResult ref = rotate(m, q, work);
+    ModelArrays arrays = base.arrays();
+    const TraceResult ref = rotate(base, q, work);
     hits += ref.fraction < 1;
     for (int order = 0; order < 3; ++order) {
-      if (order == 0) std::reverse(m.polygonRefs.begin(), m.polygonRefs.end());
-      if (order == 1) std::rotate(m.polygonRefs.begin(), m.polygonRefs.begin() + 7, m.polygonRefs.end());
-      if (order == 2) std::shuffle(m.polygonRefs.begin(), m.polygonRefs.end(), rng);
-      const TraceResult r = rotate(m, q, work);
+      std::vector<std::int32_t>& refs = arrays.polygonRefs;
+      if (order == 0) std::reverse(refs.begin(), refs.end());
+      if (order == 1) std::rotate(refs.begin(), refs.begin() + 7, refs.end());
+      if (order == 2) std::shuffle(refs.begin(), refs.end(), rng);
+      const TraceResult r = rotate(**CollisionModel::create(arrays), q, work);
       ASSERT_EQ(r.fraction, ref.fraction) << "query " << n << " order " << order;
       ASSERT_EQ(r.endPos, ref.endPos);
     }

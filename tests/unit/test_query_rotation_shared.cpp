@@ -90,7 +90,7 @@ TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
     for (int n = 0; n < 3000 && tested < 400; ++n) {
       RotationQuery q;
       q.trm = n % 6 == 5 ? nullptr : &trms[std::size_t(n % 5)];
-      const Vec3 lo = m.bounds.min, size = m.bounds.size();
+      const Vec3 lo = m.bounds().min, size = m.bounds().size();
       q.start = {lo.x + u(rng) * size.x, lo.y + u(rng) * size.y, lo.z + u(rng) * size.z};
       ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
       if (contentsTest(m, cq, work).contents != 0) continue;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cmkit/query.h"
+#include "model/model_access.h"
 #include "model/query_data.h"
 #include "model_fixtures.h"
 
@@ -310,7 +311,7 @@ TEST(Translation, InternalEdgesAreNeverReported) {
   // internal. A wedge whose lowest edge crosses the seam falls on it.
   ModelMaker maker;
   maker.addBox({{-100, -100, -16}, {0, 100, 0}}).addBox({{0, -100, -16}, {100, 100, 0}});
-  CollisionModel& raw = maker.model();
+  ModelArrays& raw = maker.model();
   std::vector<std::int32_t> seam;
   for (std::size_t e = 1; e < raw.edges.size(); ++e) {
     const Vec3& a = raw.vertices[std::size_t(raw.edges[e].vertex[0])];
@@ -455,8 +456,8 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
   };
   for (const TraceModel& shape : shapes) {
     const CollisionModel m = ModelMaker().addConvex(shape).build();
-    ASSERT_EQ(m.brushes.size(), 1u);
-    const CmBrush& brush = m.brushes[0];
+    ASSERT_EQ(m.brushes().size(), 1u);
+    const CmBrush& brush = m.brushes()[0];
     ASSERT_GE(brush.numPlanes, 6u);
     const auto expected = [&](const Vec3& p) {
       if (!brush.bounds.containsPoint(p)) return std::uint32_t(0);
@@ -500,7 +501,7 @@ namespace {
 // from above from (0, -256); the lower-left side x + y = -256 comes last, as
 // edges 76 to 100. More than 64 edges: the edge tests work on groups of 64.
 CollisionModel hundredEdgeFloor() {
-  CollisionModel m;
+  ModelArrays m;
   m.name = "hundred";
   const Vec3 corners[4] = {{0, -256, 0}, {256, 0, 0}, {0, 256, 0}, {-256, 0, 0}};
   for (int side = 0; side < 4; ++side)
@@ -527,7 +528,7 @@ CollisionModel hundredEdgeFloor() {
   m.bounds = floor.bounds;
   m.contents = floor.contents;
   detail::computeEdgeNormals(m);
-  return m;
+  return **CollisionModel::create(std::move(m));
 }
 
 TraceResult dropBox(const CollisionModel& m, Real x, Real y) {
@@ -541,7 +542,7 @@ TraceResult dropBox(const CollisionModel& m, Real x, Real y) {
 }
 
 void expectHundredEdgeFloorStops(const CollisionModel& m) {
-  ASSERT_GT(m.polygons[0].numEdges, 64u);
+  ASSERT_GT(m.polygons()[0].numEdges, 64u);
   // Over the middle and half over the lower-left side: the vertices inside
   // stop 0.25 above the floor.
   for (const Real c : {Real(0), Real(-128)}) {
@@ -574,8 +575,8 @@ TEST(Translation, PolygonWithMoreThan64Edges) {
   // Without the model's derived lines (computed per polygon) and with them.
   for (const bool prepared : {false, true}) {
     SCOPED_TRACE(prepared ? "prepared" : "bare");
-    CollisionModel m = hundredEdgeFloor();
-    if (prepared) prepareQueries(m);
+    const CollisionModel m =
+        prepared ? hundredEdgeFloor() : detail::ModelAccess::withoutQueryData(hundredEdgeFloor());
     ASSERT_EQ(detail::queryDataOf(m) != nullptr, prepared);
     expectHundredEdgeFloorStops(m);
   }

@@ -42,8 +42,8 @@ ModelPtr deepChain(int depth) {
 /// The depth of the leaf the walk to `x` ends in.
 int leafDepth(const CollisionModel& m, Real x) {
   int depth = 0;
-  for (std::int32_t n = 0; !m.nodes[std::size_t(n)].isLeaf(); ++depth) {
-    const CmNode& node = m.nodes[std::size_t(n)];
+  for (std::int32_t n = 0; !m.nodes()[std::size_t(n)].isLeaf(); ++depth) {
+    const CmNode& node = m.nodes()[std::size_t(n)];
     n = x > node.planeDist ? node.children[0] : node.children[1];
   }
   return depth;
@@ -53,9 +53,9 @@ TEST(PointContents, SeesTheBrushInTheLeafOfADeepTree) {
   for (const int depth : {10, 300}) {
     const ModelPtr m = deepChain(depth);
     ASSERT_TRUE(m);
-    ASSERT_EQ(m->nodes.size(), std::size_t(2 * depth + 1));
+    ASSERT_EQ(m->nodes().size(), std::size_t(2 * depth + 1));
     EXPECT_EQ(leafDepth(*m, 1005), depth);
-    ASSERT_EQ(m->brushesAt(m->nodes[std::size_t(depth)]).size(), 1u) << "the brush is in the deepest leaf";
+    ASSERT_EQ(m->brushesAt(m->nodes()[std::size_t(depth)]).size(), 1u) << "the brush is in the deepest leaf";
     EXPECT_EQ(pointContents(*m, {1005, 5, 5}), contents::kSolid) << "depth " << depth;
     EXPECT_EQ(pointContents(*m, {1005, 5, 15}), 0u) << "depth " << depth;
     EXPECT_EQ(pointContents(*m, {5, 5, 5}), 0u) << "depth " << depth;
@@ -95,7 +95,7 @@ Penetration everyBrush(const CollisionModel& m, const TraceModel& trm, const Mat
     tb.addPoint(v);
   }
   Penetration r;
-  for (const CmBrush& b : m.brushes) {
+  for (const CmBrush& b : m.brushes()) {
     if (!(b.contents & contents::kMaskSolid) || !b.bounds.intersects(tb) || b.numPlanes == 0) continue;
     Real depth = tol::kBoundsInfinity;
     Vec3 normal;
@@ -132,8 +132,8 @@ TEST(Penetration, SameAsScanningEveryBrush) {
   QueryWork work;
   int tested = 0, stuck = 0;
   for (const ModelPtr& m : models) {
-    if (m->brushes.empty()) continue;
-    const Bounds b = m->bounds.expanded(8);
+    if (m->brushes().empty()) continue;
+    const Bounds b = m->bounds().expanded(8);
     for (int n = 0; n < 3000; ++n) {
       const TraceModel& trm = n % 2 ? small : player;
       Vec3 p{b.min.x + u(rng) * (b.max.x - b.min.x), b.min.y + u(rng) * (b.max.y - b.min.y),
@@ -148,10 +148,10 @@ TEST(Penetration, SameAsScanningEveryBrush) {
       if (n % 7 == 0) q.position = p * q.placement.axis;  // the same place in the model's frame
       const Penetration fast = penetration(*m, q, work);
       const Penetration slow = everyBrush(*m, trm, q.trmAxis, q.position, q.placement);
-      ASSERT_EQ(fast.stuck, slow.stuck) << m->name << " query " << n;
-      EXPECT_EQ(fast.depth, slow.depth) << m->name << " query " << n;
-      EXPECT_EQ(fast.direction, slow.direction) << m->name << " query " << n;
-      EXPECT_EQ(fast.contents, slow.contents) << m->name << " query " << n;
+      ASSERT_EQ(fast.stuck, slow.stuck) << m->name() << " query " << n;
+      EXPECT_EQ(fast.depth, slow.depth) << m->name() << " query " << n;
+      EXPECT_EQ(fast.direction, slow.direction) << m->name() << " query " << n;
+      EXPECT_EQ(fast.contents, slow.contents) << m->name() << " query " << n;
       ++tested;
       stuck += fast.stuck;
     }

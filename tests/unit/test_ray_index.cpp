@@ -30,8 +30,8 @@ CollisionModel floorBox(std::uint32_t contents = contents::kSolid | contents::kO
 }
 
 std::int32_t polygonWithNormal(const CollisionModel& m, const Vec3& n) {
-  for (std::size_t i = 0; i < m.polygons.size(); ++i)
-    if (m.polygons[i].plane.normal == n) return std::int32_t(i);
+  for (std::size_t i = 0; i < m.polygons().size(); ++i)
+    if (m.polygons()[i].plane.normal == n) return std::int32_t(i);
   return -1;
 }
 
@@ -46,8 +46,8 @@ BruteHit castEveryPolygon(const CollisionModel& m, const Vec3& s, const Vec3& e,
   BruteHit best;
   const Vec3 dir = e - s;
   const Pluecker ray = Pluecker::fromRay(s, dir);
-  for (std::size_t i = 0; i < m.polygons.size(); ++i) {
-    const CmPolygon& p = m.polygons[i];
+  for (std::size_t i = 0; i < m.polygons().size(); ++i) {
+    const CmPolygon& p = m.polygons()[i];
     if (!(p.contents & mask) || p.numEdges < 3) continue;
     if (!(p.plane.normal.dot(dir) < 0)) continue;
     const Real d1 = p.plane.distance(s), d2 = p.plane.distance(e);
@@ -56,10 +56,10 @@ BruteHit castEveryPolygon(const CollisionModel& m, const Vec3& s, const Vec3& e,
     if (best.polygon >= 0 && !(t < best.fraction)) continue;  // lower index wins ties: i only grows
     bool inside = true;
     for (std::int32_t edgeNum : m.edgesOf(p)) {
-      const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
-      const Real product =
-          Pluecker::fromLine(m.vertices[std::size_t(edge.vertex[0])], m.vertices[std::size_t(edge.vertex[1])])
-              .permutedInnerProduct(ray);
+      const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
+      const Real product = Pluecker::fromLine(m.vertices()[std::size_t(edge.vertex[0])],
+                                              m.vertices()[std::size_t(edge.vertex[1])])
+                               .permutedInnerProduct(ray);
       if ((edgeNum < 0) != signBitSet(product)) inside = false;
     }
     if (!inside) continue;
@@ -103,7 +103,7 @@ int expectSameAsEveryPolygon(const CollisionModel& m, unsigned seed, int count, 
                              RayIndex::NodeTest nodeTest) {
   const RayIndex index(m, nodeTest);
   int hits = 0, i = 0;
-  for (const auto& [s, e] : randomSegments(m.bounds, seed, count)) {
+  for (const auto& [s, e] : randomSegments(m.bounds(), seed, count)) {
     const std::uint32_t masks[] = {kAll, contents::kMaskSolid, contents::kWater | contents::kPlayerClip};
     const std::uint32_t mask = masks[i++ % 3];
     const RayHit fast = index.cast({s, e, mask});
@@ -199,7 +199,7 @@ TEST(RayIndex, NearestOfManyAndTiesToTheLowerIndex) {
   const RayHit h = RayIndex(twice).cast({{0, 0, 50}, {0, 0, -50}});
   ASSERT_TRUE(h.hit());
   EXPECT_EQ(h.polygon, polygonWithNormal(twice, {0, 0, 1}));
-  EXPECT_LT(std::size_t(h.polygon), twice.polygons.size() / 2);
+  EXPECT_LT(std::size_t(h.polygon), twice.polygons().size() / 2);
 }
 
 TEST(RayIndex, NoLeaksThroughSharedEdges) {
@@ -213,10 +213,10 @@ TEST(RayIndex, NoLeaksThroughSharedEdges) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> along(0.1f, 0.9f), dir(-1, 1);
   int rays = 0;
-  for (std::size_t e = 1; e < m.edges.size(); ++e) {
-    const Vec3 a = m.vertices[std::size_t(m.edges[e].vertex[0])],
-               b = m.vertices[std::size_t(m.edges[e].vertex[1])];
-    const Vec3 outward = m.edges[e].normal;  // between the two faces' normals
+  for (std::size_t e = 1; e < m.edges().size(); ++e) {
+    const Vec3 a = m.vertices()[std::size_t(m.edges()[e].vertex[0])],
+               b = m.vertices()[std::size_t(m.edges()[e].vertex[1])];
+    const Vec3 outward = m.edges()[e].normal;  // between the two faces' normals
     for (int i = 0; i < 200; ++i) {
       const Vec3 target = a + (b - a) * along(rng);
       const Vec3 from = target + (outward * 60) + Vec3{dir(rng), dir(rng), dir(rng)} * 20;
@@ -261,8 +261,11 @@ TEST(RayIndex, BadInputMisses) {
   EXPECT_FALSE(index.cast({{0, 0, 8}, {0, 0, 8}}).hit());  // no movement
   EXPECT_FALSE(index.cast({{nan, 0, 8}, {0, 0, -8}}).hit());
   EXPECT_FALSE(index.cast({{0, 0, 8}, {0, inf, -8}}).hit());
-  EXPECT_FALSE(RayIndex(CollisionModel{}).cast({{0, 0, 8}, {0, 0, -8}}).hit());
-  EXPECT_EQ(RayIndex(CollisionModel{}).numNodes(), 0u);
+  ModelArrays nothing;
+  nothing.nodes.emplace_back();  // one empty leaf
+  const ModelPtr empty = *CollisionModel::create(std::move(nothing));
+  EXPECT_FALSE(RayIndex(*empty).cast({{0, 0, 8}, {0, 0, -8}}).hit());
+  EXPECT_EQ(RayIndex(*empty).numNodes(), 0u);
 }
 
 TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
@@ -281,12 +284,12 @@ TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
   unsigned seed = 1;
   int rays = 0, hits = 0;
   for (const ModelPtr& m : models) {
-    if (m->polygons.empty()) continue;
-    const int count = m->polygons.size() > 1000 ? 6000 : 600;
+    if (m->polygons().empty()) continue;
+    const int count = m->polygons().size() > 1000 ? 6000 : 600;
     rays += count;
     // Both node tests (the same one twice where the processor has no AVX2).
-    hits += expectSameAsEveryPolygon(*m, seed, count, m->name, RayIndex::NodeTest::Auto);
-    expectSameAsEveryPolygon(*m, seed++, count, m->name + " (baseline node test)",
+    hits += expectSameAsEveryPolygon(*m, seed, count, m->name(), RayIndex::NodeTest::Auto);
+    expectSameAsEveryPolygon(*m, seed++, count, m->name() + " (baseline node test)",
                              RayIndex::NodeTest::Baseline);
   }
   EXPECT_GT(hits, rays / 10) << "too few hits for the comparison to mean much";
@@ -302,7 +305,7 @@ TEST(RayIndex, BothNodeTestsGiveTheSameAnswers) {
   EXPECT_FALSE(baseline.usesAvx2());
   if (!best.usesAvx2()) GTEST_SKIP() << "this processor (or build) has no AVX2: there is one node test only";
   int hits = 0;
-  for (const auto& [s, e] : randomSegments(world.bounds, 17, 20000)) {
+  for (const auto& [s, e] : randomSegments(world.bounds(), 17, 20000)) {
     const RayHit a = best.cast({s, e}), b = baseline.cast({s, e});
     ASSERT_EQ(a.polygon, b.polygon);
     ASSERT_EQ(std::memcmp(&a.fraction, &b.fraction, sizeof(Real)), 0);
@@ -333,14 +336,14 @@ TEST(RayIndex, CastManyGivesWhatEachCastGives) {
   const auto models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   const CollisionModel& world = *models.front();
-  const Vec3 centre = (world.bounds.min + world.bounds.max) * Real(0.5);
+  const Vec3 centre = (world.bounds().min + world.bounds().max) * Real(0.5);
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> unit(-1, 1);
   const std::size_t n = 20000;
   std::vector<Vec3> oneStart{centre}, starts, ends;
   for (std::size_t i = 0; i < n; ++i)
     ends.push_back(centre + Vec3{unit(rng), unit(rng), unit(rng)} * Real(1024));
-  for (const auto& [s, e] : randomSegments(world.bounds, 29, int(n))) starts.push_back(s);
+  for (const auto& [s, e] : randomSegments(world.bounds(), 29, int(n))) starts.push_back(s);
   ends.push_back(centre);  // the last ray has no length (a miss) in both sets
   starts.push_back(centre);
   const std::size_t total = ends.size();
@@ -391,7 +394,7 @@ TEST(RayIndex, PointTranslationStopsNoLater) {
   const RayIndex index(world);
   QueryWork work;
   int bothHit = 0, samePolygon = 0;
-  for (const auto& [s, e] : randomSegments(world.bounds, 11, 6000)) {
+  for (const auto& [s, e] : randomSegments(world.bounds(), 11, 6000)) {
     const RayHit ray = index.cast({s, e});
     const TraceResult point = translate(world, {nullptr, {}, s, e, contents::kMaskSolid, {}, false}, work);
     if (!ray.hit()) continue;
@@ -410,7 +413,7 @@ TEST(RayIndex, SameResultsFromManyThreads) {
   const auto models = test::buildMapModels(bundledLt4());
   ASSERT_FALSE(models.empty());
   const RayIndex index(*models.front());
-  const auto segments = randomSegments(models.front()->bounds, 5, 4000);
+  const auto segments = randomSegments(models.front()->bounds(), 5, 4000);
   std::vector<RayHit> single;
   for (const auto& [s, e] : segments) single.push_back(index.cast({s, e}));
   std::vector<std::vector<RayHit>> perThread(3);

@@ -61,10 +61,10 @@ std::string pillarInWallMap() {
 /// Edges of the model lying on the vertical line x = 0, y = 0.
 std::vector<const CmEdge*> cornerEdges(const CollisionModel& m) {
   std::vector<const CmEdge*> out;
-  for (std::size_t e = 1; e < m.edges.size(); ++e) {
-    const Vec3& a = m.vertices[std::size_t(m.edges[e].vertex[0])];
-    const Vec3& b = m.vertices[std::size_t(m.edges[e].vertex[1])];
-    if (a.x == 0 && a.y == 0 && b.x == 0 && b.y == 0) out.push_back(&m.edges[e]);
+  for (std::size_t e = 1; e < m.edges().size(); ++e) {
+    const Vec3& a = m.vertices()[std::size_t(m.edges()[e].vertex[0])];
+    const Vec3& b = m.vertices()[std::size_t(m.edges()[e].vertex[1])];
+    if (a.x == 0 && a.y == 0 && b.x == 0 && b.y == 0) out.push_back(&m.edges()[e]);
   }
   return out;
 }
@@ -126,10 +126,10 @@ TEST(RobustEdges, OverlappingCoplanarFacesNoLongerHideTheCorner) {
   for (const CmEdge* e : before) visibleBefore += !e->internal;
   for (const CmEdge* e : after) visibleAfter += !e->internal;
   EXPECT_GT(visibleAfter, visibleBefore);
-  EXPECT_LT(robust[0]->stats.internalEdges, original[0]->stats.internalEdges);
+  EXPECT_LT(robust[0]->stats().internalEdges, original[0]->stats().internalEdges);
   // Same polygons and brushes either way: only the edge flags differ.
-  EXPECT_EQ(robust[0]->polygons.size(), original[0]->polygons.size());
-  EXPECT_EQ(robust[0]->brushes.size(), original[0]->brushes.size());
+  EXPECT_EQ(robust[0]->polygons().size(), original[0]->polygons().size());
+  EXPECT_EQ(robust[0]->brushes().size(), original[0]->brushes().size());
 }
 
 TEST(RobustEdges, Lt4ConeStopsAtTheCornerItPassedThrough) {
@@ -170,10 +170,10 @@ TEST(RobustEdges, Lt4SolidFaceSharingEdgesWithClipKeepsThem) {
     const Lt4Sweep sweep = sweepLt4(robust, dodeca, start, end, 265);
     ASSERT_FALSE(sweep.models.empty());
     const CollisionModel& m = *sweep.models[0];
-    ASSERT_GT(m.polygons.size(), 2859u);
+    ASSERT_GT(m.polygons().size(), 2859u);
     int internal = 0;
-    for (const std::int32_t e : m.edgesOf(m.polygons[2859]))
-      internal += m.edges[std::size_t(std::abs(e))].internal;
+    for (const std::int32_t e : m.edgesOf(m.polygons()[2859]))
+      internal += m.edges()[std::size_t(std::abs(e))].internal;
     const TraceResult& r = sweep.result;
     const std::uint32_t atEnd = sweep.atEnd;
     if (robust) {
@@ -202,12 +202,12 @@ TEST(OutOfPlaneEdge, LetsABoxCornerThroughAsTheOriginalDoes) {
   const auto models = buildLt4(false);
   ASSERT_FALSE(models.empty());
   const CollisionModel& m = *models[0];
-  ASSERT_GT(m.polygons.size(), 10222u);
-  const CmPolygon& poly = m.polygons[10222];
+  ASSERT_GT(m.polygons().size(), 10222u);
+  const CmPolygon& poly = m.polygons()[10222];
   EXPECT_NEAR(poly.plane.normal.x, -0.70710677f, 1e-6f);
   Real worst = 0;
   for (const std::int32_t e : m.edgesOf(poly))
-    worst = std::min(worst, poly.plane.distance(m.vertices[std::size_t(m.edgeStart(e))]));
+    worst = std::min(worst, poly.plane.distance(m.vertices()[std::size_t(m.edgeStart(e))]));
   EXPECT_NEAR(worst, -0.0221f, 0.001f);
 
   const TraceModel box = trm("box:-16,-16,0,16,16,72");
@@ -261,9 +261,9 @@ TEST(LargeWorlds, SweepsFarFromTheOriginAnswerAsAtTheOrigin) {
   ASSERT_TRUE(here.ok() && far.ok());
   const CollisionModel& a = *here->front();
   const CollisionModel& b = *far->front();
-  EXPECT_EQ(b.bounds.min.x, a.bounds.min.x + offset.x);
+  EXPECT_EQ(b.bounds().min.x, a.bounds().min.x + offset.x);
   if constexpr (kDoublePrecision) {  // (in float, merging rounds differently: a few polygons fewer)
-    ASSERT_EQ(a.polygons.size(), b.polygons.size());
+    ASSERT_EQ(a.polygons().size(), b.polygons().size());
   }
   const TraceModel box = trm("box:-16,-16,0,16,16,72");
   std::mt19937 rng(7);
@@ -275,7 +275,7 @@ TEST(LargeWorlds, SweepsFarFromTheOriginAnswerAsAtTheOrigin) {
   QueryWork work;
   int hits = 0, farther = 0;
   for (int i = 0; i < 2000; ++i) {
-    const Vec3 start = inside(a.bounds), end = inside(a.bounds);
+    const Vec3 start = inside(a.bounds()), end = inside(a.bounds());
     const TraceResult r0 = translate(a, {&box, Mat3::identity(), start, end, 265, {}}, work);
     const TraceResult r1 =
         translate(b, {&box, Mat3::identity(), start + offset, end + offset, 265, {}}, work);

@@ -31,7 +31,7 @@ class SpeedTest : public ::testing::Test {
     ASSERT_TRUE(box.ok());
     trm = *box;
     options.times = kTestTimes;
-    options.origin = (world->bounds.min + world->bounds.max) * Real(0.5);
+    options.origin = (world->bounds().min + world->bounds().max) * Real(0.5);
   }
   SpeedTestReport run(const SpeedTestOptions& o) const { return runSpeedTest(*world, trm, o); }
   /// The same options on 1 and on 2 threads.
@@ -74,14 +74,14 @@ TEST_F(SpeedTest, RayCastsSameOnOneAndTwoThreads) {
     o.rotations = false;
     // Above the map (its centre is inside a brush, from where every ray
     // leaves through back faces): the rays going down hit its top.
-    o.origin = {0, 0, world->bounds.max.z + 40};
+    o.origin = {0, 0, world->bounds().max.z + 40};
     o.length = 256;
     const auto [one, two] = runOnOneAndTwoThreads(o);
     SCOPED_TRACE(walk ? "walk" : "plain");
     EXPECT_EQ(one.rays.count, kTestTimes);
     EXPECT_GT(one.rayIndex.nodes, 0u);
     EXPECT_GT(one.rayIndex.polygons, 0u);
-    EXPECT_LE(one.rayIndex.polygons, world->polygons.size());
+    EXPECT_LE(one.rayIndex.polygons, world->polygons().size());
     EXPECT_GT(one.rays.hits, walk ? 0 : kTestTimes / 10);  // a walk wanders off into the open
     EXPECT_LT(one.rays.hits, kTestTimes);
     EXPECT_EQ(one.rays.hash, two.rays.hash);

@@ -9,8 +9,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cmkit/compile.h"
@@ -66,6 +68,12 @@ class ScratchDir {
 
 /// The shared data folder beside the clone (../shared): maps, reference
 /// results, specs. Absent in a user's clone.
+/// A model's array (a span) as a vector, to compare with EXPECT_EQ.
+template <class T>
+std::vector<std::remove_const_t<T>> toVector(std::span<T> items) {
+  return {items.begin(), items.end()};
+}
+
 inline std::filesystem::path sharedDir() { return CMKIT_SHARED_DIR; }
 inline bool haveShared() { return std::filesystem::exists(sharedDir() / "reference"); }
 

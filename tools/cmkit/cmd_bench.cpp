@@ -54,9 +54,9 @@ void printSpeedTestBatch(const SpeedTestBatch& b) {
 
 bool runAndPrintSpeedTest(const CollisionModel& model, const TraceModel& trm, const std::string& trmSpec,
                           const SpeedTestOptions& options) {
-  fmt::print("speed test on model \"{}\" ({} polygons, {} brushes): trm {}, origin ({} {} {})\n", model.name,
-             model.polygons.size(), model.brushes.size(), trmSpec, options.origin.x, options.origin.y,
-             options.origin.z);
+  fmt::print("speed test on model \"{}\" ({} polygons, {} brushes): trm {}, origin ({} {} {})\n",
+             model.name(), model.polygons().size(), model.brushes().size(), trmSpec, options.origin.x,
+             options.origin.y, options.origin.z);
   fmt::print("  {} translations (end within +-{} per axis){}, mask {:#x}, seed {}{}{}{}\n", options.times,
              options.length,
              options.rotations ? fmt::format(" + {} rotations of {} deg (origins within +-{})", options.times,
@@ -326,7 +326,7 @@ int runBench(const BenchOptions& o) {
   SpeedTestOptions test = o.test;
   test.rotations = !o.noRotation;
   if (o.origin.empty()) {
-    test.origin = (world.bounds.min + world.bounds.max) * Real(0.5);
+    test.origin = (world.bounds().min + world.bounds().max) * Real(0.5);
   } else {
     test.origin = *parseFiniteVec3(o.origin);  // checked while parsing the options
   }

@@ -90,8 +90,8 @@ int runDemo(const DemoOptions& o) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::size_t polygons = 0, brushes = 0;
   for (const ModelPtr& m : *models) {
-    polygons += m->polygons.size();
-    brushes += m->brushes.size();
+    polygons += m->polygons().size();
+    brushes += m->brushes().size();
   }
   fmt::print("{} entities -> {} collision models, {} polygons, {} brushes in {:.0f} ms\n\n",
              map->entities.size(), models->size(), polygons, brushes, buildMs);
@@ -103,7 +103,7 @@ int runDemo(const DemoOptions& o) {
     return kExitBadInput;
   }
   SpeedTestOptions test;
-  test.origin = (world.bounds.min + world.bounds.max) * Real(0.5);
+  test.origin = (world.bounds().min + world.bounds().max) * Real(0.5);
   test.threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, kDemoThreads));
   // With the original's default radius (64) every rotation turns the box in
   // the open space around lt4's centre and hits nothing; about points up to
@@ -149,8 +149,8 @@ int runDemo(const DemoOptions& o) {
   }
   focus.min = focus.min - Vec3{kDemoFrameMargin, kDemoFrameMargin, 0};
   focus.max = focus.max + Vec3{kDemoFrameMargin, kDemoFrameMargin, 0};
-  focus.min.z = world.bounds.min.z;
-  focus.max.z = world.bounds.max.z;
+  focus.min.z = world.bounds().min.z;
+  focus.max.z = world.bounds().max.z;
   picture.camera = frameCamera(focus, CameraView::TopDown, Real(picture.width) / Real(picture.height));
   // The world model only: inline models are in their entities' local frames.
   const Image image = renderPicture(std::span(models->data(), 1), traces, picture);

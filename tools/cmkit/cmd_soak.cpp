@@ -150,12 +150,12 @@ int runSoak(const SoakOptions& o) {
   fmt::print(
       "soak of \"{}\" in {}: {} polygons, {} brushes ({} with every face covered by polygons), mask {}, seed "
       "{}\n",
-      world.name, o.map, world.polygons.size(), world.brushes.size(), soak.numClosedBrushes(), o.mask,
+      world.name(), o.map, world.polygons().size(), world.brushes().size(), soak.numClosedBrushes(), o.mask,
       o.seed);
   if (moved)
     fmt::print("moved by ({} {} {}): world bounds ({} {} {}) to ({} {} {}); {} precision\n", offset.x,
-               offset.y, offset.z, world.bounds.min.x, world.bounds.min.y, world.bounds.min.z,
-               world.bounds.max.x, world.bounds.max.y, world.bounds.max.z,
+               offset.y, offset.z, world.bounds().min.x, world.bounds().min.y, world.bounds().min.z,
+               world.bounds().max.x, world.bounds().max.y, world.bounds().max.z,
                kDoublePrecision ? "double" : "float");
   fmt::print("trace models:");
   for (const std::string& s : specs) fmt::print(" {}", s);

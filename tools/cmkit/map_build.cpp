@@ -56,8 +56,8 @@ int runEntityWrite(const MapBuildRequest& request, const MapFile& map, const Mat
     return kExitBadInput;
   }
   const CollisionModel& m = *report.model;
-  fmt::print("entity #{}: model \"{}\": {} vertices, {} edges, {} polygons, {} brushes\n", *index, m.name,
-             m.vertices.size(), m.numEdges(), m.polygons.size(), m.brushes.size());
+  fmt::print("entity #{}: model \"{}\": {} vertices, {} edges, {} polygons, {} brushes\n", *index, m.name(),
+             m.vertices().size(), m.numEdges(), m.polygons().size(), m.brushes().size());
   fmt::print("wrote {} (1 model, CRC 0)\n", request.outPath);
   if (report.traceModel) {
     if (*report.traceModel) {

@@ -48,7 +48,7 @@ std::string procNote(const ProcForCli& proc, const std::string& mapPath,
                      const std::vector<ModelPtr>& models) {
   const std::string procName = std::filesystem::path(proc.path).filename().string();
   if (proc.bsp) {
-    const int dropped = models.empty() ? 0 : models.front()->stats.procPolygonsRemoved;
+    const int dropped = models.empty() ? 0 : models.front()->stats().procPolygonsRemoved;
     return fmt::format("pruned with {}: {} polygon{} dropped", procName, dropped, dropped == 1 ? "" : "s");
   }
   if (proc.ignored) return fmt::format("{} ignored (--no-proc)", procName);

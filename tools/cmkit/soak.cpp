@@ -116,8 +116,8 @@ std::vector<D3> faceOutline(const CollisionModel& world, const CmBrush& brush, s
 class WorldFacts {
  public:
   WorldFacts(const CollisionModel& world, std::uint32_t mask) : world_(world) {
-    faceCovered_.resize(world.brushPlanes.size());
-    for (const CmBrush& brush : world.brushes) {
+    faceCovered_.resize(world.brushPlanes().size());
+    for (const CmBrush& brush : world.brushes()) {
       bool all = true;
       for (std::uint32_t k = 0; k < brush.numPlanes; ++k) {
         const bool has = covered(brush, k, mask);
@@ -137,8 +137,8 @@ class WorldFacts {
     const D3 n = d3(poly.plane.normal);
     int pos = 0, neg = 0;
     for (const std::int32_t e : world_.edgesOf(poly)) {
-      const D3 a = d3(world_.vertices[std::size_t(world_.edgeStart(e))]);
-      const D3 b = d3(world_.vertices[std::size_t(world_.edgeStart(-e))]);
+      const D3 a = d3(world_.vertices()[std::size_t(world_.edgeStart(e))]);
+      const D3 b = d3(world_.vertices()[std::size_t(world_.edgeStart(-e))]);
       D3 edge{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
       D3 side = cross(n, edge);
       const double len = std::sqrt(dot(side, side));
@@ -151,9 +151,9 @@ class WorldFacts {
   }
 
   bool covered(const CmBrush& brush, std::uint32_t k, std::uint32_t mask) const {
-    const Plane& plane = world_.brushPlanes[brush.firstPlane + k];
+    const Plane& plane = world_.brushPlanes()[brush.firstPlane + k];
     std::vector<const CmPolygon*> candidates;
-    for (const CmPolygon& p : world_.polygons) {
+    for (const CmPolygon& p : world_.polygons()) {
       if (!(p.contents & mask) || p.plane.normal.dot(plane.normal) < kSameNormalDot ||
           std::fabs(p.plane.dist - plane.dist) >= kSamePlaneDist ||
           !p.bounds.intersects(brush.bounds.expanded(kSamePlaneDist)))
@@ -286,8 +286,8 @@ struct Soak::Impl {
  public:
   Impl(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
       : world_(world), shapes_(std::move(shapes)), walker_(std::move(walker)), o_(o), facts_(world, o.mask) {
-    const Vec3 size = world.bounds.max - world.bounds.min;
-    inner_ = world.bounds.expanded(-std::min({size.x, size.y, size.z}) * 0.01f);
+    const Vec3 size = world.bounds().max - world.bounds().min;
+    inner_ = world.bounds().expanded(-std::min({size.x, size.y, size.z}) * 0.01f);
   }
 
   std::size_t numClosedBrushes() const { return facts_.numClosed(); }
@@ -367,7 +367,7 @@ struct Soak::Impl {
   /// hit a surface (so not in the void around the map).
   std::optional<Vec3> freeStart(Ctx& c, const Shape& s) const {
     static const Vec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    const Vec3 size = world_.bounds.max - world_.bounds.min;
+    const Vec3 size = world_.bounds().max - world_.bounds().min;
     const Real reach = size.x + size.y + size.z;
     Shape point{"point", TraceModel::point()};
     for (int tryNo = 0; tryNo < kStartTries; ++tryNo) {
@@ -425,8 +425,8 @@ struct Soak::Impl {
       if (length > 0 && std::fabs(dir.dot(pen.direction)) < kGrazingCos) return Finding::Grazing;
       // The brushes the end overlaps (exact separating-axis test) that the start did not.
       bool anyOpen = false, anyClosed = false;
-      for (std::size_t b = 0; b < world_.brushes.size(); ++b) {
-        const CmBrush& brush = world_.brushes[b];
+      for (std::size_t b = 0; b < world_.brushes().size(); ++b) {
+        const CmBrush& brush = world_.brushes()[b];
         if (!(brush.contents & o_.mask) || !brush.bounds.intersects(bEnd)) continue;
         if (overlapDepth(world_, brush, s, end) <= kPrecisionDepth) continue;
         if (overlapDepth(world_, brush, s, from) > 0) continue;  // started inside it
@@ -439,7 +439,7 @@ struct Soak::Impl {
     }
     // Only polygons: was one crossed from behind (start wholly behind its
     // plane, end straddling it)?
-    for (const CmPolygon& p : world_.polygons) {
+    for (const CmPolygon& p : world_.polygons()) {
       if (!(p.contents & o_.mask) || !p.bounds.intersects(bEnd)) continue;
       Real fromMax = -std::numeric_limits<Real>::max(), endMin = std::numeric_limits<Real>::max(),
            endMax = -std::numeric_limits<Real>::max();
@@ -459,7 +459,7 @@ struct Soak::Impl {
   bool closedForMove(const CmBrush& brush, const std::vector<Vec3>& vFrom) const {
     bool anyEntry = false, allHave = true, entryHave = true;
     for (std::uint32_t k = 0; k < brush.numPlanes; ++k) {
-      const Plane& plane = world_.brushPlanes[brush.firstPlane + k];
+      const Plane& plane = world_.brushPlanes()[brush.firstPlane + k];
       Real lowest = std::numeric_limits<Real>::max();
       for (const Vec3& v : vFrom) lowest = std::min(lowest, plane.normal.dot(v) - plane.dist);
       const bool has = facts_.faceCovered(brush, k);
@@ -481,7 +481,7 @@ struct Soak::Impl {
     c.tally.sweeps++;
     Vec3 end;
     if (c.rng() & 1) {
-      end = randomIn(c, world_.bounds);
+      end = randomIn(c, world_.bounds());
     } else {
       const Real r = uniform(c, 1, 512);
       end = *start + Vec3{uniform(c, -r, r), uniform(c, -r, r), uniform(c, -r, r)};
@@ -594,7 +594,7 @@ struct Soak::Impl {
       bool restart = false;
       if (!isFree(c, walker_, pos)) {
         finding = Finding::WalkerEmbedded;
-      } else if (pos.z < world_.bounds.min.z - 64) {
+      } else if (pos.z < world_.bounds().min.z - 64) {
         restart = true;
       } else if ((pos - progressFrom).length() >= kStuckDistance) {
         progressFrom = pos;

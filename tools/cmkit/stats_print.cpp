@@ -126,23 +126,23 @@ ModelCounts& ModelCounts::operator+=(const ModelCounts& o) {
 
 ModelCounts countModel(const CollisionModel& model) {
   ModelCounts c;
-  c.vertices = static_cast<long long>(model.vertices.size());
-  c.edges = static_cast<long long>(model.edges.size());
-  c.polygons = static_cast<long long>(model.polygons.size());
-  c.brushes = static_cast<long long>(model.brushes.size());
-  c.nodes = model.nodes.empty() ? 0 : static_cast<long long>(model.nodes.size()) - 1;
-  c.polygonRefs = static_cast<long long>(model.polygonRefs.size());
-  c.brushRefs = static_cast<long long>(model.brushRefs.size());
-  c.internalEdges = model.stats.internalEdges;
-  c.sharpEdges = model.stats.sharpEdges;
-  c.containedPolygonsRemoved = model.stats.containedPolygonsRemoved;
-  c.polygonsMerged = model.stats.polygonsMerged;
+  c.vertices = static_cast<long long>(model.vertices().size());
+  c.edges = static_cast<long long>(model.edges().size());
+  c.polygons = static_cast<long long>(model.polygons().size());
+  c.brushes = static_cast<long long>(model.brushes().size());
+  c.nodes = model.nodes().empty() ? 0 : static_cast<long long>(model.nodes().size()) - 1;
+  c.polygonRefs = static_cast<long long>(model.polygonRefs().size());
+  c.brushRefs = static_cast<long long>(model.brushRefs().size());
+  c.internalEdges = model.stats().internalEdges;
+  c.sharpEdges = model.stats().sharpEdges;
+  c.containedPolygonsRemoved = model.stats().containedPolygonsRemoved;
+  c.polygonsMerged = model.stats().polygonsMerged;
   c.vertexBytes = c.vertices * kVertexSize;
   c.edgeBytes = c.edges * kEdgeSize;
-  for (const CmPolygon& p : model.polygons) {
+  for (const CmPolygon& p : model.polygons()) {
     c.polygonBytes += kPolygonBaseSize + (static_cast<long long>(p.numEdges) - 1) * kPolygonEdgeSize;
   }
-  for (const CmBrush& b : model.brushes) {
+  for (const CmBrush& b : model.brushes()) {
     c.brushBytes += kBrushBaseSize + (static_cast<long long>(b.numPlanes) - 1) * kBrushPlaneSize;
   }
   c.nodeBytes = c.nodes * kNodeSize;
@@ -170,9 +170,9 @@ void printStatsText(std::FILE* out, std::span<const ModelPtr> models, const Stat
   if (!context.perModel) return;
   int index = 0;
   for (const ModelPtr& m : models) {
-    const Bounds& b = m->bounds;
-    fmt::print(out, "model {} \"{}\": bounds ({} {} {})-({} {} {}) contents {}\n", index++, m->name,
-               g(b.min.x), g(b.min.y), g(b.min.z), g(b.max.x), g(b.max.y), g(b.max.z), m->contents);
+    const Bounds& b = m->bounds();
+    fmt::print(out, "model {} \"{}\": bounds ({} {} {})-({} {} {}) contents {}\n", index++, m->name(),
+               g(b.min.x), g(b.min.y), g(b.min.z), g(b.max.x), g(b.max.y), g(b.max.z), m->contents());
     printCounts(out, countModel(*m));
   }
 }
@@ -184,12 +184,12 @@ std::string statsJson(std::span<const ModelPtr> models, const StatsContext& cont
   for (const ModelPtr& m : models) {
     const ModelCounts c = countModel(*m);
     total += c;
-    const Bounds& b = m->bounds;
+    const Bounds& b = m->bounds();
     if (!modelsJson.empty()) modelsJson += ",\n";
     modelsJson += fmt::format(
         "    {{\"index\": {}, \"name\": {}, \"bounds\": [[{}, {}, {}], [{}, {}, {}]], \"contents\": {}, {}}}",
-        index++, jsonString(m->name), jsonFloat(b.min.x), jsonFloat(b.min.y), jsonFloat(b.min.z),
-        jsonFloat(b.max.x), jsonFloat(b.max.y), jsonFloat(b.max.z), m->contents, countsJson(c));
+        index++, jsonString(m->name()), jsonFloat(b.min.x), jsonFloat(b.min.y), jsonFloat(b.min.z),
+        jsonFloat(b.max.x), jsonFloat(b.max.y), jsonFloat(b.max.z), m->contents(), countsJson(c));
   }
   std::string s = "{\n";
   s += fmt::format("  \"source\": {},\n", jsonString(context.source));
@@ -197,7 +197,7 @@ std::string statsJson(std::span<const ModelPtr> models, const StatsContext& cont
   if (context.entities >= 0) s += fmt::format("  \"entities\": {},\n", context.entities);
   if (!context.procFile.empty()) {
     s += fmt::format("  \"proc\": {{\"file\": {}, \"polygonsDropped\": {}}},\n", jsonString(context.procFile),
-                     models.empty() ? 0 : models.front()->stats.procPolygonsRemoved);
+                     models.empty() ? 0 : models.front()->stats().procPolygonsRemoved);
   }
   const ModelMemory memory = cmkitMemory(models);
   s += fmt::format(
