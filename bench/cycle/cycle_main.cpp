@@ -27,7 +27,7 @@
 #include "cmkit/materials.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include "cmkit/cm_file.h"
 #include "cmkit/contents.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "model/edge_normals.h"
 #include "model/material_cache.h"
 #include "model/model_access.h"

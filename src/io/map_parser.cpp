@@ -10,7 +10,7 @@
 
 #include "cmkit/map.h"
 #include "cmkit/tolerances.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "io/fields.h"
 #include "io/map_crc.h"
 #include "text/lexer.h"

@@ -22,7 +22,7 @@
 
 #include "cmkit/contents.h"
 #include "cmkit/materials.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "text/lexer.h"
 
 namespace cmkit {

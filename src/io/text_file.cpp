@@ -1,5 +1,5 @@
 // Reading a whole input file: see cmkit/text_file.h.
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -12,7 +12,7 @@
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "cmkit/tools/query_format.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "test_support.h"
 
 namespace {

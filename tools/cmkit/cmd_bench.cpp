@@ -12,7 +12,7 @@
 
 #include "bench_report.h"
 #include "cmkit/tools/query_format.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "option_checks.h"

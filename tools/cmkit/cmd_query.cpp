@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "cmkit/tools/query_format.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "commands.h"
 #include "model_loading.h"
 

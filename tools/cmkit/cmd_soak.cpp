@@ -18,7 +18,7 @@
 #include "cmkit/map.h"
 #include "cmkit/query.h"
 #include "cmkit/tools/query_format.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "option_checks.h"

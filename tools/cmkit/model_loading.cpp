@@ -9,7 +9,7 @@
 #include "cmkit/compile.h"
 #include "cmkit/contents.h"
 #include "cmkit/map.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 #include "option_checks.h"
 
 namespace cmkit::cli {

@@ -1,7 +1,7 @@
 #include "trace_loading.h"
 
 #include "cmkit/map.h"
-#include "cmkit/tools/text_file.h"
+#include "cmkit/text_file.h"
 
 namespace cmkit::cli {
 Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath,

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "io/fields.h"
-#include "io/result_fields.h"
+#include "query_format/result_fields.h"
 
 namespace cmkit {
 namespace {

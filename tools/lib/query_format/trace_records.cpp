@@ -6,7 +6,7 @@
 #include "cmkit/tools/debug_draw.h"
 #include "cmkit/tools/query_format.h"
 #include "io/fields.h"
-#include "io/result_fields.h"
+#include "query_format/result_fields.h"
 
 namespace cmkit {
 namespace {
