@@ -26,8 +26,8 @@
 #include "cmkit/manager.h"
 #include "cmkit/materials.h"
 #include "cmkit/query.h"
-#include "cmkit/tools/query_format.h"
 #include "cmkit/text_file.h"
+#include "cmkit/tools/query_format.h"
 
 namespace {
 

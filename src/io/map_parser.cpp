@@ -9,8 +9,8 @@
 #include <utility>
 
 #include "cmkit/map.h"
-#include "cmkit/tolerances.h"
 #include "cmkit/text_file.h"
+#include "cmkit/tolerances.h"
 #include "io/fields.h"
 #include "io/map_crc.h"
 #include "text/lexer.h"

@@ -11,8 +11,8 @@
 #include "cmkit/manager.h"
 #include "cmkit/map.h"
 #include "cmkit/materials.h"
-#include "cmkit/tools/query_format.h"
 #include "cmkit/text_file.h"
+#include "cmkit/tools/query_format.h"
 #include "test_support.h"
 
 namespace {

@@ -11,8 +11,8 @@
 #include <map>
 
 #include "bench_report.h"
-#include "cmkit/tools/query_format.h"
 #include "cmkit/text_file.h"
+#include "cmkit/tools/query_format.h"
 #include "commands.h"
 #include "model_loading.h"
 #include "option_checks.h"

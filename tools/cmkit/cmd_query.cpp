@@ -9,8 +9,8 @@
 #include <string_view>
 #include <thread>
 
-#include "cmkit/tools/query_format.h"
 #include "cmkit/text_file.h"
+#include "cmkit/tools/query_format.h"
 #include "commands.h"
 #include "model_loading.h"
 
