@@ -11,22 +11,15 @@
 #include <vector>
 
 #include "geometry/trace_model_builder.h"
+#include "math/dvec3.h"
 
 namespace cmkit {
 namespace {
 
-struct DVec {
-  double x, y, z;
-  DVec operator-(const DVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
-  DVec operator+(const DVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
-  DVec operator*(double s) const { return {x * s, y * s, z * s}; }
-  double dot(const DVec& o) const { return x * o.x + y * o.y + z * o.z; }
-  DVec cross(const DVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
-  double length() const { return std::sqrt(dot(*this)); }
-};
+using detail::DVec3;
 
 struct FacePlane {
-  DVec n;
+  DVec3 n;
   double d;
 };
 
@@ -38,7 +31,7 @@ constexpr double kHullRelativeEpsilon = 1e-5;
 
 Result<std::vector<std::vector<int>>> detail::TraceModelBuilder::hullFaces(std::span<const Vec3> points) {
   const size_t n = points.size();
-  std::vector<DVec> p(n);
+  std::vector<DVec3> p(n);
   double scale = 0;
   for (size_t i = 0; i < n; ++i) {
     if (!points[i].isFinite())
@@ -62,7 +55,7 @@ Result<std::vector<std::vector<int>>> detail::TraceModelBuilder::hullFaces(std::
       if (duplicate[j]) continue;
       for (size_t k = j + 1; k < n; ++k) {
         if (duplicate[k]) continue;
-        DVec nrm = (p[j] - p[i]).cross(p[k] - p[i]);
+        DVec3 nrm = (p[j] - p[i]).cross(p[k] - p[i]);
         const double len = nrm.length();
         if (len <= eps * std::max(scale, 1.0)) continue;  // collinear
         nrm = nrm * (1.0 / len);
@@ -100,7 +93,7 @@ Result<std::vector<std::vector<int>>> detail::TraceModelBuilder::hullFaces(std::
   std::vector<std::vector<int>> loops;
   for (const FacePlane& f : planes) {
     std::vector<int> verts;
-    DVec centre{0, 0, 0};
+    DVec3 centre{0, 0, 0};
     for (size_t m = 0; m < n; ++m) {
       if (!duplicate[m] && incidence[m] >= 3 && std::fabs(f.n.dot(p[m]) - f.d) <= eps) {
         verts.push_back(int(m));
@@ -111,10 +104,10 @@ Result<std::vector<std::vector<int>>> detail::TraceModelBuilder::hullFaces(std::
     centre = centre * (1.0 / double(verts.size()));
     // Sort counter-clockwise around the outward normal, starting from the
     // lowest-numbered vertex so that the result does not depend on angles.
-    const DVec u = (p[size_t(verts[0])] - centre) * (1.0 / (p[size_t(verts[0])] - centre).length());
-    const DVec v = f.n.cross(u);
+    const DVec3 u = (p[size_t(verts[0])] - centre) * (1.0 / (p[size_t(verts[0])] - centre).length());
+    const DVec3 v = f.n.cross(u);
     auto angle = [&](int m) {
-      const DVec r = p[size_t(m)] - centre;
+      const DVec3 r = p[size_t(m)] - centre;
       double a = std::atan2(r.dot(v), r.dot(u));
       return a < 0 ? a + 2 * M_PI : a;
     };

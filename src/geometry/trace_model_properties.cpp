@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cmkit/trace_model.h"
+#include "math/dvec3.h"
 
 namespace cmkit {
 
@@ -22,7 +23,8 @@ MassProperties TraceModel::massProperties(Real density) const {
   // moment det/120 * (aa' + bb' + cc' + ss'), s = a + b + c, relative to the
   // reference point. Accumulated in double.
   const Vec3 ref = offset_;
-  double vol = 0, first[3] = {0, 0, 0}, second[3][3] = {{0}};
+  double vol = 0, second[3][3] = {{0}};
+  detail::DVec3 first;
   for (int i = 0; i < numPolygons_; ++i) {
     const TrmPolygon& p = polygons_[size_t(i)];
     const Vec3 a = vertices_[size_t(p.startVertex(*this, 0))] - ref;
@@ -32,7 +34,7 @@ MassProperties TraceModel::massProperties(Real density) const {
       const double det = double(a.x) * (double(b.y) * c.z - double(b.z) * c.y) -
                          double(a.y) * (double(b.x) * c.z - double(b.z) * c.x) +
                          double(a.z) * (double(b.x) * c.y - double(b.y) * c.x);
-      const double s[3] = {double(a.x) + b.x + c.x, double(a.y) + b.y + c.y, double(a.z) + b.z + c.z};
+      const detail::DVec3 s(double(a.x) + b.x + c.x, double(a.y) + b.y + c.y, double(a.z) + b.z + c.z);
       vol += det / 6;
       for (int k = 0; k < 3; ++k) first[k] += det / 24 * s[k];
       for (int r = 0; r < 3; ++r)
@@ -42,10 +44,10 @@ MassProperties TraceModel::massProperties(Real density) const {
     }
   }
   if (!(vol > 0)) return mp;
-  const double com[3] = {first[0] / vol, first[1] / vol, first[2] / vol};
+  const detail::DVec3 com(first.x / vol, first.y / vol, first.z / vol);
   mp.volume = Real(vol);
   mp.mass = Real(vol * density);
-  mp.centerOfMass = ref + Vec3{Real(com[0]), Real(com[1]), Real(com[2])};
+  mp.centerOfMass = ref + com.toVec3();
   // Second moment about the centre of mass, then I = trace(C) Id - C.
   double c[3][3];
   for (int r = 0; r < 3; ++r)

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cmkit/rotation.h"
+#include "math/dvec3.h"
 
 namespace cmkit {
 namespace {
@@ -44,26 +45,20 @@ Mat3 Mat3::fromAngles(Real pitchDeg, Real yawDeg, Real rollDeg) {
 
 std::optional<Mat3> Mat3::orthonormalized() const {
   // Gram-Schmidt in double: the result is then accurate to float precision.
-  auto toD = [](const Vec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
-  auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  };
-  auto norm = [&](std::array<double, 3>& a) {
-    const double len = std::sqrt(dot(a, a));
+  using detail::DVec3;
+  auto norm = [](DVec3& a) {
+    const double len = std::sqrt(a.dot(a));
     if (!(len > 1e-12) || !std::isfinite(len)) return false;
-    for (double& c : a) c /= len;
+    a /= len;
     return true;
   };
-  auto r0 = toD(rows[0]);
-  auto r1 = toD(rows[1]);
+  DVec3 r0(rows[0]);
+  DVec3 r1(rows[1]);
   if (!norm(r0)) return std::nullopt;
-  const double d = dot(r0, r1);
-  for (int i = 0; i < 3; ++i) r1[size_t(i)] -= d * r0[size_t(i)];
+  r1 -= r0 * r0.dot(r1);
   if (!norm(r1)) return std::nullopt;
-  const std::array<double, 3> r2{r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2],
-                                 r0[0] * r1[1] - r0[1] * r1[0]};
-  auto toV = [](const std::array<double, 3>& a) { return Vec3{Real(a[0]), Real(a[1]), Real(a[2])}; };
-  return Mat3{toV(r0), toV(r1), toV(r2)};
+  const DVec3 r2 = r0.cross(r1);
+  return Mat3{r0.toVec3(), r1.toVec3(), r2.toVec3()};
 }
 
 Result<Mat3> validateAxis(const Mat3& axis) {

@@ -19,10 +19,12 @@
 
 #include "cmkit/model.h"
 
-// The queries read the cull blocks only four polygons at a time, with SSE2
-// and float lanes (CMKIT_QUERY_LANES); other builds (another target,
-// -DCMKIT_NO_SIMD, a double build) make none.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
+#include "util/simd.h"
+
+// The queries read the cull blocks only four polygons at a time, in
+// util/simd.h's float lanes (CMKIT_QUERY_LANES); other builds (another
+// target, -DCMKIT_NO_SIMD, a double build) make none.
+#ifdef CMKIT_FLOAT_LANES
 #define CMKIT_QUERY_LANES 1
 #endif
 

@@ -2,7 +2,8 @@
 // at a time in SSE2 lanes, each lane doing the arithmetic of the scalar
 // culls (trace_work.h: boxesTouch, boxBeyondPlane) operation for operation,
 // so the same answers. Used by the translation and rotation walks of models
-// with query data; only where CMKIT_QUERY_LANES is defined.
+// with query data; only where CMKIT_QUERY_LANES is defined (util/simd.h's
+// float lanes).
 #pragma once
 
 #include <bit>
@@ -11,62 +12,54 @@
 #include "query/trace_work.h"
 
 #ifdef CMKIT_QUERY_LANES
-#include <emmintrin.h>
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
+using simd::F4;
+using simd::U4;
+
 /// The centres and half sizes of a cull block's four boxes (boxPlaneSpan's).
-inline void blockBoxes(const CullBlock& b, __m128 centre[3], __m128 reach[3]) {
-  const __m128 half = _mm_set1_ps(Real(0.5));
+inline void blockBoxes(const CullBlock& b, F4 centre[3], F4 reach[3]) {
+  const F4 half = F4::all(Real(0.5));
   for (int k = 0; k < 3; ++k) {
-    const __m128 min = _mm_load_ps(b.min[k]), max = _mm_load_ps(b.max[k]);
-    centre[k] = _mm_mul_ps(_mm_add_ps(min, max), half);
-    reach[k] = _mm_sub_ps(max, centre[k]);
+    const F4 min = F4::load(b.min[k]), max = F4::load(b.max[k]);
+    centre[k] = (min + max) * half;
+    reach[k] = max - centre[k];
   }
 }
 
 /// boxBeyondPlane in four lanes (boxes given by their centres and half sizes).
-inline __m128 boxesBeyondPlane(const __m128 centre[3], const __m128 reach[3], const Plane& plane,
-                               Real maxDist) {
-  const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-  const __m128 signMask = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000u)));
-  const __m128 nx = _mm_set1_ps(plane.normal.x), ny = _mm_set1_ps(plane.normal.y);
-  const __m128 nz = _mm_set1_ps(plane.normal.z);
-  const __m128 d1 = _mm_sub_ps(
-      _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, centre[0]), _mm_mul_ps(ny, centre[1])), _mm_mul_ps(nz, centre[2])),
-      _mm_set1_ps(plane.dist));
-  const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_mul_ps(reach[0], nx), absMask),
-                                          _mm_and_ps(_mm_mul_ps(reach[1], ny), absMask)),
-                               _mm_and_ps(_mm_mul_ps(reach[2], nz), absMask));
-  const __m128 limit = _mm_set1_ps(maxDist);
-  return _mm_or_ps(_mm_cmpgt_ps(_mm_sub_ps(d1, d2), limit),
-                   _mm_cmpgt_ps(_mm_xor_ps(_mm_add_ps(d1, d2), signMask), limit));
+inline F4 boxesBeyondPlane(const F4 centre[3], const F4 reach[3], const Plane& plane, Real maxDist) {
+  const F4 nx = F4::all(plane.normal.x), ny = F4::all(plane.normal.y), nz = F4::all(plane.normal.z);
+  const F4 d1 = nx * centre[0] + ny * centre[1] + nz * centre[2] - F4::all(plane.dist);
+  const F4 d2 = simd::abs(reach[0] * nx) + simd::abs(reach[1] * ny) + simd::abs(reach[2] * nz);
+  const F4 limit = F4::all(maxDist);
+  return (d1 - d2 > limit) | (simd::negate(d1 + d2) > limit);
 }
 
 /// The trace bounds and the content mask, broadcast to four lanes once (and
 /// again, by load, when a hit shrinks the bounds).
 struct BoundsLanes {
-  __m128 min[3], max[3];
-  __m128i contentMask;
+  F4 min[3], max[3];
+  U4 contentMask;
   explicit BoundsLanes(const TraceWork& tw) { load(tw); }
   void load(const TraceWork& tw) {
     for (int k = 0; k < 3; ++k) {
-      min[k] = _mm_set1_ps(tw.bounds.min[k]);
-      max[k] = _mm_set1_ps(tw.bounds.max[k]);
+      min[k] = F4::all(tw.bounds.min[k]);
+      max[k] = F4::all(tw.bounds.max[k]);
     }
-    contentMask = _mm_set1_epi32(int(tw.contentMask));
+    contentMask = U4::all(tw.contentMask);
   }
   /// Lanes whose polygon shares a content flag and whose bounds touch the
   /// trace bounds (bit j for lane j).
   unsigned pass(const CullBlock& b) const {
-    const __m128i contents = _mm_load_si128(reinterpret_cast<const __m128i*>(b.contents));
-    __m128 culled =
-        _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(contents, contentMask), _mm_setzero_si128()));
+    F4 culled = simd::noCommonBits(U4::load(b.contents), contentMask);
     for (int k = 0; k < 3; ++k) {  // boxesTouch(tw.bounds, polygon bounds)
-      culled = _mm_or_ps(culled, _mm_cmplt_ps(_mm_load_ps(b.max[k]), min[k]));
-      culled = _mm_or_ps(culled, _mm_cmpgt_ps(_mm_load_ps(b.min[k]), max[k]));
+      culled = culled | (F4::load(b.max[k]) < min[k]);
+      culled = culled | (F4::load(b.min[k]) > max[k]);
     }
-    return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
+    return ~simd::bits(culled) & 0xFu;
   }
 };
 

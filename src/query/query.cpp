@@ -7,9 +7,7 @@
 
 #include "query/query_guards.h"
 #include "query/trace_work.h"
-#ifdef CMKIT_QUERY_LANES
-#include <xmmintrin.h>
-#endif
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
@@ -172,15 +170,16 @@ constexpr std::size_t kPointContentsCachedBrushes = 1024;
 inline bool behindAllPlanes(std::span<const Plane> planes, const Vec3& p) {
   std::size_t i = 0;
 #ifdef CMKIT_QUERY_LANES
+  using simd::F4;
   static_assert(sizeof(Plane) == 4 * sizeof(float), "a Plane is four floats: normal, dist");
-  const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
+  const F4 px = F4::all(p.x), py = F4::all(p.y), pz = F4::all(p.z);
   for (; i + 4 <= planes.size(); i += 4) {
     const float* f = &planes[i].normal.x;
-    __m128 nx = _mm_loadu_ps(f), ny = _mm_loadu_ps(f + 4), nz = _mm_loadu_ps(f + 8), d = _mm_loadu_ps(f + 12);
-    _MM_TRANSPOSE4_PS(nx, ny, nz, d);
-    const __m128 dist =
-        _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, px), _mm_mul_ps(ny, py)), _mm_mul_ps(nz, pz)), d);
-    if (_mm_movemask_ps(_mm_cmpge_ps(dist, _mm_setzero_ps())) != 0) return false;
+    F4 nx = F4::loadUnaligned(f), ny = F4::loadUnaligned(f + 4), nz = F4::loadUnaligned(f + 8),
+       d = F4::loadUnaligned(f + 12);
+    simd::transpose(nx, ny, nz, d);
+    const F4 dist = nx * px + ny * py + nz * pz - d;
+    if (simd::bits(dist >= F4::zero()) != 0) return false;
   }
 #endif
   for (; i < planes.size(); ++i)

@@ -16,12 +16,12 @@
 #include "query/cull_lanes.h"
 #include "query/rotate_work.h"
 
-// SSE2 on x86-64 (boxesCrossing, boxesTouching: four feature boxes at a
-// time; vertexArcBoxes: four vertices' arc boxes at once); any other target, or
-// -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic.
-// The lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
-#include <emmintrin.h>
+// Float lanes where util/simd.h has them (boxesCrossing, boxesTouching: four
+// feature boxes at a time; vertexArcBoxes: four vertices' arc boxes at once);
+// other builds (another target, -DCMKIT_NO_SIMD, CMKIT_DOUBLE) use the
+// portable loops, which do the same arithmetic.
+#include "util/simd.h"
+#ifdef CMKIT_FLOAT_LANES
 #define CMKIT_ROTATE_SSE2 1
 #endif
 
@@ -390,61 +390,46 @@ Bounds vertexArcBoxes(VertexArcs& arcs, int n, const Vec3& axis, FeatureBoxes& b
     arcs.set(i, {arcs.px[last], arcs.py[last], arcs.pz[last]}, {arcs.ex[last], arcs.ey[last], arcs.ez[last]},
              {arcs.rx[last], arcs.ry[last], arcs.rz[last]});
   }
-  const __m128 zero = _mm_setzero_ps(), half = _mm_set1_ps(0.5f), eps = _mm_set1_ps(tol::kBoxEpsilon);
-  const __m128 ax = _mm_set1_ps(axis.x), ay = _mm_set1_ps(axis.y), az = _mm_set1_ps(axis.z);
-  const __m128 one = _mm_set1_ps(1);
-  const __m128 offX = _mm_sub_ps(one, _mm_mul_ps(ax, ax)), offY = _mm_sub_ps(one, _mm_mul_ps(ay, ay));
-  const __m128 offZ = _mm_sub_ps(one, _mm_mul_ps(az, az));
-  __m128 uLoX = _mm_set1_ps(tol::kBoundsInfinity), uLoY = uLoX, uLoZ = uLoX;
-  __m128 uHiX = _mm_set1_ps(-tol::kBoundsInfinity), uHiY = uHiX, uHiZ = uHiX;
+  using simd::F4, simd::min, simd::max, simd::andNot, simd::lowest, simd::highest;
+  const F4 zero = F4::zero(), half = F4::all(0.5f), eps = F4::all(tol::kBoxEpsilon);
+  const F4 ax = F4::all(axis.x), ay = F4::all(axis.y), az = F4::all(axis.z);
+  const F4 one = F4::all(1);
+  const F4 offX = one - ax * ax, offY = one - ay * ay, offZ = one - az * az;
+  F4 uLoX = F4::all(tol::kBoundsInfinity), uLoY = uLoX, uLoZ = uLoX;
+  F4 uHiX = F4::all(-tol::kBoundsInfinity), uHiY = uHiX, uHiZ = uHiX;
   for (std::size_t i = 0; i < std::size_t(n); i += 4) {
-    const __m128 px = _mm_load_ps(&arcs.px[i]), py = _mm_load_ps(&arcs.py[i]), pz = _mm_load_ps(&arcs.pz[i]);
-    const __m128 ex = _mm_load_ps(&arcs.ex[i]), ey = _mm_load_ps(&arcs.ey[i]), ez = _mm_load_ps(&arcs.ez[i]);
-    const __m128 rx = _mm_load_ps(&arcs.rx[i]), ry = _mm_load_ps(&arcs.ry[i]), rz = _mm_load_ps(&arcs.rz[i]);
+    const F4 px = F4::load(&arcs.px[i]), py = F4::load(&arcs.py[i]), pz = F4::load(&arcs.pz[i]);
+    const F4 ex = F4::load(&arcs.ex[i]), ey = F4::load(&arcs.ey[i]), ez = F4::load(&arcs.ez[i]);
+    const F4 rx = F4::load(&arcs.rx[i]), ry = F4::load(&arcs.ry[i]), rz = F4::load(&arcs.rz[i]);
     // (p - ro) x axis and (end - ro) x axis, Vec3::cross term for term.
-    const __m128 dx = _mm_sub_ps(px, rx), dy = _mm_sub_ps(py, ry), dz = _mm_sub_ps(pz, rz);
-    const __m128 fx = _mm_sub_ps(ex, rx), fy = _mm_sub_ps(ey, ry), fz = _mm_sub_ps(ez, rz);
-    const __m128 m1x = _mm_sub_ps(_mm_mul_ps(dy, az), _mm_mul_ps(dz, ay));
-    const __m128 m1y = _mm_sub_ps(_mm_mul_ps(dz, ax), _mm_mul_ps(dx, az));
-    const __m128 m1z = _mm_sub_ps(_mm_mul_ps(dx, ay), _mm_mul_ps(dy, ax));
-    const __m128 m2x = _mm_sub_ps(_mm_mul_ps(fy, az), _mm_mul_ps(fz, ay));
-    const __m128 m2y = _mm_sub_ps(_mm_mul_ps(fz, ax), _mm_mul_ps(fx, az));
-    const __m128 m2z = _mm_sub_ps(_mm_mul_ps(fx, ay), _mm_mul_ps(fy, ax));
-    const __m128 radiusSq =
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+    const F4 dx = px - rx, dy = py - ry, dz = pz - rz;
+    const F4 fx = ex - rx, fy = ey - ry, fz = ez - rz;
+    const F4 m1x = dy * az - dz * ay, m1y = dz * ax - dx * az, m1z = dx * ay - dy * ax;
+    const F4 m2x = fy * az - fz * ay, m2y = fz * ax - fx * az, m2z = fx * ay - fy * ax;
+    const F4 radiusSq = dx * dx + dy * dy + dz * dz;
     // One axis of arcBounds, for four vertices.
-    auto axisBox = [&](__m128 m1, __m128 m2, __m128 off, __m128 p, __m128 e, __m128 ro, __m128& loOut,
-                       __m128& hiOut) {
-      const __m128 turns = _mm_or_ps(_mm_and_ps(_mm_cmpgt_ps(m1, zero), _mm_cmplt_ps(m2, zero)),
-                                     _mm_and_ps(_mm_cmplt_ps(m1, zero), _mm_cmpgt_ps(m2, zero)));
-      const __m128 extent = _mm_sqrt_ps(_mm_max_ps(_mm_mul_ps(radiusSq, off), zero));
-      const __m128 up = _mm_cmpgt_ps(_mm_sub_ps(_mm_mul_ps(half, _mm_add_ps(p, e)), ro), zero);
-      const __m128 lo = _mm_min_ps(e, p), hi = _mm_max_ps(e, p);  // Bounds::ofPoint(p).addPoint(e)
-      const __m128 top = _mm_max_ps(_mm_add_ps(ro, extent), hi);
-      const __m128 bottom = _mm_min_ps(_mm_sub_ps(ro, extent), lo);
-      const __m128 raise = _mm_and_ps(turns, up), lower = _mm_andnot_ps(up, turns);
-      hiOut = _mm_add_ps(_mm_or_ps(_mm_and_ps(raise, top), _mm_andnot_ps(raise, hi)), eps);
-      loOut = _mm_sub_ps(_mm_or_ps(_mm_and_ps(lower, bottom), _mm_andnot_ps(lower, lo)), eps);
+    auto axisBox = [&](F4 m1, F4 m2, F4 off, F4 p, F4 e, F4 ro, F4& loOut, F4& hiOut) {
+      const F4 turns = ((m1 > zero) & (m2 < zero)) | ((m1 < zero) & (m2 > zero));
+      const F4 extent = simd::sqrt(max(radiusSq * off, zero));
+      const F4 up = half * (p + e) - ro > zero;
+      const F4 lo = min(e, p), hi = max(e, p);  // Bounds::ofPoint(p).addPoint(e)
+      const F4 top = max(ro + extent, hi);
+      const F4 bottom = min(ro - extent, lo);
+      const F4 raise = turns & up, lower = andNot(up, turns);
+      hiOut = ((raise & top) | andNot(raise, hi)) + eps;
+      loOut = ((lower & bottom) | andNot(lower, lo)) - eps;
     };
-    __m128 lo, hi;
+    F4 lo, hi;
     axisBox(m1x, m2x, offX, px, ex, rx, lo, hi);
-    _mm_store_ps(&boxes.minX[i], lo), _mm_store_ps(&boxes.maxX[i], hi);
-    uLoX = _mm_min_ps(lo, uLoX), uHiX = _mm_max_ps(hi, uHiX);
+    lo.store(&boxes.minX[i]), hi.store(&boxes.maxX[i]);
+    uLoX = min(lo, uLoX), uHiX = max(hi, uHiX);
     axisBox(m1y, m2y, offY, py, ey, ry, lo, hi);
-    _mm_store_ps(&boxes.minY[i], lo), _mm_store_ps(&boxes.maxY[i], hi);
-    uLoY = _mm_min_ps(lo, uLoY), uHiY = _mm_max_ps(hi, uHiY);
+    lo.store(&boxes.minY[i]), hi.store(&boxes.maxY[i]);
+    uLoY = min(lo, uLoY), uHiY = max(hi, uHiY);
     axisBox(m1z, m2z, offZ, pz, ez, rz, lo, hi);
-    _mm_store_ps(&boxes.minZ[i], lo), _mm_store_ps(&boxes.maxZ[i], hi);
-    uLoZ = _mm_min_ps(lo, uLoZ), uHiZ = _mm_max_ps(hi, uHiZ);
+    lo.store(&boxes.minZ[i]), hi.store(&boxes.maxZ[i]);
+    uLoZ = min(lo, uLoZ), uHiZ = max(hi, uHiZ);
   }
-  auto lowest = [](__m128 v) {
-    v = _mm_min_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
-    return _mm_cvtss_f32(_mm_min_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1))));
-  };
-  auto highest = [](__m128 v) {
-    v = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
-    return _mm_cvtss_f32(_mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1))));
-  };
   return {{lowest(uLoX), lowest(uLoY), lowest(uLoZ)}, {highest(uHiX), highest(uHiY), highest(uHiZ)}};
 #else
   Bounds all;
@@ -461,26 +446,23 @@ Bounds vertexArcBoxes(VertexArcs& arcs, int n, const Vec3& axis, FeatureBoxes& b
 
 #ifdef CMKIT_ROTATE_SSE2
 namespace {
+using simd::F4;
 /// A box in four lanes, for the box tests of four feature boxes at a time.
 struct BoxLanes {
   explicit BoxLanes(const Bounds& b)
-      : loX(_mm_set1_ps(b.min.x)),
-        loY(_mm_set1_ps(b.min.y)),
-        loZ(_mm_set1_ps(b.min.z)),
-        hiX(_mm_set1_ps(b.max.x)),
-        hiY(_mm_set1_ps(b.max.y)),
-        hiZ(_mm_set1_ps(b.max.z)) {}
+      : loX(F4::all(b.min.x)),
+        loY(F4::all(b.min.y)),
+        loZ(F4::all(b.min.z)),
+        hiX(F4::all(b.max.x)),
+        hiY(F4::all(b.max.y)),
+        hiZ(F4::all(b.max.z)) {}
   /// Lane k: feature box i + k lies apart from this box (Bounds::intersects
   /// false, by the same comparisons).
-  __m128 apart(const FeatureBoxes& f, std::size_t i) const {
-    return _mm_or_ps(_mm_or_ps(_mm_or_ps(_mm_cmplt_ps(hiX, _mm_load_ps(&f.minX[i])),
-                                         _mm_cmplt_ps(hiY, _mm_load_ps(&f.minY[i]))),
-                               _mm_cmplt_ps(hiZ, _mm_load_ps(&f.minZ[i]))),
-                     _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(loX, _mm_load_ps(&f.maxX[i])),
-                                         _mm_cmpgt_ps(loY, _mm_load_ps(&f.maxY[i]))),
-                               _mm_cmpgt_ps(loZ, _mm_load_ps(&f.maxZ[i]))));
+  F4 apart(const FeatureBoxes& f, std::size_t i) const {
+    return ((hiX < F4::load(&f.minX[i])) | (hiY < F4::load(&f.minY[i])) | (hiZ < F4::load(&f.minZ[i]))) |
+           ((loX > F4::load(&f.maxX[i])) | (loY > F4::load(&f.maxY[i])) | (loZ > F4::load(&f.maxZ[i])));
   }
-  __m128 loX, loY, loZ, hiX, hiY, hiZ;
+  F4 loX, loY, loZ, hiX, hiY, hiZ;
 };
 }  // namespace
 #endif
@@ -491,29 +473,20 @@ std::uint32_t boxesCrossing(const FeatureBoxes& b, int n, const Bounds& bounds, 
     // Four boxes at a time: Bounds::intersects and Bounds::planeSide's
     // arithmetic in the same order in each lane (the same bits); lanes past
     // n are masked off.
-    const __m128 half = _mm_set1_ps(0.5f), dist = _mm_set1_ps(plane.dist);
+    const F4 half = F4::all(0.5f), dist = F4::all(plane.dist);
     const Vec3& nm = plane.normal;
-    const __m128 nx = _mm_set1_ps(nm.x), ny = _mm_set1_ps(nm.y), nz = _mm_set1_ps(nm.z);
-    const __m128 eps = _mm_set1_ps(tol::kOnEpsilon), negEps = _mm_set1_ps(-tol::kOnEpsilon);
-    const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const F4 nx = F4::all(nm.x), ny = F4::all(nm.y), nz = F4::all(nm.z);
+    const F4 eps = F4::all(tol::kOnEpsilon), negEps = F4::all(-tol::kOnEpsilon);
     const BoxLanes box(bounds);
     std::uint32_t rejected = 0;
     for (std::size_t i = 0; i < std::size_t(n); i += 4) {
-      const __m128 mnX = _mm_load_ps(&b.minX[i]), mnY = _mm_load_ps(&b.minY[i]),
-                   mnZ = _mm_load_ps(&b.minZ[i]);
-      const __m128 mxX = _mm_load_ps(&b.maxX[i]), mxY = _mm_load_ps(&b.maxY[i]),
-                   mxZ = _mm_load_ps(&b.maxZ[i]);
-      const __m128 cx = _mm_mul_ps(_mm_add_ps(mnX, mxX), half);
-      const __m128 cy = _mm_mul_ps(_mm_add_ps(mnY, mxY), half);
-      const __m128 cz = _mm_mul_ps(_mm_add_ps(mnZ, mxZ), half);
-      const __m128 d1 = _mm_sub_ps(
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(nx, cx), _mm_mul_ps(ny, cy)), _mm_mul_ps(nz, cz)), dist);
-      const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_and_ps(_mm_mul_ps(_mm_sub_ps(mxX, cx), nx), absMask),
-                                              _mm_and_ps(_mm_mul_ps(_mm_sub_ps(mxY, cy), ny), absMask)),
-                                   _mm_and_ps(_mm_mul_ps(_mm_sub_ps(mxZ, cz), nz), absMask));
-      const __m128 oneSide =
-          _mm_or_ps(_mm_cmpgt_ps(_mm_sub_ps(d1, d2), eps), _mm_cmplt_ps(_mm_add_ps(d1, d2), negEps));
-      rejected |= std::uint32_t(_mm_movemask_ps(_mm_or_ps(oneSide, box.apart(b, i)))) << i;
+      const F4 mnX = F4::load(&b.minX[i]), mnY = F4::load(&b.minY[i]), mnZ = F4::load(&b.minZ[i]);
+      const F4 mxX = F4::load(&b.maxX[i]), mxY = F4::load(&b.maxY[i]), mxZ = F4::load(&b.maxZ[i]);
+      const F4 cx = (mnX + mxX) * half, cy = (mnY + mxY) * half, cz = (mnZ + mxZ) * half;
+      const F4 d1 = nx * cx + ny * cy + nz * cz - dist;
+      const F4 d2 = simd::abs((mxX - cx) * nx) + simd::abs((mxY - cy) * ny) + simd::abs((mxZ - cz) * nz);
+      const F4 oneSide = (d1 - d2 > eps) | (d1 + d2 < negEps);
+      rejected |= std::uint32_t(simd::bits(oneSide | box.apart(b, i))) << i;
     }
     const std::uint32_t all = n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1;
     return ~rejected & all;
@@ -534,7 +507,7 @@ std::uint32_t boxesTouching(const FeatureBoxes& b, std::uint32_t candidates, con
   const BoxLanes box(bounds);
   std::uint32_t apart = 0;
   for (std::size_t i = 0; i < 32 && (candidates >> i) != 0; i += 4)
-    apart |= std::uint32_t(_mm_movemask_ps(box.apart(b, i))) << i;
+    apart |= std::uint32_t(simd::bits(box.apart(b, i))) << i;
   return candidates & ~apart;
 #else
   std::uint32_t bits = 0;
@@ -677,10 +650,9 @@ bool rotateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode&
     const bool blocked = forEachBlockPassing(
         chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end), [&](std::size_t k, unsigned pass) {
           const CullBlock& b = d.culls[chunk + k];
-          __m128 centre[3], reach[3];
+          simd::F4 centre[3], reach[3];
           blockBoxes(b, centre, reach);
-          pass &= ~unsigned(
-              _mm_movemask_ps(boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1)));
+          pass &= ~simd::bits(boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1));
           const std::size_t entry = (chunk + k) * kLanes;
           for (; pass; pass &= pass - 1) {
             const std::int32_t polyNum = tw.model.polygonRefs()[entry + std::size_t(std::countr_zero(pass))];

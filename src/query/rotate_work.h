@@ -12,23 +12,13 @@
 
 #include <array>
 
+#include "math/dvec3.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
 
-/// A double-precision vector for the equations (inputs are Real).
-struct DVec {
-  double x = 0, y = 0, z = 0;
-  DVec() = default;
-  DVec(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
-  explicit DVec(const Vec3& v) : x(v.x), y(v.y), z(v.z) {}
-  DVec operator+(const DVec& o) const { return {x + o.x, y + o.y, z + o.z}; }
-  DVec operator-(const DVec& o) const { return {x - o.x, y - o.y, z - o.z}; }
-  DVec operator*(double s) const { return {x * s, y * s, z * s}; }
-  double dot(const DVec& o) const { return x * o.x + y * o.y + z * o.z; }
-  DVec cross(const DVec& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
-  Vec3 toVec3() const { return {Real(x), Real(y), Real(z)}; }
-};
+/// The rotation equations are solved in double (inputs are Real).
+using DVec = DVec3;
 
 /// A trace-model edge s -> e turning about the axis (unit a through o), for
 /// its line products with model edges (rotate.cpp, ModelEdgeLine): the edge

@@ -15,7 +15,7 @@
 // lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
 #include "model/query_data.h"  // CMKIT_QUERY_LANES: SSE2, float lanes
 #ifdef CMKIT_QUERY_LANES
-#include <emmintrin.h>
+#include "util/simd.h"
 #define CMKIT_SIDES_SSE2 1
 #endif
 
@@ -129,20 +129,21 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     const std::size_t lane = entry % kLanes;
     auto sidesOf = [&](int v) {
       const Pluecker& r = tw.vertices[std::size_t(v)].pl;
-      const __m128 r0 = _mm_set1_ps(r[0]), r1 = _mm_set1_ps(r[1]), r2 = _mm_set1_ps(r[2]);
-      const __m128 r3 = _mm_set1_ps(r[3]), r4 = _mm_set1_ps(r[4]), r5 = _mm_set1_ps(r[5]);
+      using simd::F4;
+      const F4 r0 = F4::all(r[0]), r1 = F4::all(r[1]), r2 = F4::all(r[2]);
+      const F4 r3 = F4::all(r[3]), r4 = F4::all(r[4]), r5 = F4::all(r[5]);
       std::uint64_t bits = 0;
       // Block k's lane 0 is the group's edge kLanes * k - lane (the shift
       // stays below 64: 17 blocks only when lane > 0).
       for (std::size_t k = 0; k < numBlocks; ++k) {
         const LineBlock& b = blocks[k];
-        __m128 p = _mm_mul_ps(_mm_load_ps(b.c[0]), r4);
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[1]), r5));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[2]), r3));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[4]), r0));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[5]), r1));
-        p = _mm_add_ps(p, _mm_mul_ps(_mm_load_ps(b.c[3]), r2));
-        const std::uint64_t signs = std::uint64_t(_mm_movemask_ps(p));
+        F4 p = F4::load(b.c[0]) * r4;
+        p = p + F4::load(b.c[1]) * r5;
+        p = p + F4::load(b.c[2]) * r3;
+        p = p + F4::load(b.c[4]) * r0;
+        p = p + F4::load(b.c[5]) * r1;
+        p = p + F4::load(b.c[3]) * r2;
+        const std::uint64_t signs = simd::bits(p);
         bits |= k == 0 ? signs >> lane : signs << (kLanes * k - lane);
       }
       sides[v] = bits & valid;
@@ -503,16 +504,15 @@ namespace {
 [[gnu::noinline]] unsigned blockFacesPass(TraceWork& tw, const CullBlock& b) {
   if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
   // Back faces: normal . dir > 0.
-  const __m128 facing = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.normal[0]), _mm_set1_ps(tw.dir.x)),
-                                              _mm_mul_ps(_mm_load_ps(b.normal[1]), _mm_set1_ps(tw.dir.y))),
-                                   _mm_mul_ps(_mm_load_ps(b.normal[2]), _mm_set1_ps(tw.dir.z)));
-  __m128 culled = _mm_cmpgt_ps(facing, _mm_setzero_ps());
+  const F4 facing = F4::load(b.normal[0]) * F4::all(tw.dir.x) + F4::load(b.normal[1]) * F4::all(tw.dir.y) +
+                    F4::load(b.normal[2]) * F4::all(tw.dir.z);
+  F4 culled = facing > F4::zero();
   // The heart planes.
-  __m128 centre[3], reach[3];
+  F4 centre[3], reach[3];
   blockBoxes(b, centre, reach);
-  culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1));
-  culled = _mm_or_ps(culled, boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2));
-  return ~unsigned(_mm_movemask_ps(culled)) & 0xFu;
+  culled = culled | boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1);
+  culled = culled | boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2);
+  return ~simd::bits(culled) & 0xFu;
 }
 
 }  // namespace

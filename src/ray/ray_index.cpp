@@ -15,11 +15,10 @@
 #include "ray/ray_index_kernel.h"
 #include "ray/ray_index_layout.h"
 
-// SSE2 on x86-64; any other target (or -DCMKIT_NO_SIMD, to test it) uses the
-// portable loop in enteredChildren, which does the same arithmetic.
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
-#include <emmintrin.h>
-#endif
+// util/simd.h's lanes on x86-64 (the node boxes are float in every build);
+// any other target (or -DCMKIT_NO_SIMD, to test it) uses the portable loop in
+// enteredChildren, which does the same arithmetic.
+#include "util/simd.h"
 
 #include <algorithm>
 #include <array>
@@ -219,25 +218,24 @@ bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && 
 /// (`entry`, clipped to [0, best]).
 int enteredChildren(const Node& n, const detail::Ray& r, float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
-#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD)
+#ifdef CMKIT_SIMD_SSE2
   // Two halves of four children.
+  using detail::simd::F4;
+  namespace simd = detail::simd;
   const auto half = [&](int h) {
     const auto row = [base, h](std::size_t offset) {
-      return _mm_load_ps(reinterpret_cast<const float*>(base + offset) + 4 * h);
+      return F4::load(reinterpret_cast<const float*>(base + offset) + 4 * h);
     };
     const auto along = [&](int axis, const std::size_t* rows) {
-      return _mm_mul_ps(_mm_sub_ps(row(rows[axis]), _mm_set1_ps(r.start[axis])), _mm_set1_ps(r.inv[axis]));
+      return (row(rows[axis]) - F4::all(r.start[axis])) * F4::all(r.inv[axis]);
     };
-    const __m128 tNear = _mm_max_ps(_mm_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
-                                    _mm_max_ps(along(2, r.nearRow), _mm_setzero_ps()));
-    const __m128 tFar = _mm_min_ps(_mm_min_ps(along(1, r.farRow), along(0, r.farRow)),
-                                   _mm_min_ps(along(2, r.farRow), _mm_set1_ps(best)));
-    const __m128i noContents =
-        _mm_cmpeq_epi32(_mm_and_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(n.contents + 4 * h)),
-                                      _mm_set1_epi32(int(r.mask))),
-                        _mm_setzero_si128());
-    _mm_store_ps(entry + 4 * h, tNear);
-    return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(noContents), _mm_cmple_ps(tNear, tFar)));
+    const F4 tNear = simd::max(simd::max(along(1, r.nearRow), along(0, r.nearRow)),
+                               simd::max(along(2, r.nearRow), F4::zero()));
+    const F4 tFar = simd::min(simd::min(along(1, r.farRow), along(0, r.farRow)),
+                              simd::min(along(2, r.farRow), F4::all(best)));
+    const F4 noContents = simd::noCommonBits(simd::U4::load(n.contents + 4 * h), simd::U4::all(r.mask));
+    tNear.store(entry + 4 * h);
+    return int(simd::bits(simd::andNot(noContents, tNear <= tFar)));
   };
   return half(0) | half(1) << 4;
 #else  // the same arithmetic one child at a time
