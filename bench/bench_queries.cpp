@@ -54,7 +54,7 @@ struct Lt4Scene {
       error = built.error().toString();
       return;
     }
-    models = std::move(*built);
+    models = std::move(built->models);
     if (!fs::exists(queryFile)) {
       queriesError = "shared/reference/lt4.queries.txt is absent";
       return;

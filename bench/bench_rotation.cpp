@@ -46,7 +46,7 @@ const Lt4Rotations& lt4() {
       d.why = "lt4 did not build";
       return d;
     }
-    d.models = std::move(*models);
+    d.models = std::move(models->models);
     std::ifstream in(kShared / "reference/lt4.queries.txt");
     for (std::string line; std::getline(in, line);)
       if (line.rfind("rotation ", 0) == 0) d.lines.push_back(line);

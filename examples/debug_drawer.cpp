@@ -53,13 +53,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "debug_drawer: %s\n", map.error().toString().c_str());
     return 1;
   }
-  auto models = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
-  if (!models || models->empty()) {
+  auto built = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
+  if (!built || built->models.empty()) {
     std::fprintf(stderr, "debug_drawer: %s\n",
-                 models ? "the map has no models" : models.error().toString().c_str());
+                 built ? "the map has no models" : built.error().toString().c_str());
     return 1;
   }
-  const cmkit::CollisionModel& world = *(*models)[0];
+  const std::vector<cmkit::ModelPtr>& models = built->models;  // built->warnings: what the build skipped
+  const cmkit::CollisionModel& world = *models[0];
 
   // The world's polygons within 512 units of a viewer, filled, with normals.
   CountingDraw modelDraw;
@@ -89,7 +90,7 @@ int main(int argc, char** argv) {
   trace.end = q.end;
   trace.result = cmkit::translate(world, q, work);
   if (trace.result.status != cmkit::QueryStatus::Ok) {
-    std::fprintf(stderr, "debug_drawer: query refused: %s\n", cmkit::describe(trace.result.status));
+    std::fprintf(stderr, "debug_drawer: query refused: %s\n", cmkit::toString(trace.result.status));
     return 1;
   }
   CountingDraw traceDraw;

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   for (const cmkit::Placement& place : places) {
     const cmkit::TraceResult r = dropOnto(m, place, *box, work);
     if (r.status != cmkit::QueryStatus::Ok) {
-      std::fprintf(stderr, "placed_models: query refused: %s\n", cmkit::describe(r.status));
+      std::fprintf(stderr, "placed_models: query refused: %s\n", cmkit::toString(r.status));
       return 1;
     }
     std::printf("placed at (%g %g %g): fraction %.4f, stopped at (%.2f %.2f %.2f), normal (%.2f %.2f %.2f)\n",

@@ -20,14 +20,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ray_sensor: %s\n", map.error().toString().c_str());
     return 1;
   }
-  auto models = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
-  if (!models || models->empty()) {
+  auto built = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
+  if (!built || built->models.empty()) {
     std::fprintf(stderr, "ray_sensor: %s\n",
-                 models ? "the map has no models" : models.error().toString().c_str());
+                 built ? "the map has no models" : built.error().toString().c_str());
     return 1;
   }
+  const std::vector<cmkit::ModelPtr>& models = built->models;  // built->warnings: what the build skipped
 
-  const cmkit::RayIndex index(*(*models)[0]);  // built once, immutable: cast() from any thread
+  const cmkit::RayIndex index(*models[0]);  // built once, immutable: cast() from any thread
   std::printf("indexed %zu polygons in %zu nodes (%s)\n", index.numPolygons(), index.numNodes(),
               index.usesAvx2() ? "AVX2" : "baseline");
 

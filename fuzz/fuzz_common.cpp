@@ -59,7 +59,7 @@ void exerciseModels(std::span<const ModelPtr> models) {
         k.contentMask = ~0u;
         (void)contacts(*m, k, work);
       }
-      (void)pointContents(*m, e[0]);
+      (void)pointContents(*m, {e[0], {}}, work);
       (void)rays.cast({e[0], e[1], ~0u});
     }
     if (box) {

@@ -54,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   auto models = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
   if (!models) return 0;
-  for (const cmkit::ModelPtr& m : *models) cmkit::fuzz::requireValid(*m, "the map compiler");
-  cmkit::fuzz::exerciseModels(*models);
+  for (const cmkit::ModelPtr& m : models->models) cmkit::fuzz::requireValid(*m, "the map compiler");
+  cmkit::fuzz::exerciseModels(models->models);
   return 0;
 }

@@ -40,7 +40,7 @@ const std::vector<cmkit::ModelPtr>& roomModels() {
     if (!map) std::abort();
     auto built = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
     if (!built) std::abort();
-    return std::move(*built);
+    return std::move(built->models);
   }();
   return models;
 }

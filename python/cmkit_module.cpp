@@ -265,6 +265,14 @@ struct ContactArrays {
   }
 };
 
+// The (N,) uint8 array of the results' QueryStatus values (STATUS_*).
+template <class R>
+py::array_t<std::uint8_t> statusArray(const std::vector<R>& results) {
+  auto status = py::array_t<std::uint8_t>(py::ssize_t(results.size()));
+  for (std::size_t i = 0; i < results.size(); ++i) status.mutable_data()[i] = std::uint8_t(results[i].status);
+  return status;
+}
+
 py::dict traceArrays(const std::vector<cmkit::TraceResult>& results) {
   const std::size_t n = results.size();
   auto fraction = py::array_t<Real>(py::ssize_t(n));
@@ -285,6 +293,7 @@ py::dict traceArrays(const std::vector<cmkit::TraceResult>& results) {
   d["endpos"] = endpos;
   d["endaxis"] = endaxis;
   d["start_solid"] = startSolid;
+  d["status"] = statusArray(results);
   contact.into(d);
   return d;
 }
@@ -296,13 +305,13 @@ py::dict translateBatch(PyModel& self, const py::object& trm, const py::object& 
   const TrmArg t = trmArg(trm);
   const auto s = vectors(starts, "starts"), e = vectors(ends, "ends");
   cmkit::TranslationBatch b;
-  b.trm = t.trm;
-  b.trmAxis = matrix(axis, "axis");
+  b.query.trm = t.trm;
+  b.query.trmAxis = matrix(axis, "axis");
+  b.query.contentMask = maskOf(mask);
+  b.query.placement = placementOf(origin, modelAxis);
+  b.query.detectStartSolid = startSolid;
   b.starts = s;
   b.ends = e;
-  b.contentMask = maskOf(mask);
-  b.placement = placementOf(origin, modelAxis);
-  b.detectStartSolid = startSolid;
   const auto n = unwrap(cmkit::batchSize(s.size(), e.size(), "starts and ends"));
   std::vector<cmkit::TraceResult> out(n);
   Hook hook(threads, progress);
@@ -332,13 +341,13 @@ py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& sta
     rotations[i] = cmkit::Rotation(o[o.size() == 1 ? 0 : i], ax, angle);
   }
   cmkit::RotationBatch b;
-  b.trm = t.trm;
-  b.trmAxis = matrix(axis, "axis");
+  b.query.trm = t.trm;
+  b.query.trmAxis = matrix(axis, "axis");
+  b.query.contentMask = maskOf(mask);
+  b.query.placement = placementOf(origin, modelAxis);
+  b.query.detectStartSolid = startSolid;
   b.starts = s;
   b.rotations = rotations;
-  b.contentMask = maskOf(mask);
-  b.placement = placementOf(origin, modelAxis);
-  b.detectStartSolid = startSolid;
   std::vector<cmkit::TraceResult> out(unwrap(cmkit::batchSize(s.size(), n, "starts and rotations")));
   Hook hook(threads, progress);
   runBatch([&] { return cmkit::rotateBatch(*self.model, b, out, hook.options); });
@@ -350,10 +359,10 @@ py::dict castRays(PyModel& self, const py::object& starts, const py::object& end
                   const py::object& progress) {
   const auto s = vectors(starts, "origins"), e = vectors(ends, "ends");
   cmkit::RayBatch b;
+  b.query.contentMask = maskOf(mask);
+  b.query.placement = placementOf(origin, modelAxis);
   b.starts = s;
   b.ends = e;
-  b.contentMask = maskOf(mask);
-  b.placement = placementOf(origin, modelAxis);
   const std::size_t n = unwrap(cmkit::batchSize(s.size(), e.size(), "origins and ends"));
   std::vector<cmkit::RayHit> out(n);
   Hook hook(threads, progress);
@@ -389,16 +398,21 @@ py::dict castRays(PyModel& self, const py::object& starts, const py::object& end
   return d;
 }
 
-py::array_t<std::uint32_t> pointContents(PyModel& self, const py::object& points, const py::object& origin,
-                                         const py::object& modelAxis, int threads,
-                                         const py::object& progress) {
+py::dict pointContents(PyModel& self, const py::object& points, const py::object& origin,
+                       const py::object& modelAxis, int threads, const py::object& progress) {
   const auto p = vectors(points, "points");
-  const cmkit::Placement placement = placementOf(origin, modelAxis);
-  auto out = py::array_t<std::uint32_t>(py::ssize_t(p.size()));
-  std::span<std::uint32_t> outSpan(out.mutable_data(), p.size());
+  cmkit::PointContentsBatch b;
+  b.query.placement = placementOf(origin, modelAxis);
+  b.points = p;
+  std::vector<cmkit::PointContentsResult> out(p.size());
   Hook hook(threads, progress);
-  runBatch([&] { return cmkit::pointContentsBatch(*self.model, p, outSpan, placement, hook.options); });
-  return out;
+  runBatch([&] { return cmkit::pointContentsBatch(*self.model, b, out, hook.options); });
+  auto contents = py::array_t<std::uint32_t>(py::ssize_t(out.size()));
+  for (std::size_t i = 0; i < out.size(); ++i) contents.mutable_data()[i] = out[i].contents;
+  py::dict d;
+  d["contents"] = contents;
+  d["status"] = statusArray(out);
+  return d;
 }
 
 py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& positions, std::int64_t mask,
@@ -407,11 +421,11 @@ py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& p
   const TrmArg t = trmArg(trm);
   const auto p = vectors(positions, "positions");
   cmkit::ContentsBatch b;
-  b.trm = t.trm;
-  b.trmAxis = matrix(axis, "axis");
+  b.query.trm = t.trm;
+  b.query.trmAxis = matrix(axis, "axis");
+  b.query.contentMask = maskOf(mask);
+  b.query.placement = placementOf(origin, modelAxis);
   b.positions = p;
-  b.contentMask = maskOf(mask);
-  b.placement = placementOf(origin, modelAxis);
   std::vector<cmkit::ContentsResult> out(p.size());
   Hook hook(threads, progress);
   runBatch([&] { return cmkit::contentsBatch(*self.model, b, out, hook.options); });
@@ -424,6 +438,7 @@ py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& p
   py::dict d = traceArrays(traces);
   d["contact_contents"] = d["contents"];
   d["contents"] = contents;
+  d["status"] = statusArray(out);
   return d;
 }
 
@@ -436,14 +451,14 @@ py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& s
   if (!std::isfinite(depth) || depth < 0) throw py::value_error("depth must be finite and not negative");
   if (maxContacts < 1 || maxContacts > 1024) throw py::value_error("max_contacts must be 1..1024");
   cmkit::ContactsBatch b;
-  b.trm = t.trm;
-  b.trmAxis = matrix(axis, "axis");
+  b.query.trm = t.trm;
+  b.query.trmAxis = matrix(axis, "axis");
+  b.query.depth = Real(depth);
+  b.query.maxContacts = maxContacts;
+  b.query.contentMask = maskOf(mask);
+  b.query.placement = placementOf(origin, modelAxis);
   b.starts = s;
   b.dirs = dv;
-  b.depth = Real(depth);
-  b.maxContacts = maxContacts;
-  b.contentMask = maskOf(mask);
-  b.placement = placementOf(origin, modelAxis);
   const std::size_t n = unwrap(cmkit::batchSize(s.size(), dv.size(), "starts and dirs"));
   std::vector<cmkit::ContactsResult> out(n);
   Hook hook(threads, progress);
@@ -459,6 +474,7 @@ py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& s
   }
   py::dict d;
   d["count"] = count;
+  d["status"] = statusArray(out);
   arrays.into(d);
   return d;
 }
@@ -598,6 +614,22 @@ class Error(Exception):
   m.attr("CONTACT_EDGE") = int(cmkit::ContactType::Edge);
   m.attr("CONTACT_MODEL_VERTEX") = int(cmkit::ContactType::ModelVertex);
   m.attr("CONTACT_TRM_VERTEX") = int(cmkit::ContactType::TrmVertex);
+  m.attr("STATUS_OK") = int(cmkit::QueryStatus::Ok);
+  m.attr("STATUS_BAD_TRM_AXIS") = int(cmkit::QueryStatus::BadTrmAxis);
+  m.attr("STATUS_BAD_MODEL_AXIS") = int(cmkit::QueryStatus::BadModelAxis);
+  m.attr("STATUS_NON_FINITE") = int(cmkit::QueryStatus::NonFinite);
+  m.attr("STATUS_OUT_OF_RANGE") = int(cmkit::QueryStatus::OutOfRange);
+  m.attr("STATUS_BAD_ROTATION_AXIS") = int(cmkit::QueryStatus::BadRotationAxis);
+  m.def(
+      "status_name",
+      [](int status) {
+        if (status < int(cmkit::QueryStatus::Ok) || status > int(cmkit::QueryStatus::BadRotationAxis))
+          throw py::value_error("not a query status (STATUS_*): " + std::to_string(status));
+        return std::string(cmkit::toString(cmkit::QueryStatus(status)));
+      },
+      py::arg("status"),
+      "A short English description of a query status (STATUS_*; the 'status' result arrays), as C++'s "
+      "toString(QueryStatus): 'ok', 'trace-model axis is not a rotation ...'.");
   m.def("content_names", &cmkit::contentsToString, py::arg("contents"),
         "The names of the content flags set in `contents` (e.g. 'solid,playerclip').");
 
@@ -764,7 +796,7 @@ contents, contacts. Models pickle as .cm text, so they travel to worker processe
 trm: a TraceModel, a spec string or None (a point trace). axis: the trace model's
 orientation (3x3, rows = axes). start_solid=True also tests the start positions.
 Returns a dict of arrays: fraction (N,), endpos (N, 3), endaxis (N, 3, 3), start_solid (N,),
-and the contact: point (N, 3), normal (N, 3), dist (N,), contents (N,), type (N,) (CONTACT_*),
+status (N,) (STATUS_*: STATUS_OK, or why the query was refused), and the contact: point (N, 3), normal (N, 3), dist (N,), contents (N,), type (N,) (CONTACT_*),
 material (N,), model_feature (N,), trm_feature (N,).)") +
             batchNote)
                .c_str())
@@ -792,7 +824,10 @@ Unlike translate() with a point it reports the surface crossing itself (no 0.25 
       .def("point_contents", &pointContents, py::arg("points"), py::kw_only(), py::arg("origin") = py::none(),
            py::arg("model_axis") = py::none(), py::arg("threads") = 0, py::arg("progress") = py::none(),
            (std::string(
-                "The contents of the brushes containing each point of points (N, 3): a uint32 array (N,).") +
+                R"(The contents of the brushes containing each point of points (N, 3).
+
+Returns a dict: contents (N,) uint32 (0: in no brush), status (N,) (STATUS_*; a refused point,
+e.g. NaN or beyond 1e9 units, has contents 0).)") +
             batchNote)
                .c_str())
       .def("contents", &contentsBatch, py::arg("trm"), py::arg("positions"), py::kw_only(),
@@ -801,7 +836,7 @@ Unlike translate() with a point it reports the surface crossing itself (no 0.25 
            (std::string(R"(Position tests: what the trace model overlaps at each of positions (N, 3).
 
 Returns a dict: contents (N,) (the first brush or polygon found overlapping, 0: free),
-fraction (N,) (0: stuck, 1: free), and the contact fields of translate() (its contents as
+status (N,) (STATUS_*), fraction (N,) (0: stuck, 1: free), and the contact fields of translate() (its contents as
 contact_contents).)") +
             batchNote)
                .c_str())
@@ -812,7 +847,7 @@ contact_contents).)") +
            (std::string(
                 R"(Every surface the trace model touches moved from starts (N, 3) along dirs (N, 3) by depth.
 
-Returns a dict: count (N,), and the contact fields of translate() with shape (N, max_contacts, ...);
+Returns a dict: count (N,), status (N,) (STATUS_*), and the contact fields of translate() with shape (N, max_contacts, ...);
 entries past count[i] hold type CONTACT_NONE, material -1 and zeros.)") +
             batchNote)
                .c_str());

@@ -153,10 +153,13 @@ void batchThroughput(const cmkit::CollisionModel& world, const cmkit::RayIndex& 
   for (int threads = 1; threads <= 2; ++threads) {
     cmkit::BatchOptions options;
     options.threads = threads;
-    const cmkit::TranslationBatch tb{&box, cmkit::Mat3::identity(), starts, boxEnds, kMask, {}, false};
+    cmkit::TranslationQuery shared;
+    shared.trm = &box;
+    shared.contentMask = kMask;
+    const cmkit::TranslationBatch tb{shared, starts, boxEnds};
     boxNs[threads] =
         fastestBatch(kBatchSize, passes, [&] { (void)cmkit::translateBatch(world, tb, traces, options); });
-    const cmkit::RayBatch rb{starts, ends, kMask, {}};
+    const cmkit::RayBatch rb{{{}, {}, kMask, {}}, starts, ends};
     rayNs[threads] =
         fastestBatch(kRayBatchSize, passes, [&] { (void)cmkit::castRayBatch(rays, rb, hits, options); });
   }
@@ -224,11 +227,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   auto models = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
-  if (!models || models->empty()) {
+  if (!models || models->models.empty()) {
     std::fprintf(stderr, "cmkit_peers: %s: no models\n", mapPath.c_str());
     return 2;
   }
-  const cmkit::CollisionModel& world = *models->front();
+  const cmkit::CollisionModel& world = *models->models.front();
 
   // The same geometry for the peers: every polygon matching the mask, as a
   // fan of triangles over the model's vertices.

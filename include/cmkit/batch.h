@@ -11,6 +11,9 @@
 //   start, many ends). Spans of other lengths, or an `out` span whose length
 //   is not N, are an Error and nothing is computed. N = 0 is an empty batch:
 //   success, nothing written.
+// - A batch holds the single query's struct (`query`) for the fields every
+//   query shares, and spans for the fields that vary; the fields the spans
+//   give are ignored in `query` (each batch struct says which).
 // - A trace model pointer may be null (a point), as in the single queries.
 // - Threads: BatchOptions::threads workers (0: one per hardware thread, at
 //   most one per chunk); each owns a QueryWork. The calling thread is one of
@@ -39,11 +42,9 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <functional>
 #include <span>
 
-#include "cmkit/contents.h"
 #include "cmkit/math.h"
 #include "cmkit/model.h"
 #include "cmkit/query.h"
@@ -65,80 +66,51 @@ struct BatchOptions {
   std::function<bool(std::size_t done, std::size_t total)> progress;
 };
 
-/// Translations of one trace model: query i moves it from starts[i] (or
-/// starts[0]) to ends[i] (or ends[0]). See TranslationQuery.
+/// Translations of one trace model: query i is `query` moving it from
+/// starts[i] (or starts[0]) to ends[i] (or ends[0]). query.start and
+/// query.end are ignored (the spans give them); every other field of
+/// `query` is shared by all queries. See TranslationQuery.
 struct TranslationBatch {
-  /// The trace model moved (nullptr or a point shape: a point).
-  const TraceModel* trm = nullptr;
-  /// Orientation of the trace model.
-  Mat3 trmAxis;
+  /// The fields every translation shares (start and end ignored).
+  TranslationQuery query;
   std::span<const Vec3> starts;  ///< 1 or N
   std::span<const Vec3> ends;    ///< 1 or N
-  /// Content flags the queries collide with.
-  std::uint32_t contentMask = contents::kMaskSolid;
-  /// Where the model is placed in the world.
-  Placement placement;
-  /// Also run a position test at each start and set TraceResult::startSolid.
-  bool detectStartSolid = false;
 };
 
-/// Rotations of one trace model: query i turns it from starts[i] by
-/// rotations[i] (either may be 1 long). See RotationQuery.
+/// Rotations of one trace model: query i is `query` turning it from
+/// starts[i] by rotations[i] (either may be 1 long). query.start and
+/// query.rotation are ignored. See RotationQuery.
 struct RotationBatch {
-  /// The trace model moved (nullptr or a point shape: a point).
-  const TraceModel* trm = nullptr;
-  /// Orientation of the trace model.
-  Mat3 trmAxis;
+  /// The fields every rotation shares (start and rotation ignored).
+  RotationQuery query;
   std::span<const Vec3> starts;         ///< 1 or N
   std::span<const Rotation> rotations;  ///< 1 or N
-  /// Content flags the queries collide with.
-  std::uint32_t contentMask = contents::kMaskSolid;
-  /// Where the model is placed in the world.
-  Placement placement;
-  /// Also run a position test at each start and set TraceResult::startSolid.
-  bool detectStartSolid = false;
 };
 
-/// Position tests of one trace model at many positions. See ContentsQuery.
+/// Position tests of one trace model: query i is `query` at positions[i]
+/// (query.position is ignored). See ContentsQuery.
 struct ContentsBatch {
-  /// The trace model tested (nullptr or a point shape: point contents).
-  const TraceModel* trm = nullptr;
-  /// Orientation of the trace model.
-  Mat3 trmAxis;
+  /// The fields every position test shares (position ignored).
+  ContentsQuery query;
   std::span<const Vec3> positions;  ///< N
-  /// Content flags the queries collide with.
-  std::uint32_t contentMask = contents::kMaskSolid;
-  /// Where the model is placed in the world.
-  Placement placement;
 };
 
-/// Contacts of one trace model moved from starts[i] along dirs[i] by
-/// `depth`. See ContactsQuery.
+/// Contacts of one trace model: query i is `query` moved from starts[i]
+/// along dirs[i] by query.depth (query.start and query.dir are ignored).
+/// See ContactsQuery.
 struct ContactsBatch {
-  /// The trace model moved (nullptr or a point shape: a point).
-  const TraceModel* trm = nullptr;
-  /// Orientation of the trace model.
-  Mat3 trmAxis;
+  /// The fields every contacts query shares (start and dir ignored).
+  ContactsQuery query;
   std::span<const Vec3> starts;  ///< 1 or N
   std::span<const Vec3> dirs;    ///< 1 or N
-  /// How far each start moves along its direction.
-  Real depth = 0;
-  /// Content flags the queries collide with.
-  std::uint32_t contentMask = contents::kMaskSolid;
-  /// Where the model is placed in the world.
-  Placement placement;
-  /// At most this many contacts per query.
-  int maxContacts = 16;
 };
 
-/// Ray casts through a RayIndex: segment starts[i] -> ends[i]. See RayCastQuery.
-struct RayBatch {
-  std::span<const Vec3> starts;  ///< 1 or N
-  std::span<const Vec3> ends;    ///< 1 or N
-  /// Content flags of the polygons the rays hit.
-  std::uint32_t contentMask = contents::kMaskSolid;
-  /// Where the model is placed in the world.
-  Placement placement;
+/// Point contents of many points: query i is `query` at points[i]
+/// (query.point is ignored). See PointContentsQuery.
+struct PointContentsBatch {
+  /// The fields every query shares (point ignored): the placement.
+  PointContentsQuery query;
+  std::span<const Vec3> points;  ///< N
 };
 
 /// The batch size of two "1 or N" spans: the longer length, or an Error
@@ -157,11 +129,10 @@ Status contentsBatch(const CollisionModel& model, const ContentsBatch& batch, st
 /// out[i] = contacts(model, query i, work).
 Status contactsBatch(const CollisionModel& model, const ContactsBatch& batch, std::span<ContactsResult> out,
                      const BatchOptions& options = {});
-/// out[i] = pointContents(model, points[i], placement).
-Status pointContentsBatch(const CollisionModel& model, std::span<const Vec3> points,
-                          std::span<std::uint32_t> out, const Placement& placement = {},
-                          const BatchOptions& options = {});
-/// out[i] = index.cast(query i).
+/// out[i] = pointContents(model, query i, work).
+Status pointContentsBatch(const CollisionModel& model, const PointContentsBatch& batch,
+                          std::span<PointContentsResult> out, const BatchOptions& options = {});
+/// out[i] = index.cast(query i) (RayBatch: ray_index.h).
 Status castRayBatch(const RayIndex& index, const RayBatch& batch, std::span<RayHit> out,
                     const BatchOptions& options = {});
 

@@ -27,9 +27,6 @@ struct BuildOptions {
   /// Called with (entities done, entities in all) as the build progresses;
   /// may be empty.
   std::function<void(std::size_t, std::size_t)> progress;
-  /// Warnings (skipped degenerate brushes, truncated polygons, ...) are
-  /// appended here when not null.
-  std::vector<std::string>* warnings = nullptr;
   /// The renderer's BSP of the map's .proc file (loadProcFileForMap), or
   /// null. When set and usable, the world model (the first model built)
   /// drops every solid polygon winding lying entirely in its opaque solid
@@ -51,18 +48,30 @@ struct BuildOptions {
   bool robustEdges = false;
 };
 
+/// What buildCollisionModels made.
+struct BuildResult {
+  /// One model per entity that owns primitives, in entity order (the world
+  /// model first).
+  std::vector<ModelPtr> models;
+  /// Warnings (skipped degenerate brushes, truncated polygons, ...), in the
+  /// order they arose; a repeated message is one line with its count.
+  std::vector<std::string> warnings;
+};
+
 /// Builds one collision model per entity that owns primitives, in entity
 /// order, named as the original names them (the "model" key, else "name",
 /// else "worldMap" for the first model and "unnamed inline model" for the
-/// others), each in its entity's local frame. Error: a brush with more than
-/// kMaxBrushSides sides.
-Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
-                                                   const BuildOptions& options = {});
+/// others), each in its entity's local frame, with the build's warnings.
+/// Error: a brush with more than kMaxBrushSides sides (the warnings so far
+/// are dropped with the models).
+Result<BuildResult> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
+                                         const BuildOptions& options = {});
 
-/// What writeCollisionModelForMapEntity made, for callers that want more
-/// than the file.
+/// What writeCollisionModelForMapEntity made and wrote.
 struct EntityModelReport {
   ModelPtr model;  ///< the model written
+  /// Build warnings (as BuildResult::warnings).
+  std::vector<std::string> warnings;
   /// With EntityModelOptions::testTraceModel: the model as a trace model, or
   /// the Error saying why it cannot be one (not convex, not closed, too many
   /// vertices, edges or polygons; see traceModelFromCollisionModel). That is
@@ -74,10 +83,6 @@ struct EntityModelReport {
 struct EntityModelOptions {
   /// Also convert the model to a trace model (the original's TrmFromModel).
   bool testTraceModel = false;
-  /// Build warnings are appended here when not null.
-  std::vector<std::string>* warnings = nullptr;
-  /// Filled in when not null (also when the write fails after the build).
-  EntityModelReport* report = nullptr;
   /// As BuildOptions::robustEdges.
   bool robustEdges = false;
 };
@@ -87,11 +92,15 @@ struct EntityModelOptions {
 /// pruning, which the original only applies while loading a whole map),
 /// names it `path` exactly as given (the original names the model after the
 /// file it writes), and writes a .cm holding only that model with CRC 0.
-/// Errors: no such entity, an entity without brushes or patches, a file that
-/// cannot be written. Nothing is written on error (the text goes to a
-/// temporary file beside `path` that is then renamed).
-Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex, const std::string& path,
-                                       const MaterialTable& materials,
-                                       const EntityModelOptions& options = {});
+/// Returns the model written, its build warnings and (with
+/// EntityModelOptions::testTraceModel) the trace-model finding.
+/// Errors: no such entity, an entity without brushes or patches, a brush
+/// with more than kMaxBrushSides sides, a file that cannot be written.
+/// Nothing is written on error (the text goes to a temporary file beside
+/// `path` that is then renamed), and no report is returned.
+Result<EntityModelReport> writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex,
+                                                          const std::string& path,
+                                                          const MaterialTable& materials,
+                                                          const EntityModelOptions& options = {});
 
 }  // namespace cmkit

@@ -7,6 +7,10 @@
 // reused while the manager lives, except that loadMap() and clear() start
 // the table again: freeing one model leaves every other handle valid.
 //
+// The manager only manages: a model's own data and functions (name, bounds,
+// polygonWinding, modelStatistics, traceModelFromCollisionModel, ...) are
+// reached through get() or require().
+//
 // Thread safety: every member function may be called from any thread at any
 // time. Models are immutable and handed out as shared_ptrs, so a model being
 // queried stays alive even if another thread frees it or loads a new map;
@@ -14,7 +18,6 @@
 // queries on already loaded models never wait for a load.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <shared_mutex>
@@ -70,13 +73,17 @@ struct LoadMapResult {
   std::uint32_t geometryCrc = 0;     ///< the map's geometry CRC
   std::string procPath;              ///< the .proc that pruned the world model; empty: none
   int procPolygonsRemoved = 0;       ///< world windings it dropped
+  /// Warnings of the .proc reader and of the build (BuildResult::warnings);
+  /// empty when the models came from NAME.cm.
+  std::vector<std::string> warnings;
 };
 
 /// How ModelManager::loadModel converts a mesh file.
 struct LoadModelOptions {
   /// How the mesh file is read.
   MeshLoadOptions mesh;
-  /// How the mesh becomes a collision model.
+  /// How the mesh becomes a collision model (the build's warnings are not
+  /// kept: loadMeshModel returns them).
   MeshBuildOptions build;
 };
 
@@ -142,23 +149,6 @@ class ModelManager {
   /// Number of live models.
   std::size_t size() const;
 
-  /// Name, bounds and contents of a model.
-  Result<std::string> name(ModelHandle handle) const;
-  /// The model's bounds, or an error for a bad handle.
-  Result<Bounds> bounds(ModelHandle handle) const;
-  /// The OR of the model's contents, or an error for a bad handle.
-  Result<std::uint32_t> contents(ModelHandle handle) const;
-  /// The model's vertex positions.
-  Result<std::vector<Vec3>> vertices(ModelHandle handle) const;
-  /// Edge e (1-based, as in the model) as its two end points.
-  Result<std::array<Vec3, 2>> edge(ModelHandle handle, std::size_t e) const;
-  /// Polygon p as its winding (vertex loop, counter-clockwise seen from the
-  /// front).
-  Result<std::vector<Vec3>> polygonWinding(ModelHandle handle, std::size_t p) const;
-  /// The original's PrintModel text for a model (see modelStatistics).
-  Result<std::string> printModel(ModelHandle handle) const;
-  /// A convex model back as a trace model (see traceModelFromCollisionModel).
-  Result<TraceModel> trmFromModel(ModelHandle handle) const;
   /// The model's RayIndex (ray_index.h), built on first use (outside the
   /// lock) and kept until the model is freed or replaced. Two threads asking
   /// for a new one at once may both build it; one is kept for both.

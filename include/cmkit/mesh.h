@@ -48,8 +48,14 @@ struct MeshBuildOptions {
   /// (for meshes without Doom 3 materials); collision surfaces still decide
   /// which surfaces are used.
   std::optional<std::uint32_t> contents;
-  /// Warnings (degenerate triangles dropped, ...) are appended here when not null.
-  std::vector<std::string>* warnings = nullptr;
+};
+
+/// What buildCollisionModelFromTriangles (and loadMeshModel) made.
+struct MeshBuildResult {
+  /// The collision model.
+  ModelPtr model;
+  /// Warnings (degenerate triangles dropped, ...), in the order they arose.
+  std::vector<std::string> warnings;
 };
 
 /// Builds the collision model of a triangle mesh, as the original converts
@@ -58,11 +64,12 @@ struct MeshBuildOptions {
 /// surface (the .mtr keyword "collision"), only the triangles of those
 /// surfaces. Triangles with a zero normal are skipped (a warning counts
 /// them). The model is named `name` (the original uses the file name).
+/// Returns the model and the build's warnings.
 /// Errors: an index out of range, a surface whose index count is not a
 /// multiple of 3, a position that is not finite.
-Result<ModelPtr> buildCollisionModelFromTriangles(const TriangleMesh& mesh, std::string name,
-                                                  const MaterialTable& materials,
-                                                  const MeshBuildOptions& options = {});
+Result<MeshBuildResult> buildCollisionModelFromTriangles(const TriangleMesh& mesh, std::string name,
+                                                         const MaterialTable& materials,
+                                                         const MeshBuildOptions& options = {});
 
 /// How loadMeshFile places the file's coordinates in Doom's frame (z up).
 enum class MeshUpAxis {
@@ -94,9 +101,9 @@ bool isMeshFileName(std::string_view path);
 Result<TriangleMesh> loadMeshFile(const std::string& path, const MeshLoadOptions& options = {});
 
 /// loadMeshFile, then buildCollisionModelFromTriangles with the path as the
-/// model name.
-Result<ModelPtr> loadMeshModel(const std::string& path, const MaterialTable& materials,
-                               const MeshLoadOptions& loadOptions = {},
-                               const MeshBuildOptions& buildOptions = {});
+/// model name: the model and its build warnings.
+Result<MeshBuildResult> loadMeshModel(const std::string& path, const MaterialTable& materials,
+                                      const MeshLoadOptions& loadOptions = {},
+                                      const MeshBuildOptions& buildOptions = {});
 
 }  // namespace cmkit

@@ -71,8 +71,8 @@ enum class QueryStatus : std::uint8_t {
 };
 
 /// A short English description of a status ("ok", "trace-model axis is not a
-/// rotation", ...).
-const char* describe(QueryStatus status);
+/// rotation", ...): the text of the CLI's "error=refused: ..." lines.
+const char* toString(QueryStatus status);
 
 /// Which features touched.
 enum class ContactType : std::uint8_t {
@@ -81,6 +81,11 @@ enum class ContactType : std::uint8_t {
   ModelVertex,  ///< a model vertex hit a trace-model polygon
   TrmVertex,    ///< a trace-model vertex hit a model polygon
 };
+
+/// The name of a contact type, as written in query-format result lines:
+/// "none", "edge", "modelvertex", "trmvertex" (parseContactType in
+/// cmkit/tools/query_format.h reads it back).
+const char* toString(ContactType type);
 
 /// The contact of a trace. Every field is defined on every path; on a miss
 /// everything is zero, material -1.
@@ -209,24 +214,45 @@ struct ContentsQuery {
 /// when free). For a point (no trace model, or a point shape): the OR of the
 /// contents of every brush containing the point that matches the mask (the
 /// original ignored the mask for a point and took the first brush found).
-/// A refused query (trace.status) has contents 0.
+/// A refused query (`status`, also in trace.status) has contents 0.
 struct ContentsResult {
   /// Contents of what the trace model overlaps (0: free).
   std::uint32_t contents = 0;
-  /// The contact found (fraction 0 when stuck, 1 when free).
+  /// The contact found (fraction 0 when stuck, 1 when free); its status is
+  /// `status`.
   TraceResult trace;
+  QueryStatus status = QueryStatus::Ok;  ///< refused: contents 0 (see QueryStatus)
 };
 
 /// The original's Contents: what the placed trace model overlaps.
 ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& query, QueryWork& work);
 
+/// Which brushes contain a world point (no trace model, no mask).
+struct PointContentsQuery {
+  /// The point (world space).
+  Vec3 point;
+  /// Where the model is placed in the world.
+  Placement placement;
+};
+
+/// Result of pointContents().
+struct PointContentsResult {
+  /// The OR of the contents of every brush containing the point (0: none).
+  std::uint32_t contents = 0;
+  QueryStatus status = QueryStatus::Ok;  ///< refused: contents 0 (see QueryStatus)
+};
+
 /// The contents of the brushes containing a world point (no mask): the OR of
 /// every brush the point is strictly inside. Unlike the original (which
 /// returns the first brush found in the leaf), all brushes are seen,
 /// including those stored at interior tree nodes, and a rotated model is
-/// handled correctly. A point or placement that is not finite (or beyond
-/// tol::kMaxQueryCoordinate) is inside nothing: 0.
-std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement = {});
+/// handled correctly. A point or placement origin that is not finite
+/// (NonFinite) or beyond tol::kMaxQueryCoordinate (OutOfRange), or a
+/// placement axis that is no rotation (BadModelAxis), is refused: contents 0.
+/// `work` is not used today (the signature is that of every query, for
+/// layouts that will need scratch).
+PointContentsResult pointContents(const CollisionModel& model, const PointContentsQuery& query,
+                                  QueryWork& work);
 
 /// All contacts of a trace model moved up to `depth` along `dir`.
 struct ContactsQuery {
@@ -257,15 +283,30 @@ struct ContactsResult {
 /// The original's Contacts: every surface the trace model touches when moved
 /// from start up to start + dir * depth, at most maxContacts of them.
 ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work);
-/// contacts() into the caller's vector: `out` is cleared, then holds the same
-/// contacts in the same order. Its memory is kept, so a caller that asks for
-/// contacts every frame with one vector allocates only the first time.
-/// Returns the status (refused: `out` left empty).
+/// contacts() into the caller's vector (the one form that fills a caller's
+/// container): `out` is cleared, then holds the same contacts in the same
+/// order as ContactsResult::contacts. Its memory is kept, so a caller that
+/// asks for contacts every frame with one vector allocates only the first
+/// time. Returns what ContactsResult::status would be (refused: `out` left
+/// empty).
 QueryStatus contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work,
                      std::vector<ContactInfo>& out);
 
-/// How a trace model overlapping solid can get out.
-struct Penetration {
+/// Which way out of solid: the trace model placed as for a position test.
+struct PenetrationQuery {
+  const TraceModel* trm = nullptr;  ///< nullptr or a point shape: a point
+  /// Orientation of the trace model.
+  Mat3 trmAxis;
+  /// Position of the trace model.
+  Vec3 position;
+  /// Content flags of the brushes considered.
+  std::uint32_t contentMask = contents::kMaskSolid;
+  /// Where the model is placed in the world.
+  Placement placement;
+};
+
+/// Result of penetration(): how a trace model overlapping solid can get out.
+struct PenetrationResult {
   bool stuck = false;                    ///< the trace model overlaps a matching brush
   Real depth = 0;                        ///< distance to move along `direction` to be free of that brush
   Vec3 direction;                        ///< unit direction out (a brush plane normal, world space)
@@ -276,7 +317,8 @@ struct Penetration {
 /// Estimates the way out of solid: for every matching brush the trace model
 /// overlaps, the brush plane along which the shortest move separates them
 /// (separating-plane test on the brush planes); the deepest brush decides.
-Penetration penetration(const CollisionModel& model, const ContentsQuery& query, QueryWork& work);
+/// Input is checked as contentsTest() checks it.
+PenetrationResult penetration(const CollisionModel& model, const PenetrationQuery& query, QueryWork& work);
 
 /// A rotation of a trace model (or a point) about an arbitrary axis.
 ///

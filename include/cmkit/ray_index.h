@@ -75,6 +75,16 @@ struct RayCastQuery {
   Placement placement = {};
 };
 
+/// Ray casts of one model: ray i is `query` with the segment starts[i] (or
+/// starts[0]) -> ends[i] (or ends[0]); query.start and query.end are
+/// ignored. For RayIndex::castMany and castRayBatch (cmkit/batch.h).
+struct RayBatch {
+  /// The fields every ray shares (start and end ignored): mask, placement.
+  RayCastQuery query;
+  std::span<const Vec3> starts;  ///< 1 or N
+  std::span<const Vec3> ends;    ///< 1 or N
+};
+
 namespace detail {
 struct RayIndexData;
 }  // namespace detail
@@ -105,17 +115,14 @@ class RayIndex {
   /// (model placed in the world by query.placement).
   RayHit cast(const RayCastQuery& query) const;
 
-  /// Many casts at once: out[i] = cast({starts[i], ends[i], contentMask,
-  /// placement}) bit for bit (a span of one start or end is used for every
-  /// ray). Faster per ray than a loop of cast() for many rays: they are sorted
-  /// by where they start and which way they point, and with the AVX2 node
-  /// test walked eight at a time (one packet of neighbouring rays shares the
-  /// node visits). Spans of other lengths (not 1 and not out.size()) leave
-  /// `out` untouched; castRayBatch (cmkit/batch.h) checks them and spreads a
-  /// batch over threads. Scratch is on the stack and the heap of the caller's
-  /// thread: safe from any number of threads at once.
-  void castMany(std::span<const Vec3> starts, std::span<const Vec3> ends, std::uint32_t contentMask,
-                const Placement& placement, std::span<RayHit> out) const;
+  /// Many casts at once: out[i] = cast(ray i of `batch`) bit for bit (a
+  /// span of one start or end is used for every ray). Faster per ray than a loop of cast() for many rays:
+  /// they are sorted by where they start and which way they point, and with the AVX2 node test walked eight
+  /// at a time (one packet of neighbouring rays shares the node visits). Spans of other lengths (not 1 and
+  /// not out.size()) leave `out` untouched; castRayBatch (cmkit/batch.h) checks them and spreads a batch over
+  /// threads. Scratch is on the stack and the heap of the caller's thread: safe from any number of threads at
+  /// once.
+  void castMany(const RayBatch& batch, std::span<RayHit> out) const;
 
   /// Whether cast() tests nodes with AVX2.
   bool usesAvx2() const;

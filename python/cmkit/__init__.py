@@ -29,17 +29,27 @@ from ._cmkit import (  # noqa: F401  (re-exported)
     MASK_PLAYER_SOLID,
     MASK_SOLID,
     MASK_WATER,
+    STATUS_BAD_MODEL_AXIS,
+    STATUS_BAD_ROTATION_AXIS,
+    STATUS_BAD_TRM_AXIS,
+    STATUS_NON_FINITE,
+    STATUS_OK,
+    STATUS_OUT_OF_RANGE,
     Error,
     Model,
     TraceModel,
     content_names,
+    status_name,
 )
 from . import _cmkit
 
 __all__ = [
     "CONTACT_EDGE", "CONTACT_MODEL_VERTEX", "CONTACT_NONE", "CONTACT_TRM_VERTEX", "CONTENTS_SOLID",
     "MASK_ALL", "MASK_MONSTER_SOLID", "MASK_OPAQUE", "MASK_PLAYER_SOLID", "MASK_SOLID", "MASK_WATER",
+    "STATUS_BAD_MODEL_AXIS", "STATUS_BAD_ROTATION_AXIS", "STATUS_BAD_TRM_AXIS", "STATUS_NON_FINITE",
+    "STATUS_OK", "STATUS_OUT_OF_RANGE",
     "Error", "Model", "Models", "TraceModel", "content_names", "load_cm", "load_map", "parse_cm",
+    "status_name",
 ]
 
 

@@ -22,6 +22,12 @@ CONTACT_NONE: int
 CONTACT_EDGE: int
 CONTACT_MODEL_VERTEX: int
 CONTACT_TRM_VERTEX: int
+STATUS_OK: int
+STATUS_BAD_TRM_AXIS: int
+STATUS_BAD_MODEL_AXIS: int
+STATUS_NON_FINITE: int
+STATUS_OUT_OF_RANGE: int
+STATUS_BAD_ROTATION_AXIS: int
 
 class Error(Exception):
     """A cmkit error; str() is "file:line:column: message" where known."""
@@ -31,6 +37,7 @@ class Error(Exception):
     def __init__(self, text: str, file: str = ..., line: int = ..., column: int = ...) -> None: ...
 
 def content_names(contents: int) -> str: ...
+def status_name(status: int) -> str: ...
 
 class TraceModel:
     """A shape moved through collision models."""
@@ -102,7 +109,7 @@ class Model:
     def cast_rays(self, origins: Vectors, ends: Vectors, *, mask: int = ..., origin: npt.ArrayLike | None = ...,
                   model_axis: Matrix | None = ..., threads: int = ..., progress: Progress = ...) -> Results: ...
     def point_contents(self, points: Vectors, *, origin: npt.ArrayLike | None = ...,
-                       model_axis: Matrix | None = ..., threads: int = ..., progress: Progress = ...) -> np.ndarray: ...
+                       model_axis: Matrix | None = ..., threads: int = ..., progress: Progress = ...) -> Results: ...
     def contents(self, trm: Trm, positions: Vectors, *, mask: int = ..., axis: Matrix | None = ...,
                  origin: npt.ArrayLike | None = ..., model_axis: Matrix | None = ..., threads: int = ...,
                  progress: Progress = ...) -> Results: ...

@@ -180,17 +180,6 @@ Result<std::size_t> pairedSize(std::size_t a, std::size_t b, const char* what, s
   return n;
 }
 
-// A single query with the fields every query of a batch shares.
-template <class Query, class Batch>
-Query sharedFields(const Batch& batch) {
-  Query q;
-  q.trm = batch.trm;
-  q.trmAxis = batch.trmAxis;
-  q.contentMask = batch.contentMask;
-  q.placement = batch.placement;
-  return q;
-}
-
 }  // namespace
 
 Status translateBatch(const CollisionModel& model, const TranslationBatch& batch, std::span<TraceResult> out,
@@ -198,8 +187,7 @@ Status translateBatch(const CollisionModel& model, const TranslationBatch& batch
   const auto n = pairedSize(batch.starts.size(), batch.ends.size(), "starts and ends", out.size());
   if (!n) return n.error();
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    auto q = sharedFields<TranslationQuery>(batch);
-    q.detectStartSolid = batch.detectStartSolid;
+    TranslationQuery q = batch.query;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
       q.end = pick(batch.ends, i);
@@ -213,8 +201,7 @@ Status rotateBatch(const CollisionModel& model, const RotationBatch& batch, std:
   const auto n = pairedSize(batch.starts.size(), batch.rotations.size(), "starts and rotations", out.size());
   if (!n) return n.error();
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    auto q = sharedFields<RotationQuery>(batch);
-    q.detectStartSolid = batch.detectStartSolid;
+    RotationQuery q = batch.query;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
       q.rotation = pick(batch.rotations, i);
@@ -227,7 +214,7 @@ Status contentsBatch(const CollisionModel& model, const ContentsBatch& batch, st
                      const BatchOptions& options) {
   if (auto s = checkOut(out.size(), batch.positions.size()); !s) return s;
   return runChunks(batch.positions.size(), options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    auto q = sharedFields<ContentsQuery>(batch);
+    ContentsQuery q = batch.query;
     for (std::size_t i = begin; i < end; ++i) {
       q.position = batch.positions[i];
       out[i] = contentsTest(model, q, work);
@@ -240,9 +227,7 @@ Status contactsBatch(const CollisionModel& model, const ContactsBatch& batch, st
   const auto n = pairedSize(batch.starts.size(), batch.dirs.size(), "starts and dirs", out.size());
   if (!n) return n.error();
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    auto q = sharedFields<ContactsQuery>(batch);
-    q.depth = batch.depth;
-    q.maxContacts = batch.maxContacts;
+    ContactsQuery q = batch.query;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
       q.dir = pick(batch.dirs, i);
@@ -251,12 +236,15 @@ Status contactsBatch(const CollisionModel& model, const ContactsBatch& batch, st
   });
 }
 
-Status pointContentsBatch(const CollisionModel& model, std::span<const Vec3> points,
-                          std::span<std::uint32_t> out, const Placement& placement,
-                          const BatchOptions& options) {
-  if (auto s = checkOut(out.size(), points.size()); !s) return s;
-  return runChunks(points.size(), options, [&](std::size_t begin, std::size_t end, QueryWork&) {
-    for (std::size_t i = begin; i < end; ++i) out[i] = pointContents(model, points[i], placement);
+Status pointContentsBatch(const CollisionModel& model, const PointContentsBatch& batch,
+                          std::span<PointContentsResult> out, const BatchOptions& options) {
+  if (auto s = checkOut(out.size(), batch.points.size()); !s) return s;
+  return runChunks(batch.points.size(), options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
+    PointContentsQuery q = batch.query;
+    for (std::size_t i = begin; i < end; ++i) {
+      q.point = batch.points[i];
+      out[i] = pointContents(model, q, work);
+    }
   });
 }
 
@@ -273,8 +261,7 @@ Status castRayBatch(const RayIndex& index, const RayBatch& batch, std::span<RayH
     const auto part = [&](std::span<const Vec3> v) {
       return v.size() == 1 ? v : v.subspan(begin, end - begin);
     };
-    index.castMany(part(batch.starts), part(batch.ends), batch.contentMask, batch.placement,
-                   out.subspan(begin, end - begin));
+    index.castMany({batch.query, part(batch.starts), part(batch.ends)}, out.subspan(begin, end - begin));
   });
 }
 

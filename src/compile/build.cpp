@@ -54,9 +54,10 @@ Status checkBrushSizes(const MapEntity& entity, const std::string& fileName) {
 
 }  // namespace detail
 
-Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
-                                                   const BuildOptions& options) {
-  std::vector<ModelPtr> models;
+Result<BuildResult> buildCollisionModels(const MapFile& map, const MaterialTable& materials,
+                                         const BuildOptions& options) {
+  BuildResult result;
+  std::vector<ModelPtr>& models = result.models;
   detail::MaterialCache cache(materials);
   const std::size_t total = map.entities.size();
   for (std::size_t i = 0; i < total; ++i) {
@@ -74,17 +75,19 @@ Result<std::vector<ModelPtr>> buildCollisionModels(const MapFile& map, const Mat
       // The .proc BSP prunes the world model only: the original frees it
       // once the first model is built.
       const ProcBsp* proc = models.empty() ? options.procBsp : nullptr;
-      detail::ModelBuilder builder(entity, std::move(name), cache, options.warnings, proc);
+      detail::ModelBuilder builder(entity, std::move(name), cache, &result.warnings, proc);
       builder.setRobustEdges(options.robustEdges);
       models.push_back(builder.build());
     }
     if (options.progress) options.progress(i + 1, total);
   }
-  return models;
+  return result;
 }
 
-Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex, const std::string& path,
-                                       const MaterialTable& materials, const EntityModelOptions& options) {
+Result<EntityModelReport> writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityIndex,
+                                                          const std::string& path,
+                                                          const MaterialTable& materials,
+                                                          const EntityModelOptions& options) {
   if (entityIndex >= map.entities.size())
     return Error("no entity #" + std::to_string(entityIndex) + ": the map has " +
                      std::to_string(map.entities.size()) + " entities",
@@ -96,17 +99,16 @@ Status writeCollisionModelForMapEntity(const MapFile& map, std::size_t entityInd
                      " has no brushes or patches: it has no collision model",
                  map.fileName, entity.line);
   }
-  if (Status st = detail::checkBrushSizes(entity, map.fileName); !st) return st;
+  if (Status st = detail::checkBrushSizes(entity, map.fileName); !st) return st.error();
+  EntityModelReport report;
   detail::MaterialCache cache(materials);
-  detail::ModelBuilder builder(entity, path, cache, options.warnings);
+  detail::ModelBuilder builder(entity, path, cache, &report.warnings);
   builder.setRobustEdges(options.robustEdges);
-  const ModelPtr model = builder.build();
-  if (options.report) {
-    options.report->model = model;
-    options.report->traceModel.reset();
-    if (options.testTraceModel) options.report->traceModel = traceModelFromCollisionModel(*model);
-  }
-  return saveCmFile(path, std::span<const ModelPtr>(&model, 1), 0);
+  report.model = builder.build();
+  if (options.testTraceModel) report.traceModel = traceModelFromCollisionModel(*report.model);
+  if (Status saved = saveCmFile(path, std::span<const ModelPtr>(&report.model, 1), 0); !saved)
+    return saved.error();
+  return report;
 }
 
 }  // namespace cmkit

@@ -93,15 +93,17 @@ Status checkMesh(const TriangleMesh& mesh, const std::string& name) {
 
 }  // namespace
 
-Result<ModelPtr> buildCollisionModelFromTriangles(const TriangleMesh& mesh, std::string name,
-                                                  const MaterialTable& materials,
-                                                  const MeshBuildOptions& options) {
+Result<MeshBuildResult> buildCollisionModelFromTriangles(const TriangleMesh& mesh, std::string name,
+                                                         const MaterialTable& materials,
+                                                         const MeshBuildOptions& options) {
   if (Status s = checkMesh(mesh, name); !s) return s.error();
   const std::string fileName = name;
   try {
     detail::MaterialCache cache(materials, options.contents);
-    detail::ModelBuilder builder(mesh, std::move(name), cache, options.warnings);
-    return builder.build();
+    MeshBuildResult result;
+    detail::ModelBuilder builder(mesh, std::move(name), cache, &result.warnings);
+    result.model = builder.build();
+    return result;
   } catch (const std::bad_alloc&) {
     return Error("out of memory while building the model of a mesh", fileName);
   }

@@ -156,8 +156,9 @@ Result<TriangleMesh> loadMeshFile(const std::string& path, const MeshLoadOptions
 #endif
 }
 
-Result<ModelPtr> loadMeshModel(const std::string& path, const MaterialTable& materials,
-                               const MeshLoadOptions& loadOptions, const MeshBuildOptions& buildOptions) {
+Result<MeshBuildResult> loadMeshModel(const std::string& path, const MaterialTable& materials,
+                                      const MeshLoadOptions& loadOptions,
+                                      const MeshBuildOptions& buildOptions) {
   Result<TriangleMesh> mesh = loadMeshFile(path, loadOptions);
   if (!mesh) return mesh.error();
   return buildCollisionModelFromTriangles(*mesh, path, materials, buildOptions);

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <iterator>
 #include <mutex>
 #include <new>
 #include <optional>
@@ -72,16 +73,19 @@ Result<LoadMapResult> ModelManager::loadMap(const std::string& mapPath, const Ma
       BuildOptions build = options.build;
       std::optional<ProcBsp> proc;
       if (!build.procBsp && options.useProcFile) {
-        Result<std::optional<ProcBsp>> loaded = loadProcFileForMap(mapPath, build.warnings);
+        Result<std::optional<ProcBsp>> loaded = loadProcFileForMap(mapPath, &result.warnings);
         if (!loaded) return loaded.error();
         proc = std::move(*loaded);
         if (proc && proc->usable()) build.procBsp = &*proc;
       }
       if (build.procBsp && build.procBsp->usable()) result.procPath = build.procBsp->fileName;
-      Result<std::vector<ModelPtr>> built = buildCollisionModels(*map, materials, build);
+      Result<BuildResult> built = buildCollisionModels(*map, materials, build);
       if (!built) return built.error();
-      if (!built->empty()) result.procPolygonsRemoved = built->front()->stats().procPolygonsRemoved;
-      models = std::move(*built);
+      if (!built->models.empty())
+        result.procPolygonsRemoved = built->models.front()->stats().procPolygonsRemoved;
+      models = std::move(built->models);
+      result.warnings.insert(result.warnings.end(), std::make_move_iterator(built->warnings.begin()),
+                             std::make_move_iterator(built->warnings.end()));
       if (options.writeCmFile) {
         Status saved = saveCmFile(cmPath, models, map->geometryCrc);
         if (!saved) return saved.error();
@@ -151,9 +155,9 @@ Result<ModelHandle> ModelManager::loadModel(const std::string& name, const Mater
       }
     }
     if (models.empty()) {
-      Result<ModelPtr> mesh = loadMeshModel(name, materials, options.mesh, options.build);
+      Result<MeshBuildResult> mesh = loadMeshModel(name, materials, options.mesh, options.build);
       if (!mesh) return mesh.error();
-      models.push_back(std::move(*mesh));
+      models.push_back(std::move(mesh->model));
     }
     std::unique_lock lock(mutex_);
     if (auto h = loaded()) return *h;
@@ -265,63 +269,6 @@ std::size_t ModelManager::size() const {
   std::size_t n = 0;
   for (const ModelPtr& m : models_) n += m != nullptr;
   return n;
-}
-
-Result<std::string> ModelManager::name(ModelHandle handle) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  return (*m)->name();
-}
-
-Result<Bounds> ModelManager::bounds(ModelHandle handle) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  return (*m)->bounds();
-}
-
-Result<std::uint32_t> ModelManager::contents(ModelHandle handle) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  return (*m)->contents();
-}
-
-Result<std::vector<Vec3>> ModelManager::vertices(ModelHandle handle) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  return std::vector<Vec3>((*m)->vertices().begin(), (*m)->vertices().end());
-}
-
-Result<std::array<Vec3, 2>> ModelManager::edge(ModelHandle handle, std::size_t e) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  const CollisionModel& model = **m;
-  if (e == 0 || e >= model.edges().size())
-    return Error("model \"" + model.name() + "\" has no edge " + std::to_string(e) + " (edges are 1.." +
-                 std::to_string(model.numEdges()) + ")");
-  const CmEdge& edge = model.edges()[e];
-  return std::array<Vec3, 2>{model.vertices()[std::size_t(edge.vertex[0])],
-                             model.vertices()[std::size_t(edge.vertex[1])]};
-}
-
-Result<std::vector<Vec3>> ModelManager::polygonWinding(ModelHandle handle, std::size_t p) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  if (p >= (*m)->polygons().size())
-    return Error("model \"" + (*m)->name() + "\" has no polygon " + std::to_string(p) + " (it has " +
-                 std::to_string((*m)->polygons().size()) + ")");
-  return cmkit::polygonWinding(**m, p);
-}
-
-Result<std::string> ModelManager::printModel(ModelHandle handle) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  return modelStatistics(**m);
-}
-
-Result<TraceModel> ModelManager::trmFromModel(ModelHandle handle) const {
-  Result<ModelPtr> m = require(handle);
-  if (!m) return m.error();
-  return traceModelFromCollisionModel(**m);
 }
 
 }  // namespace cmkit

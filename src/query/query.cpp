@@ -250,6 +250,7 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& qu
   ContentsResult r;
   if (const QueryStatus st = guardContents(q); st != QueryStatus::Ok) {
     r.trace = refusedTrace(query.position, query.trmAxis, st);
+    r.status = st;
     return r;
   }
   r.trace.endPos = q.position;
@@ -338,14 +339,23 @@ ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query,
   return result;
 }
 
-std::uint32_t pointContents(const CollisionModel& model, const Vec3& point, const Placement& placement) {
-  return pointContentsMasked(model, point, placement, ~std::uint32_t(0));
+PointContentsResult pointContents(const CollisionModel& model, const PointContentsQuery& query, QueryWork&) {
+  PointContentsResult r;
+  // The guard only decides the status: the contents are computed from the
+  // query as given (a slightly drifted axis is not re-orthonormalised), so
+  // that they stay what they were before pointContents had a status (every
+  // input the guard refuses already gave 0).
+  PointContentsQuery checked = query;
+  r.status = guardPointContents(checked);
+  if (r.status != QueryStatus::Ok) return r;
+  r.contents = pointContentsMasked(model, query.point, query.placement, ~std::uint32_t(0));
+  return r;
 }
 
-Penetration penetration(const CollisionModel& model, const ContentsQuery& query, QueryWork& work) {
-  ContentsQuery q = query;
-  Penetration result;
-  result.status = guardContents(q);
+PenetrationResult penetration(const CollisionModel& model, const PenetrationQuery& query, QueryWork& work) {
+  PenetrationQuery q = query;
+  PenetrationResult result;
+  result.status = guardPenetration(q);
   if (result.status != QueryStatus::Ok) return result;
   // The trace model's vertices in the model frame.
   Vec3 verts[kMaxTrmVertices];

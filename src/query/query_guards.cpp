@@ -7,7 +7,7 @@
 
 namespace cmkit {
 
-const char* describe(QueryStatus status) {
+const char* toString(QueryStatus status) {
   switch (status) {
     case QueryStatus::Ok:
       return "ok";
@@ -23,6 +23,20 @@ const char* describe(QueryStatus status) {
       return "rotation axis is zero or not of unit length";
   }
   return "unknown status";
+}
+
+const char* toString(ContactType type) {
+  switch (type) {
+    case ContactType::None:
+      return "none";
+    case ContactType::Edge:
+      return "edge";
+    case ContactType::ModelVertex:
+      return "modelvertex";
+    case ContactType::TrmVertex:
+      return "trmvertex";
+  }
+  return "?";
 }
 
 }  // namespace cmkit
@@ -86,6 +100,15 @@ QueryStatus guardTranslation(TranslationQuery& q) {
 }
 
 QueryStatus guardContents(ContentsQuery& q) { return checkCommon(q.position, q.placement, q.trm, q.trmAxis); }
+
+QueryStatus guardPenetration(PenetrationQuery& q) {
+  return checkCommon(q.position, q.placement, q.trm, q.trmAxis);
+}
+
+QueryStatus guardPointContents(PointContentsQuery& q) {
+  if (const QueryStatus s = checkPoint(q.point); s != QueryStatus::Ok) return s;
+  return checkPlacement(q.placement);
+}
 
 QueryStatus guardContacts(ContactsQuery& q) {
   if (!std::isfinite(q.depth) || !q.dir.isFinite()) return QueryStatus::NonFinite;

@@ -19,6 +19,11 @@ namespace cmkit::detail {
 QueryStatus guardTranslation(TranslationQuery& q);
 /// Checks (and may normalise) a position test.
 QueryStatus guardContents(ContentsQuery& q);
+/// Checks (and may normalise) a penetration query (as a position test).
+QueryStatus guardPenetration(PenetrationQuery& q);
+/// Checks (and may normalise) a point-contents query: the point and the
+/// placement, as every other kind checks them.
+QueryStatus guardPointContents(PointContentsQuery& q);
 /// Checks (and may normalise) a contacts query.
 QueryStatus guardContacts(ContactsQuery& q);
 /// Checks (and may normalise) a rotation.

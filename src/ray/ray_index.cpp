@@ -536,8 +536,10 @@ RayHit RayIndex::cast(const RayCastQuery& query) const {
   return hitOf(d, found, query.start, query.end, query.placement, rotated);
 }
 
-void RayIndex::castMany(std::span<const Vec3> starts, std::span<const Vec3> ends, std::uint32_t contentMask,
-                        const Placement& placement, std::span<RayHit> out) const {
+void RayIndex::castMany(const RayBatch& batch, std::span<RayHit> out) const {
+  const std::span<const Vec3> starts = batch.starts, ends = batch.ends;
+  const std::uint32_t contentMask = batch.query.contentMask;
+  const Placement& placement = batch.query.placement;
   const std::size_t n = out.size();
   const auto fits = [n](std::size_t size) { return size == 1 || size == n; };
   if (n == 0 || !fits(starts.size()) || !fits(ends.size())) return;
@@ -545,7 +547,7 @@ void RayIndex::castMany(std::span<const Vec3> starts, std::span<const Vec3> ends
     for (std::size_t first = 0; first < n; first += kMaxBlock) {
       const std::size_t count = std::min(kMaxBlock, n - first);
       const auto part = [&](std::span<const Vec3> v) { return v.size() == 1 ? v : v.subspan(first, count); };
-      castMany(part(starts), part(ends), contentMask, placement, out.subspan(first, count));
+      castMany({batch.query, part(starts), part(ends)}, out.subspan(first, count));
     }
     return;
   }

@@ -142,7 +142,7 @@ def test_other_batches_equal_single_queries(lt4):
     calls = {
         "rotate": lambda s, t: world.rotate(bone, pts[s], pts[s] + [5, 3, 0], (0, 0, 1), angles[s], threads=t),
         "cast_rays": lambda s, t: world.cast_rays(pts[s], ends[s], threads=t),
-        "point_contents": lambda s, t: {"c": world.point_contents(pts[s], threads=t)},
+        "point_contents": lambda s, t: world.point_contents(pts[s], threads=t),
         "contents": lambda s, t: world.contents(PLAYER, pts[s], threads=t),
         "contacts": lambda s, t: world.contacts(PLAYER, pts[s], (0, 0, -1), 32, max_contacts=8, threads=t),
     }
@@ -153,7 +153,7 @@ def test_other_batches_equal_single_queries(lt4):
         for threads in (2, 3, 0):
             assert_same(call(slice(None), threads), batch, f"{name} threads {threads}")
     assert world.cast_rays(pts, ends)["hit"].sum() > n // 4
-    assert (world.point_contents(pts) != 0).sum() > 10
+    assert (world.point_contents(pts)["contents"] != 0).sum() > 10
     assert (world.contacts(PLAYER, pts, (0, 0, -1), 32)["count"] > 0).sum() >= 5
 
 
@@ -161,7 +161,7 @@ def test_empty_batches(lt4):
     world = lt4[0]
     empty = np.zeros((0, 3), np.float32)
     assert world.translate(PLAYER, empty, empty)["fraction"].shape == (0,)
-    assert world.point_contents(empty).shape == (0,)
+    assert world.point_contents(empty)["contents"].shape == (0,)
     assert world.cast_rays(empty, empty)["endpos"].shape == (0, 3)
     assert world.contacts(PLAYER, empty, (0, 0, 1), 8)["point"].shape == (0, 16, 3)
 
@@ -169,11 +169,11 @@ def test_empty_batches(lt4):
 def test_concurrent_calls_from_python_threads_agree(lt4):
     world = lt4[0]
     pts = random_points(world.bounds, 20000, 5)
-    expected = world.point_contents(pts, threads=1)
+    expected = world.point_contents(pts, threads=1)["contents"]
     out = [None] * 4
 
     def run(k):
-        out[k] = world.point_contents(pts, threads=2)
+        out[k] = world.point_contents(pts, threads=2)["contents"]
 
     workers = [threading.Thread(target=run, args=(k,)) for k in range(4)]
     for w in workers:
@@ -182,6 +182,31 @@ def test_concurrent_calls_from_python_threads_agree(lt4):
         w.join()
     for o in out:
         assert np.array_equal(o, expected)
+
+
+def test_every_result_has_the_query_status(lt4):
+    world = lt4[0]
+    inside = random_points(world.bounds, 2, 10)
+    far = np.array([[3e9, 0, 0]], np.float32)  # beyond 1e9 units: refused, not an exception
+    pts = np.concatenate([inside, far])
+    ok, out_of_range = cmkit.STATUS_OK, cmkit.STATUS_OUT_OF_RANGE
+    p = world.point_contents(pts)
+    assert p["status"].dtype == np.uint8 and list(p["status"]) == [ok, ok, out_of_range]
+    assert p["contents"][2] == 0
+    t = world.translate(PLAYER, pts, pts + [0, 0, -64])
+    assert list(t["status"]) == [ok, ok, out_of_range] and t["fraction"][2] == 0
+    r = world.rotate(PLAYER, pts, pts, (0, 0, 1), 30)
+    assert r["status"][2] == out_of_range
+    c = world.contents(PLAYER, pts)
+    assert list(c["status"]) == [ok, ok, out_of_range] and c["contents"][2] == 0
+    k = world.contacts(PLAYER, pts, (0, 0, -1), 16)
+    assert k["status"][2] == out_of_range and k["count"][2] == 0
+    placed = world.point_contents(inside, model_axis=np.eye(3) * 2)  # a scaled axis is no rotation
+    assert list(placed["status"]) == [cmkit.STATUS_BAD_MODEL_AXIS] * 2
+    assert cmkit.status_name(cmkit.STATUS_OK) == "ok"
+    assert "not finite" in cmkit.status_name(cmkit.STATUS_NON_FINITE)
+    with pytest.raises(ValueError):
+        cmkit.status_name(99)
 
 
 # ---- progress, cancelling, bad input ----------------------------------------------------------------------
@@ -263,7 +288,7 @@ def python_answer_matches(models, line):
     common = dict(mask=q["mask"], axis=q["trm_axis"], **place)
     op = q["op"]
     if op == "pointcontents":
-        assert int(fields["contents"]) == model.point_contents(q["start"], **place)[0], line
+        assert int(fields["contents"]) == model.point_contents(q["start"], **place)["contents"][0], line
         return True
     if op == "contacts":
         r = model.contacts(trm, q["start"], q["dir"], q["depth"], max_contacts=q["max_contacts"], **common)

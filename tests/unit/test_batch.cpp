@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -31,13 +32,15 @@ std::string bits(const ContactInfo& c) {
 }
 std::string bits(const TraceResult& r) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%a %d ", double(r.fraction), int(r.startSolid));
+  std::snprintf(buf, sizeof buf, "%a %d %d ", double(r.fraction), int(r.startSolid), int(r.status));
   return buf + bits(r.endPos) + " " + bits(r.endAxis.rows[0]) + bits(r.endAxis.rows[1]) +
          bits(r.endAxis.rows[2]) + " " + bits(r.contact);
 }
-std::string bits(const ContentsResult& r) { return std::to_string(r.contents) + " " + bits(r.trace); }
+std::string bits(const ContentsResult& r) {
+  return std::to_string(int(r.status)) + " " + std::to_string(r.contents) + " " + bits(r.trace);
+}
 std::string bits(const ContactsResult& r) {
-  std::string s = std::to_string(r.contacts.size());
+  std::string s = std::to_string(int(r.status)) + " " + std::to_string(r.contacts.size());
   for (const auto& c : r.contacts) s += "|" + bits(c);
   return s;
 }
@@ -47,7 +50,9 @@ std::string bits(const RayHit& h) {
                 h.material);
   return buf + bits(h.point) + " " + bits(h.normal);
 }
-std::string bits(std::uint32_t c) { return std::to_string(c); }
+std::string bits(const PointContentsResult& r) {
+  return std::to_string(int(r.status)) + " " + std::to_string(r.contents);
+}
 
 template <class T>
 std::vector<std::string> allBits(const std::vector<T>& v) {
@@ -104,10 +109,10 @@ TEST(Batch, TranslationsEqualSingleQueriesAtAnyThreadCount) {
   const auto starts = randomPoints(world.bounds(), kQueries, 1);
   const auto ends = randomPoints(world.bounds().expanded(64), kQueries, 2);
   TranslationBatch batch;
-  batch.trm = &playerBox();
+  batch.query.trm = &playerBox();
+  batch.query.detectStartSolid = true;
   batch.starts = starts;
   batch.ends = ends;
-  batch.detectStartSolid = true;
 
   std::vector<TraceResult> loop(kQueries);
   QueryWork work;
@@ -150,7 +155,7 @@ TEST(Batch, RotationsEqualSingleQueriesAtAnyThreadCount) {
     rotations.emplace_back(starts[i] + Vec3{Real(i % 7), 3, 0}, Vec3{0, 0, 1}, Real(int(i % 360) - 180));
   const TraceModel bone = *TraceModel::bone(60, 12);
   RotationBatch batch;
-  batch.trm = &bone;
+  batch.query.trm = &bone;
   batch.starts = starts;
   batch.rotations = rotations;
   std::vector<TraceResult> loop(starts.size());
@@ -176,16 +181,16 @@ TEST(Batch, ContentsPointContentsAndContactsEqualSingleQueries) {
   QueryWork work;
 
   std::vector<ContentsResult> contentsLoop(points.size());
-  std::vector<std::uint32_t> pointLoop(points.size());
+  std::vector<PointContentsResult> pointLoop(points.size());
   std::vector<ContactsResult> contactsLoop(points.size());
   int stuck = 0, inside = 0, touching = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     contentsLoop[i] = contentsTest(world, {&playerBox(), {}, points[i], contents::kMaskSolid, {}}, work);
-    pointLoop[i] = pointContents(world, points[i]);
+    pointLoop[i] = pointContents(world, {points[i], {}}, work);
     contactsLoop[i] =
         contacts(world, {&playerBox(), {}, points[i], {0, 0, -1}, 32, contents::kMaskSolid, {}, 8}, work);
     stuck += contentsLoop[i].contents != 0;
-    inside += pointLoop[i] != 0;
+    inside += pointLoop[i].contents != 0;
     touching += !contactsLoop[i].contacts.empty();
   }
   EXPECT_GT(stuck, 100);
@@ -193,26 +198,119 @@ TEST(Batch, ContentsPointContentsAndContactsEqualSingleQueries) {
   EXPECT_GT(touching, 30);
 
   ContentsBatch cb;
-  cb.trm = &playerBox();
+  cb.query.trm = &playerBox();
   cb.positions = points;
   const std::vector<Vec3> down{{0, 0, -1}};
   ContactsBatch kb;
-  kb.trm = &playerBox();
+  kb.query.trm = &playerBox();
+  kb.query.depth = 32;
+  kb.query.maxContacts = 8;
   kb.starts = points;
   kb.dirs = down;
-  kb.depth = 32;
-  kb.maxContacts = 8;
+  PointContentsBatch pb;
+  pb.points = points;
   for (const auto& options : optionVariants()) {
     std::vector<ContentsResult> c(points.size());
-    std::vector<std::uint32_t> p(points.size());
+    std::vector<PointContentsResult> p(points.size());
     std::vector<ContactsResult> k(points.size());
     ASSERT_TRUE(contentsBatch(world, cb, c, options).ok());
-    ASSERT_TRUE(pointContentsBatch(world, points, p, {}, options).ok());
+    ASSERT_TRUE(pointContentsBatch(world, pb, p, options).ok());
     ASSERT_TRUE(contactsBatch(world, kb, k, options).ok());
     EXPECT_EQ(allBits(c), allBits(contentsLoop)) << "threads " << options.threads;
     EXPECT_EQ(allBits(p), allBits(pointLoop)) << "threads " << options.threads;
     EXPECT_EQ(allBits(k), allBits(contactsLoop)) << "threads " << options.threads;
   }
+}
+
+// A batch holds the single query's struct: its shared fields (here a mask,
+// a turned and moved placement, a turned trace model) reach every query,
+// and the fields the spans give (start, end, position, point, dir) are
+// ignored, even when they hold NaN.
+TEST(Batch, TheQueryStructOfABatchIsTheSingleQuerysWithTheSpansFieldsIgnored) {
+  ASSERT_FALSE(lt4().empty());
+  const CollisionModel& world = *lt4()[0];
+  const auto starts = randomPoints(world.bounds(), 400, 11);
+  const auto ends = randomPoints(world.bounds(), 400, 12);
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  Placement turned;
+  turned.origin = {8, -4, 2};
+  turned.axis = Rotation({0, 0, 0}, {0, 0, 1}, 30).matrix();
+  TranslationQuery tq;
+  tq.trm = &playerBox();
+  tq.trmAxis = Rotation({0, 0, 0}, {0, 0, 1}, 45).matrix();
+  tq.contentMask = contents::kMaskPlayerSolid;
+  tq.placement = turned;
+  tq.detectStartSolid = true;
+  TranslationBatch tb{tq, starts, ends};
+  tb.query.start = tb.query.end = {nan, nan, nan};
+  ContentsQuery cq{&playerBox(), tq.trmAxis, {nan, nan, nan}, contents::kMaskPlayerSolid, turned};
+  const ContentsBatch cb{cq, starts};
+  ContactsQuery kq;
+  kq.trm = &playerBox();
+  kq.start = kq.dir = {nan, nan, nan};
+  kq.depth = 24;
+  kq.maxContacts = 5;
+  kq.placement = turned;
+  const std::vector<Vec3> down{{0, 0, -1}};
+  const ContactsBatch kb{kq, starts, down};
+  const PointContentsBatch pb{{{nan, nan, nan}, turned}, starts};
+  RayBatch rb{{{nan, nan, nan}, {nan, nan, nan}, contents::kMaskPlayerSolid, turned}, starts, ends};
+
+  std::vector<TraceResult> t(starts.size()), tLoop(starts.size());
+  std::vector<ContentsResult> c(starts.size()), cLoop(starts.size());
+  std::vector<ContactsResult> k(starts.size()), kLoop(starts.size());
+  std::vector<PointContentsResult> p(starts.size()), pLoop(starts.size());
+  std::vector<RayHit> h(starts.size()), hLoop(starts.size());
+  const RayIndex index(world);
+  QueryWork work;
+  int stuck = 0;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    TranslationQuery q = tq;
+    q.start = starts[i];
+    q.end = ends[i];
+    tLoop[i] = translate(world, q, work);
+    ContentsQuery qc = cq;
+    qc.position = starts[i];
+    cLoop[i] = contentsTest(world, qc, work);
+    stuck += cLoop[i].contents != 0;
+    ContactsQuery qk = kq;
+    qk.start = starts[i];
+    qk.dir = {0, 0, -1};
+    kLoop[i] = contacts(world, qk, work);
+    pLoop[i] = pointContents(world, {starts[i], turned}, work);
+    hLoop[i] = index.cast({starts[i], ends[i], contents::kMaskPlayerSolid, turned});
+    ASSERT_EQ(tLoop[i].status, QueryStatus::Ok) << i;
+  }
+  EXPECT_GT(stuck, 10) << "the queries must meet something to compare anything";
+  const BatchOptions options = threadsAndChunk(2, 7);
+  ASSERT_TRUE(translateBatch(world, tb, t, options).ok());
+  ASSERT_TRUE(contentsBatch(world, cb, c, options).ok());
+  ASSERT_TRUE(contactsBatch(world, kb, k, options).ok());
+  ASSERT_TRUE(pointContentsBatch(world, pb, p, options).ok());
+  ASSERT_TRUE(castRayBatch(index, rb, h, options).ok());
+  EXPECT_EQ(allBits(t), allBits(tLoop));
+  EXPECT_EQ(allBits(c), allBits(cLoop));
+  EXPECT_EQ(allBits(k), allBits(kLoop));
+  EXPECT_EQ(allBits(p), allBits(pLoop));
+  EXPECT_EQ(allBits(h), allBits(hLoop));
+  std::vector<RayHit> many(starts.size());
+  index.castMany(rb, many);
+  EXPECT_EQ(allBits(many), allBits(hLoop));
+}
+
+// A refused query in a batch is refused alone, with its status.
+TEST(Batch, ARefusedPointHasItsStatusInTheBatch) {
+  ASSERT_FALSE(lt4().empty());
+  const CollisionModel& world = *lt4()[0];
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const std::vector<Vec3> points{world.bounds().center(), {nan, 0, 0}, {0, 0, 2e9f}};
+  std::vector<PointContentsResult> out(points.size());
+  ASSERT_TRUE(pointContentsBatch(world, {{}, points}, out).ok());
+  EXPECT_EQ(out[0].status, QueryStatus::Ok);
+  EXPECT_EQ(out[1].status, QueryStatus::NonFinite);
+  EXPECT_EQ(out[1].contents, 0u);
+  EXPECT_EQ(out[2].status, QueryStatus::OutOfRange);
+  EXPECT_EQ(out[2].contents, 0u);
 }
 
 TEST(Batch, RayCastsEqualSingleCasts) {
@@ -241,7 +339,7 @@ TEST(Batch, RayCastsEqualSingleCasts) {
 TEST(Batch, ProgressCountsUpToTheBatchSize) {
   ASSERT_FALSE(lt4().empty());
   const auto points = randomPoints(lt4()[0]->bounds(), 1000, 8);
-  std::vector<std::uint32_t> out(points.size());
+  std::vector<PointContentsResult> out(points.size());
   std::vector<std::size_t> seen;
   BatchOptions options = threadsAndChunk(1, 100);
   options.progress = [&](std::size_t done, std::size_t total) {
@@ -249,7 +347,7 @@ TEST(Batch, ProgressCountsUpToTheBatchSize) {
     seen.push_back(done);
     return true;
   };
-  ASSERT_TRUE(pointContentsBatch(*lt4()[0], points, out, {}, options).ok());
+  ASSERT_TRUE(pointContentsBatch(*lt4()[0], {{}, points}, out, options).ok());
   // One thread: after each of the 10 chunks, then once at the end.
   const std::vector<std::size_t> expected{100, 200, 300, 400, 500, 600, 700, 800, 900, 1000, 1000};
   EXPECT_EQ(seen, expected);
@@ -260,7 +358,7 @@ TEST(Batch, CancelStopsTheBatch) {
   const CollisionModel& world = *lt4()[0];
   const auto starts = randomPoints(world.bounds(), 1000, 9);
   TranslationBatch batch;
-  batch.trm = &playerBox();
+  batch.query.trm = &playerBox();
   batch.starts = starts;
   batch.ends = starts;  // position tests
   std::vector<TraceResult> out(starts.size());
@@ -292,10 +390,10 @@ TEST(Batch, CancelStopsTheBatch) {
 TEST(Batch, ProgressHookExceptionIsAnError) {
   ASSERT_FALSE(lt4().empty());
   const std::vector<Vec3> points(50);
-  std::vector<std::uint32_t> out(points.size());
+  std::vector<PointContentsResult> out(points.size());
   BatchOptions options = threadsAndChunk(2, 5);
   options.progress = [](std::size_t, std::size_t) -> bool { throw std::runtime_error("hook broke"); };
-  const Status s = pointContentsBatch(*lt4()[0], points, out, {}, options);
+  const Status s = pointContentsBatch(*lt4()[0], {{}, points}, out, options);
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().message, "the batch progress hook failed: hook broke");
 }
@@ -314,7 +412,7 @@ TEST(Batch, EmptyBatchesSucceedAndCallNothing) {
   EXPECT_TRUE(rotateBatch(world, {}, {}, options).ok());
   EXPECT_TRUE(contentsBatch(world, {}, {}, options).ok());
   EXPECT_TRUE(contactsBatch(world, {}, {}, options).ok());
-  EXPECT_TRUE(pointContentsBatch(world, {}, {}, {}, options).ok());
+  EXPECT_TRUE(pointContentsBatch(world, {}, {}, options).ok());
   EXPECT_TRUE(castRayBatch(RayIndex(world), {}, {}, options).ok());
   EXPECT_FALSE(called);
 }
@@ -352,8 +450,8 @@ TEST(Batch, InputsOfTheWrongLengthAreRefused) {
   kb.starts = three;
   kb.dirs = two;
   EXPECT_FALSE(contactsBatch(world, kb, k3).ok());
-  std::vector<std::uint32_t> p2(2);
-  EXPECT_FALSE(pointContentsBatch(world, three, p2).ok());
+  std::vector<PointContentsResult> p2(2);
+  EXPECT_FALSE(pointContentsBatch(world, {{}, three}, p2).ok());
   std::vector<RayHit> h3(3);
   RayBatch rb;
   rb.starts = two;

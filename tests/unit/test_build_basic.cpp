@@ -52,11 +52,12 @@ Built buildText(const std::string& body) {
   Built b;
   if (!map.ok()) return b;
   MaterialTable materials;
-  BuildOptions options;
-  options.warnings = &b.warnings;
-  auto models = buildCollisionModels(*map, materials, options);
-  EXPECT_TRUE(models.ok());
-  if (models.ok()) b.models = *models;
+  auto built = buildCollisionModels(*map, materials);
+  EXPECT_TRUE(built.ok());
+  if (built.ok()) {
+    b.models = built->models;
+    b.warnings = built->warnings;
+  }
   return b;
 }
 

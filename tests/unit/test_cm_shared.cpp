@@ -62,9 +62,9 @@ TEST(CmShared, BuiltReferenceMapsAreWrittenAsTheOriginalWroteThem) {
     SCOPED_TRACE(e.path().string());
     Result<MapFile> map = loadMapFile(e.path().string());
     ASSERT_TRUE(map.ok()) << map.error().toString();
-    Result<std::vector<ModelPtr>> models = buildCollisionModels(*map, MaterialTable{});
-    ASSERT_TRUE(models.ok()) << models.error().toString();
-    const std::string written = writeCmText(*models, map->geometryCrc);
+    Result<BuildResult> built = buildCollisionModels(*map, MaterialTable{});
+    ASSERT_TRUE(built.ok()) << built.error().toString();
+    const std::string written = writeCmText(built->models, map->geometryCrc);
     const std::string expected = test::readFile(reference);
     EXPECT_EQ(test::withoutMemoryHints(written), test::withoutMemoryHints(expected));
     EXPECT_TRUE(written == expected) << "memory hints differ";

@@ -52,25 +52,24 @@ TEST(EntityModel, TheWrittenModelEqualsTheEntitysModelInTheFullCompile) {
     if (map.entities[e].primitives.empty()) continue;
     SCOPED_TRACE(e);
     const std::string path = (scratch() / ("entity" + std::to_string(e) + ".cm")).string();
-    EntityModelReport report;
-    EntityModelOptions options;
-    options.report = &report;
-    ASSERT_TRUE(writeCollisionModelForMapEntity(map, e, path, MaterialTable{}, options).ok());
+    const Result<EntityModelReport> written = writeCollisionModelForMapEntity(map, e, path, MaterialTable{});
+    ASSERT_TRUE(written.ok());
+    const EntityModelReport& report = *written;
     auto file = loadCmFile(path, MaterialTable{});
     ASSERT_TRUE(file.ok()) << file.error().toString();
     EXPECT_EQ(file->crc, 0u);
     ASSERT_EQ(file->models.size(), 1u);
-    const CollisionModel& written = *file->models[0];
-    const CollisionModel& full = *(*all)[model++];
-    EXPECT_EQ(written.name(), path);
+    const CollisionModel& read = *file->models[0];
+    const CollisionModel& full = *all->models[model++];
+    EXPECT_EQ(read.name(), path);
     EXPECT_EQ(report.model->name(), path);
-    EXPECT_EQ(written.vertices().size(), full.vertices().size());
-    EXPECT_EQ(written.edges().size(), full.edges().size());
-    EXPECT_EQ(written.polygons().size(), full.polygons().size());
-    EXPECT_EQ(written.brushes().size(), full.brushes().size());
-    EXPECT_EQ(written.nodes().size(), full.nodes().size());
-    EXPECT_EQ(written.bounds().min, full.bounds().min);
-    EXPECT_EQ(written.bounds().max, full.bounds().max);
+    EXPECT_EQ(read.vertices().size(), full.vertices().size());
+    EXPECT_EQ(read.edges().size(), full.edges().size());
+    EXPECT_EQ(read.polygons().size(), full.polygons().size());
+    EXPECT_EQ(read.brushes().size(), full.brushes().size());
+    EXPECT_EQ(read.nodes().size(), full.nodes().size());
+    EXPECT_EQ(read.bounds().min, full.bounds().min);
+    EXPECT_EQ(read.bounds().max, full.bounds().max);
     // the same text as the full compile's model renamed
     ModelArrays renamed = full.arrays();
     renamed.name = path;
@@ -78,41 +77,44 @@ TEST(EntityModel, TheWrittenModelEqualsTheEntitysModelInTheFullCompile) {
     EXPECT_EQ(test::readFile(path), writeCmText(std::span<const ModelPtr>(&one, 1), 0));
     EXPECT_FALSE(report.traceModel.has_value());  // not asked
   }
-  EXPECT_EQ(model, all->size());
+  EXPECT_EQ(model, all->models.size());
   fs::remove_all(scratch());
 }
 
 TEST(EntityModel, TestsTheTraceModel) {
   const MapFile map = inlinePatchMap();
   const std::string path = (scratch() / "door.cm").string();
-  EntityModelReport report;
   EntityModelOptions options;
   options.testTraceModel = true;
-  options.report = &report;
-  ASSERT_TRUE(
-      writeCollisionModelForMapEntity(map, *map.findEntity("door_1"), path, MaterialTable{}, options).ok());
-  ASSERT_TRUE(report.traceModel.has_value());
-  ASSERT_TRUE(report.traceModel->ok()) << report.traceModel->error().toString();
-  EXPECT_EQ((*report.traceModel)->numVertices(), 8);
-  EXPECT_EQ((*report.traceModel)->numEdges(), 12);
-  EXPECT_EQ((*report.traceModel)->numPolygons(), 6);
-  // the world (a room seen from inside) is no trace model
-  ASSERT_TRUE(writeCollisionModelForMapEntity(map, 0, path, MaterialTable{}, options).ok());
-  ASSERT_TRUE(report.traceModel.has_value());
-  EXPECT_FALSE(report.traceModel->ok());
-  EXPECT_FALSE(report.traceModel->error().message.empty());
+  Result<EntityModelReport> report =
+      writeCollisionModelForMapEntity(map, *map.findEntity("door_1"), path, MaterialTable{}, options);
+  ASSERT_TRUE(report.ok());
+  ASSERT_TRUE(report->traceModel.has_value());
+  ASSERT_TRUE(report->traceModel->ok()) << report->traceModel->error().toString();
+  EXPECT_EQ((*report->traceModel)->numVertices(), 8);
+  EXPECT_EQ((*report->traceModel)->numEdges(), 12);
+  EXPECT_EQ((*report->traceModel)->numPolygons(), 6);
+  // the world (a room seen from inside) is no trace model: a finding, the
+  // file is still written
+  report = writeCollisionModelForMapEntity(map, 0, path, MaterialTable{}, options);
+  ASSERT_TRUE(report.ok());
+  ASSERT_TRUE(report->traceModel.has_value());
+  EXPECT_FALSE(report->traceModel->ok());
+  EXPECT_FALSE(report->traceModel->error().message.empty());
+  EXPECT_TRUE(fs::exists(path));
   fs::remove_all(scratch());
 }
 
 TEST(EntityModel, ErrorsWriteNothing) {
   const MapFile map = inlinePatchMap();
   const fs::path path = scratch() / "none.cm";
-  const Status noPrimitives = writeCollisionModelForMapEntity(map, 5, path.string(), MaterialTable{});
+  const Result<EntityModelReport> noPrimitives =
+      writeCollisionModelForMapEntity(map, 5, path.string(), MaterialTable{});
   ASSERT_FALSE(noPrimitives.ok());
   EXPECT_NE(noPrimitives.error().message.find("no brushes or patches"), std::string::npos);
   EXPECT_FALSE(writeCollisionModelForMapEntity(map, 99, path.string(), MaterialTable{}).ok());
   EXPECT_FALSE(fs::exists(path));
-  const Status noDir =
+  const Result<EntityModelReport> noDir =
       writeCollisionModelForMapEntity(map, 2, (scratch() / "missing" / "x.cm").string(), MaterialTable{});
   EXPECT_FALSE(noDir.ok());
   for (const auto& e : fs::directory_iterator(scratch())) ADD_FAILURE() << "left behind: " << e.path();

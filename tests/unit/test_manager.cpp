@@ -45,35 +45,28 @@ TEST(Manager, LoadFindFreeClearList) {
   EXPECT_EQ(h->index, 2);
   EXPECT_FALSE(mm.find("#99").ok());
 
-  // Accessors.
-  EXPECT_EQ(*mm.name(ModelHandle{4}), "worldMap");
-  const ModelPtr world = mm.get(ModelHandle{4});
-  ASSERT_TRUE(world);
-  EXPECT_EQ(*mm.bounds(ModelHandle{4}), world->bounds());
-  EXPECT_EQ(*mm.contents(ModelHandle{4}), world->contents());
-  EXPECT_EQ(mm.vertices(ModelHandle{4})->size(), world->vertices().size());
-  Result<std::array<Vec3, 2>> edge = mm.edge(ModelHandle{4}, 1);
-  ASSERT_TRUE(edge.ok());
-  EXPECT_EQ((*edge)[0], world->vertices()[std::size_t(world->edges()[1].vertex[0])]);
-  EXPECT_FALSE(mm.edge(ModelHandle{4}, 0).ok());
-  Result<std::vector<Vec3>> winding = mm.polygonWinding(ModelHandle{4}, 0);
-  ASSERT_TRUE(winding.ok());
-  EXPECT_EQ(winding->size(), world->polygons()[0].numEdges);
-  for (const Vec3& v : *winding) EXPECT_LE(std::fabs(world->polygons()[0].plane.distance(v)), 0.25f);
-  EXPECT_FALSE(mm.polygonWinding(ModelHandle{4}, world->polygons().size()).ok());
-  Result<std::string> stats = mm.printModel(ModelHandle{4});
-  ASSERT_TRUE(stats.ok());
-  EXPECT_EQ(stats->rfind("worldMap\n", 0), 0u);
-  EXPECT_NE(stats->find(" vertices ("), std::string::npos);
-  EXPECT_NE(stats->find(" sharp edges\n"), std::string::npos);
-  EXPECT_NE(stats->find(" KB total memory used\n"), std::string::npos);
+  // The manager hands out models (get, require); what a model is and does
+  // are the model's own data and functions.
+  Result<ModelPtr> required = mm.require(ModelHandle{4});
+  ASSERT_TRUE(required.ok());
+  const ModelPtr world = *required;
+  EXPECT_EQ(world, mm.get(ModelHandle{4}));
+  EXPECT_EQ(world->name(), "worldMap");
+  const std::vector<Vec3> winding = polygonWinding(*world, 0);
+  EXPECT_EQ(winding.size(), world->polygons()[0].numEdges);
+  for (const Vec3& v : winding) EXPECT_LE(std::fabs(world->polygons()[0].plane.distance(v)), 0.25f);
+  const std::string stats = modelStatistics(*world);
+  EXPECT_EQ(stats.rfind("worldMap\n", 0), 0u);
+  EXPECT_NE(stats.find(" vertices ("), std::string::npos);
+  EXPECT_NE(stats.find(" sharp edges\n"), std::string::npos);
+  EXPECT_NE(stats.find(" KB total memory used\n"), std::string::npos);
 
   // Freeing one model leaves every other handle valid.
   ASSERT_TRUE(mm.free(ModelHandle{1}).ok());
   EXPECT_FALSE(mm.get(ModelHandle{1}));
   EXPECT_FALSE(mm.free(ModelHandle{1}).ok());
-  EXPECT_FALSE(mm.name(ModelHandle{1}).ok());
-  EXPECT_EQ(*mm.name(ModelHandle{4}), "worldMap");
+  EXPECT_FALSE(mm.require(ModelHandle{1}).ok());
+  EXPECT_EQ(mm.get(ModelHandle{4})->name(), "worldMap");
   EXPECT_TRUE(mm.get(ModelHandle{2}));
   EXPECT_EQ(mm.size(), 4u);
   const auto listed = mm.list();
@@ -186,7 +179,7 @@ TEST(Manager, TrmFromModelRoundTripsAConvexModel) {
   ModelManager mm;
   const TraceModel box = *TraceModel::box(Bounds({-16, -16, 0}, {16, 16, 72}));
   const ModelHandle h = mm.addTraceModel(box);
-  Result<TraceModel> back = mm.trmFromModel(h);
+  Result<TraceModel> back = traceModelFromCollisionModel(*mm.get(h));
   ASSERT_TRUE(back.ok()) << back.error().toString();
   EXPECT_TRUE(back->isConvex());
   EXPECT_EQ(back->numVertices(), 8);
@@ -231,10 +224,9 @@ TEST(Manager, TrmFromModelRejectsConcaveOpenAndTooBigModels) {
   ASSERT_TRUE(f.ok());
   ModelManager mm;
   const ModelHandle world = mm.add(f->models[0]);
-  r = mm.trmFromModel(world);
+  r = traceModelFromCollisionModel(*mm.get(world));
   ASSERT_FALSE(r.ok());
   EXPECT_FALSE(r.error().message.empty());
-  EXPECT_FALSE(mm.trmFromModel(ModelHandle{7}).ok());
 }
 
 // Loading and freeing on one thread while others read already loaded models.

@@ -263,8 +263,8 @@ TEST(MapParser, Valve220BrushesGiveThePlanesOfTheirPoints) {
   EXPECT_EQ(brush.sides[5].material, "textures/common/caulk");
   auto models = buildCollisionModels(*r, MaterialTable{});
   ASSERT_TRUE(models.ok());
-  ASSERT_EQ(models->size(), 1u);
-  const CollisionModel& m = *(*models)[0];
+  ASSERT_EQ(models->models.size(), 1u);
+  const CollisionModel& m = *models->models[0];
   EXPECT_EQ(m.vertices().size(), 8u);
   EXPECT_EQ(m.polygons().size(), 6u);
   EXPECT_EQ(m.brushes().size(), 1u);

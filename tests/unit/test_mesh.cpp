@@ -59,9 +59,9 @@ bool isClosed(const CollisionModel& m) {
 }
 
 ModelPtr build(const TriangleMesh& mesh, const MaterialTable& materials = {}, MeshBuildOptions options = {}) {
-  auto model = buildCollisionModelFromTriangles(mesh, "mesh", materials, options);
-  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().toString());
-  return model.ok() ? *model : nullptr;
+  auto built = buildCollisionModelFromTriangles(mesh, "mesh", materials, options);
+  EXPECT_TRUE(built.ok()) << (built.ok() ? "" : built.error().toString());
+  return built.ok() ? built->model : nullptr;
 }
 
 TraceResult pointTrace(const CollisionModel& m, Vec3 start, Vec3 end) {
@@ -239,12 +239,10 @@ TEST(MeshBuild, BadTriangleDataIsAClearError) {
 TEST(MeshBuild, ZeroAreaTrianglesAreSkippedWithAWarning) {
   TriangleMesh mesh = cubeMesh();
   mesh.surfaces[0].indices.insert(mesh.surfaces[0].indices.end(), {0, 1, 1, 2, 2, 2});
-  std::vector<std::string> warnings;
-  MeshBuildOptions options;
-  options.warnings = &warnings;
-  const ModelPtr m = build(mesh, {}, options);
-  ASSERT_TRUE(m);
-  EXPECT_EQ(m->polygons().size(), 6u);
+  auto built = buildCollisionModelFromTriangles(mesh, "mesh", MaterialTable{});
+  ASSERT_TRUE(built.ok());
+  EXPECT_EQ(built->model->polygons().size(), 6u);
+  const std::vector<std::string>& warnings = built->warnings;
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("2 triangles without area"), std::string::npos) << warnings[0];
 }
@@ -371,13 +369,13 @@ TEST(MeshFile, CubeObjLoadsAndBuildsTheCube) {
   EXPECT_EQ(mesh->surfaces[0].indices.size(), 36u);
   auto m = loadMeshModel(meshData("cube.obj").string(), MaterialTable{});
   ASSERT_TRUE(m.ok()) << m.error().toString();
-  EXPECT_EQ((*m)->name(), meshData("cube.obj").string());
-  EXPECT_EQ((*m)->vertices().size(), 8u);
-  EXPECT_EQ((*m)->numEdges(), 12u);
-  EXPECT_EQ((*m)->polygons().size(), 6u);
-  EXPECT_TRUE(isClosed(**m));
-  EXPECT_EQ((*m)->bounds().max, (Vec3{64, 64, 64}));
-  EXPECT_FLOAT_EQ(pointTrace(**m, {32, 32, 100}, {32, 32, -100}).fraction,
+  EXPECT_EQ(m->model->name(), meshData("cube.obj").string());
+  EXPECT_EQ(m->model->vertices().size(), 8u);
+  EXPECT_EQ(m->model->numEdges(), 12u);
+  EXPECT_EQ(m->model->polygons().size(), 6u);
+  EXPECT_TRUE(isClosed(*m->model));
+  EXPECT_EQ(m->model->bounds().max, (Vec3{64, 64, 64}));
+  EXPECT_FLOAT_EQ(pointTrace(*m->model, {32, 32, 100}, {32, 32, -100}).fraction,
                   (36.0f - tol::kClipEpsilon) / 200.0f);
 }
 
@@ -385,22 +383,22 @@ TEST(MeshFile, CubeGltfIsYUpAndGivesTheSameCube) {
   CMKIT_REQUIRE_ASSIMP();
   auto m = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{});
   ASSERT_TRUE(m.ok()) << m.error().toString();
-  EXPECT_EQ((*m)->polygons().size(), 6u);
-  EXPECT_TRUE(isClosed(**m));
-  EXPECT_EQ((*m)->bounds().min, (Vec3{0, 0, 0}));
-  EXPECT_EQ((*m)->bounds().max, (Vec3{64, 64, 64}));
-  EXPECT_EQ(test::toVector((*m)->materials()), std::vector<std::string>{"textures/test/cube"});
+  EXPECT_EQ(m->model->polygons().size(), 6u);
+  EXPECT_TRUE(isClosed(*m->model));
+  EXPECT_EQ(m->model->bounds().min, (Vec3{0, 0, 0}));
+  EXPECT_EQ(m->model->bounds().max, (Vec3{64, 64, 64}));
+  EXPECT_EQ(test::toVector(m->model->materials()), std::vector<std::string>{"textures/test/cube"});
   // As written (z up) the file's y is up: the cube lies at y in [-64, 0].
   MeshLoadOptions asWritten;
   asWritten.up = MeshUpAxis::Z;
   auto raw = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{}, asWritten);
   ASSERT_TRUE(raw.ok());
-  EXPECT_EQ((*raw)->bounds().min, (Vec3{0, 0, -64}));
+  EXPECT_EQ(raw->model->bounds().min, (Vec3{0, 0, -64}));
   MeshLoadOptions scaled;
   scaled.scale = 0.5f;
   auto half = loadMeshModel(meshData("cube.gltf").string(), MaterialTable{}, scaled);
   ASSERT_TRUE(half.ok());
-  EXPECT_EQ((*half)->bounds().max, (Vec3{32, 32, 32}));
+  EXPECT_EQ(half->model->bounds().max, (Vec3{32, 32, 32}));
 }
 
 TEST(MeshFile, GltfExportImportExportIsStable) {
@@ -420,7 +418,7 @@ TEST(MeshFile, GltfExportImportExportIsStable) {
         .write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
     auto back = loadMeshModel(path.string(), MaterialTable{});
     EXPECT_TRUE(back.ok()) << (back.ok() ? "" : back.error().toString());
-    return back.ok() ? *back : nullptr;
+    return back.ok() ? back->model : nullptr;
   };
   const ModelPtr m1 = roundTrip(m0);
   ASSERT_TRUE(m1);
@@ -455,8 +453,8 @@ TEST(MeshFile, CollisionSurfaceObj) {
   materials.addMtrText("textures/common/collision { collision }\n", "test.mtr");
   auto m = loadMeshModel(meshData("collision.obj").string(), materials);
   ASSERT_TRUE(m.ok()) << m.error().toString();
-  EXPECT_EQ((*m)->polygons().size(), 6u);
-  EXPECT_EQ((*m)->bounds().min, (Vec3{16, 16, 16}));
+  EXPECT_EQ(m->model->polygons().size(), 6u);
+  EXPECT_EQ(m->model->bounds().min, (Vec3{16, 16, 16}));
 }
 
 TEST(MeshFile, MalformedAndMissingFilesNameTheFile) {
@@ -505,7 +503,7 @@ TEST(MeshManager, LoadModelConvertsAMeshOnceAndPrefersACmFile) {
     // NAME.cm holding a model of that name wins (here: a smaller cube).
     auto small = buildCollisionModelFromTriangles(cubeMesh(0, 8), name, MaterialTable{});
     ASSERT_TRUE(small.ok());
-    const ModelPtr sm = *small;
+    const ModelPtr sm = small->model;
     ASSERT_TRUE(saveCmFile((dir / "cube.cm").string(), std::span<const ModelPtr>(&sm, 1), 0).ok());
     ModelManager manager;
     auto h = manager.loadModel(name, MaterialTable{});
@@ -529,8 +527,8 @@ TEST(MeshShared, CcMeshesBuildValidModels) {
     if (!fs::exists(p)) GTEST_SKIP() << p << " is absent";
     auto m = loadMeshModel(p.string(), MaterialTable{});
     ASSERT_TRUE(m.ok()) << m.error().toString();
-    EXPECT_GT((*m)->polygons().size(), 0u) << name;
-    for (const Violation& v : validateModel(**m)) {
+    EXPECT_GT(m->model->polygons().size(), 0u) << name;
+    for (const Violation& v : validateModel(*m->model)) {
       EXPECT_NE(v.kind, Violation::Kind::Structure) << name << ": " << v.toString();
     }
   }

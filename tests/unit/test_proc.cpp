@@ -44,8 +44,8 @@ std::vector<ModelPtr> build(const std::string& mapText, const std::string& procT
   options.procBsp = &*proc;
   auto models = buildCollisionModels(*map, MaterialTable{}, options);
   EXPECT_TRUE(models.ok());
-  if (dropped) *dropped = (*models)[0]->stats().procPolygonsRemoved;
-  return *models;
+  if (dropped) *dropped = models->models[0]->stats().procPolygonsRemoved;
+  return models->models;
 }
 
 TEST(ProcFile, ReadsTheNodesAndSkipsOtherSections) {
@@ -181,7 +181,7 @@ std::pair<std::string, std::vector<ModelPtr>> buildWithProcBeside(const fs::path
   options.procBsp = &**proc;
   auto models = buildCollisionModels(*parsed, MaterialTable{}, options);
   EXPECT_TRUE(models.ok());
-  return {writeCmText(*models, parsed->geometryCrc), *models};
+  return {writeCmText(models->models, parsed->geometryCrc), models->models};
 }
 
 TEST(ProcPruning, TheTwoProcMapsGiveTheOriginalsCmFiles) {

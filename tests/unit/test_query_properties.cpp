@@ -69,8 +69,8 @@ void checkFreeMovesEndFree(const CollisionModel& m, unsigned seed, int count) {
     // a point trace never ends inside a brush either
     const TraceResult p = translate(m, {nullptr, {}, start, end, contents::kMaskSolid, {}, false}, work);
     ASSERT_TRUE(finite(p));
-    if (pointContents(m, start) == 0) {
-      EXPECT_EQ(pointContents(m, p.endPos) & contents::kSolid, 0u) << i;
+    if (test::pointContentsAt(m, start) == 0) {
+      EXPECT_EQ(test::pointContentsAt(m, p.endPos) & contents::kSolid, 0u) << i;
     }
   }
   EXPECT_GT(tested, count / 10) << "too few free starts";

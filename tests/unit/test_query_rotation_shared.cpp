@@ -25,7 +25,7 @@ std::vector<ModelPtr> buildMap(const std::filesystem::path& path) {
   auto map = loadMapFile(path.string());
   if (!map) return {};
   auto models = buildCollisionModels(*map, MaterialTable{});
-  return models ? *models : std::vector<ModelPtr>{};
+  return models ? models->models : std::vector<ModelPtr>{};
 }
 
 using detail::Fields;

@@ -262,7 +262,7 @@ TEST(Translation, StartInsideSolidIsFlagged) {
   const TraceResult r = translate(m, q, work);
   EXPECT_TRUE(r.startSolid);
   EXPECT_EQ(r.fraction, 1.0f);  // the original's rule: the top face is seen from behind
-  const Penetration pen = penetration(m, {&box, {}, q.start, contents::kMaskSolid, {}}, work);
+  const PenetrationResult pen = penetration(m, {&box, {}, q.start, contents::kMaskSolid, {}}, work);
   ASSERT_TRUE(pen.stuck);
   EXPECT_NEAR(pen.depth, 8, 1e-5f);
   EXPECT_EQ(pen.direction, Vec3(0, 0, 1));
@@ -430,14 +430,17 @@ TEST(PointContents, SeesBrushesAndHandlesRotation) {
                                .addBox({{0, 0, 0}, {10, 10, 10}})
                                .addBox({{20, 0, 0}, {30, 10, 10}}, contents::kWater)
                                .build();
-  EXPECT_EQ(pointContents(m, {5, 5, 5}), contents::kSolid | contents::kOpaque);
-  EXPECT_EQ(pointContents(m, {25, 5, 5}), contents::kWater);
-  EXPECT_EQ(pointContents(m, {15, 5, 5}), 0u);
-  EXPECT_EQ(pointContents(m, {10, 5, 5}), 0u);  // on a plane is outside
+  QueryWork work;
+  EXPECT_EQ(pointContents(m, {{5, 5, 5}, {}}, work).contents, contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(pointContents(m, {{25, 5, 5}, {}}, work).contents, contents::kWater);
+  EXPECT_EQ(pointContents(m, {{15, 5, 5}, {}}, work).contents, 0u);
+  EXPECT_EQ(pointContents(m, {{10, 5, 5}, {}}, work).contents, 0u);  // on a plane is outside
   // Turned 90 degrees about z: model x points along world y.
   const Placement turned{{0, 0, 0}, Mat3{{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}};
-  EXPECT_EQ(pointContents(m, {-5, 25, 5}, turned), contents::kWater);
-  EXPECT_EQ(pointContents(m, {25, 5, 5}, turned), 0u);
+  const PointContentsResult water = pointContents(m, {{-5, 25, 5}, turned}, work);
+  EXPECT_EQ(water.status, QueryStatus::Ok);
+  EXPECT_EQ(water.contents, contents::kWater);
+  EXPECT_EQ(pointContents(m, {{25, 5, 5}, turned}, work).contents, 0u);
 }
 
 // A brush's planes are tested four at a time where SSE2 float lanes exist:
@@ -466,6 +469,7 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
       return brush.contents;
     };
     int inside = 0, onOrOutside = 0;
+    QueryWork work;
     for (int i = 0; i < 3000; ++i) {
       // A vertex (on several planes), a point on an edge or a face, nudged
       // by a rounding step or two, or a point anywhere in the bounds.
@@ -486,7 +490,7 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
       }
       const std::uint32_t want = expected(p);
       (want != 0 ? inside : onOrOutside)++;
-      ASSERT_EQ(pointContents(m, p), want)
+      ASSERT_EQ(pointContents(m, {p, {}}, work).contents, want)
           << shape.describe() << " point " << p.x << " " << p.y << " " << p.z;
     }
     EXPECT_GT(inside, 50) << shape.describe();  // both answers were met

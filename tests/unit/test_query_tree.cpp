@@ -56,9 +56,9 @@ TEST(PointContents, SeesTheBrushInTheLeafOfADeepTree) {
     ASSERT_EQ(m->nodes().size(), std::size_t(2 * depth + 1));
     EXPECT_EQ(leafDepth(*m, 1005), depth);
     ASSERT_EQ(m->brushesAt(m->nodes()[std::size_t(depth)]).size(), 1u) << "the brush is in the deepest leaf";
-    EXPECT_EQ(pointContents(*m, {1005, 5, 5}), contents::kSolid) << "depth " << depth;
-    EXPECT_EQ(pointContents(*m, {1005, 5, 15}), 0u) << "depth " << depth;
-    EXPECT_EQ(pointContents(*m, {5, 5, 5}), 0u) << "depth " << depth;
+    EXPECT_EQ(test::pointContentsAt(*m, {1005, 5, 5}), contents::kSolid) << "depth " << depth;
+    EXPECT_EQ(test::pointContentsAt(*m, {1005, 5, 15}), 0u) << "depth " << depth;
+    EXPECT_EQ(test::pointContentsAt(*m, {5, 5, 5}), 0u) << "depth " << depth;
   }
 }
 
@@ -84,8 +84,8 @@ TEST(Contents, SeesTheBrushInTheLeafOfADeepTree) {
 
 /// penetration() as a scan of every brush in index order (the deepest brush
 /// wins, the first one on equal depths), written independently of the tree.
-Penetration everyBrush(const CollisionModel& m, const TraceModel& trm, const Mat3& trmAxis,
-                       const Vec3& position, const Placement& placement) {
+PenetrationResult everyBrush(const CollisionModel& m, const TraceModel& trm, const Mat3& trmAxis,
+                             const Vec3& position, const Placement& placement) {
   std::vector<Vec3> verts;
   Bounds tb;
   for (int i = 0; i < trm.numVertices(); ++i) {
@@ -94,7 +94,7 @@ Penetration everyBrush(const CollisionModel& m, const TraceModel& trm, const Mat
     verts.push_back(v);
     tb.addPoint(v);
   }
-  Penetration r;
+  PenetrationResult r;
   for (const CmBrush& b : m.brushes()) {
     if (!(b.contents & contents::kMaskSolid) || !b.bounds.intersects(tb) || b.numPlanes == 0) continue;
     Real depth = tol::kBoundsInfinity;
@@ -140,14 +140,14 @@ TEST(Penetration, SameAsScanningEveryBrush) {
              b.min.z + u(rng) * (b.max.z - b.min.z)};
       // Some on a brush plane or a grid coordinate, where ties and touching happen.
       if (n % 5 == 0) p = {std::round(p.x / 8) * 8, std::round(p.y / 8) * 8, std::round(p.z / 8) * 8};
-      ContentsQuery q;
+      PenetrationQuery q;
       q.trm = &trm;
       q.trmAxis = n % 3 == 0 ? turned : Mat3::identity();
       q.position = p;
       if (n % 7 == 0) q.placement = {{0, 0, 0}, turned};
       if (n % 7 == 0) q.position = p * q.placement.axis;  // the same place in the model's frame
-      const Penetration fast = penetration(*m, q, work);
-      const Penetration slow = everyBrush(*m, trm, q.trmAxis, q.position, q.placement);
+      const PenetrationResult fast = penetration(*m, q, work);
+      const PenetrationResult slow = everyBrush(*m, trm, q.trmAxis, q.position, q.placement);
       ASSERT_EQ(fast.stuck, slow.stuck) << m->name() << " query " << n;
       EXPECT_EQ(fast.depth, slow.depth) << m->name() << " query " << n;
       EXPECT_EQ(fast.direction, slow.direction) << m->name() << " query " << n;

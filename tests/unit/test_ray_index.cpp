@@ -355,7 +355,7 @@ TEST(RayIndex, CastManyGivesWhatEachCastGives) {
     for (const Placement& placement : {Placement{}, placed}) {
       for (const std::vector<Vec3>* from : {&oneStart, &starts}) {
         std::vector<RayHit> many(total);
-        index.castMany(*from, ends, contents::kMaskSolid, placement, many);
+        index.castMany({{{}, {}, contents::kMaskSolid, placement}, *from, ends}, many);
         int hits = 0;
         for (std::size_t i = 0; i < total; ++i) {
           const Vec3& s = from->size() == 1 ? (*from)[0] : (*from)[i];
@@ -375,12 +375,14 @@ TEST(RayIndex, CastManyLeavesMismatchedSpansAlone) {
   const std::vector<Vec3> two{{0, 0, 8}, {1, 0, 8}}, three{{0, 0, -8}, {1, 0, -8}, {2, 0, -8}};
   std::vector<RayHit> out(3);
   out[0].polygon = 77;
-  index.castMany(two, three, kAll, {}, out);  // 2 starts for 3 rays
+  const RayCastQuery all{{}, {}, kAll, {}};
+  index.castMany({all, two, three}, out);  // 2 starts for 3 rays
   EXPECT_EQ(out[0].polygon, 77);
-  index.castMany(std::vector<Vec3>{{0, 0, 8}}, three, kAll, {}, out);  // one start for all
+  const std::vector<Vec3> one{{0, 0, 8}};
+  index.castMany({all, one, three}, out);  // one start for all
   for (const RayHit& h : out) EXPECT_TRUE(h.hit());
   EXPECT_EQ(out[2].point, (Vec3{1, 0, 0}));  // (0,0,8) -> (2,0,-8) crosses z = 0 halfway
-  index.castMany({}, {}, kAll, {}, {});      // nothing to do
+  index.castMany({all, {}, {}}, {});         // nothing to do
 }
 
 TEST(RayIndex, PointTranslationStopsNoLater) {

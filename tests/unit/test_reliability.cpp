@@ -47,7 +47,7 @@ std::vector<ModelPtr> buildText(const std::string& text, bool robustEdges = fals
   options.robustEdges = robustEdges;
   auto models = buildCollisionModels(*map, MaterialTable{}, options);
   EXPECT_TRUE(models.ok());
-  return models ? *models : std::vector<ModelPtr>{};
+  return models ? models->models : std::vector<ModelPtr>{};
 }
 
 /// The lt4 case in small: a 16x16 pillar inside a wall block, sharing the
@@ -79,7 +79,7 @@ std::vector<ModelPtr> buildLt4(bool robustEdges) {
   options.robustEdges = robustEdges;
   auto models = buildCollisionModels(*map, MaterialTable{}, options);
   EXPECT_TRUE(models.ok());
-  return models ? *models : std::vector<ModelPtr>{};
+  return models ? models->models : std::vector<ModelPtr>{};
 }
 
 TraceModel trm(const char* spec) { return TraceModel::parse(spec).value(); }
@@ -259,8 +259,8 @@ TEST(LargeWorlds, SweepsFarFromTheOriginAnswerAsAtTheOrigin) {
   auto here = buildCollisionModels(*map, MaterialTable{}, {});
   auto far = buildCollisionModels(moved, MaterialTable{}, {});
   ASSERT_TRUE(here.ok() && far.ok());
-  const CollisionModel& a = *here->front();
-  const CollisionModel& b = *far->front();
+  const CollisionModel& a = *here->models.front();
+  const CollisionModel& b = *far->models.front();
   EXPECT_EQ(b.bounds().min.x, a.bounds().min.x + offset.x);
   if constexpr (kDoublePrecision) {  // (in float, merging rounds differently: a few polygons fewer)
     ASSERT_EQ(a.polygons().size(), b.polygons().size());
@@ -322,7 +322,7 @@ class QueryGuards : public ::testing::Test {
 };
 
 void expectRefused(const TraceResult& r, QueryStatus status, const Vec3& start) {
-  EXPECT_EQ(r.status, status) << describe(r.status);
+  EXPECT_EQ(r.status, status) << toString(r.status);
   EXPECT_EQ(r.fraction, 0);
   if (start.isFinite()) {
     EXPECT_EQ(r.endPos, start);
@@ -335,7 +335,7 @@ TEST_F(QueryGuards, ValidInputRunsWithStatusOk) {
   const TraceResult r = drop(Mat3::identity(), {0, 0, 64}, {0, 0, -64});
   EXPECT_EQ(r.status, QueryStatus::Ok);
   EXPECT_FLOAT_EQ(r.endPos.z, 0.25f);  // the clip epsilon above the floor
-  EXPECT_STREQ(describe(QueryStatus::Ok), "ok");
+  EXPECT_STREQ(toString(QueryStatus::Ok), "ok");
 }
 
 TEST_F(QueryGuards, TraceModelAxisMustBeARotation) {
@@ -370,9 +370,8 @@ TEST_F(QueryGuards, HugeTraceModelsAreRefused) {
   r.rotation = Rotation({243, 0, 64}, {0, 0, -1}, 60.0334473f);
   r.contentMask = contents::kMaskSolid;
   expectRefused(rotate(floor(), r, work_), QueryStatus::OutOfRange, start);
-  EXPECT_EQ(
-      contentsTest(floor(), {&huge, Mat3::identity(), start, contents::kMaskSolid, {}}, work_).trace.status,
-      QueryStatus::OutOfRange);
+  EXPECT_EQ(contentsTest(floor(), {&huge, Mat3::identity(), start, contents::kMaskSolid, {}}, work_).status,
+            QueryStatus::OutOfRange);
   ContactsQuery c;
   c.trm = &huge;
   c.start = start;
@@ -413,9 +412,18 @@ TEST_F(QueryGuards, ModelAxisMustBeARotation) {
   Placement nanOrigin;
   nanOrigin.origin = {kNaN, 0, 0};
   expectRefused(drop(Mat3::identity(), start, end, nanOrigin), QueryStatus::NonFinite, start);
-  EXPECT_EQ(pointContents(floor(), {0, 0, -8}, nan), 0u);
-  EXPECT_EQ(pointContents(floor(), {0, 0, -8}, nanOrigin), 0u);
-  EXPECT_EQ(pointContents(floor(), {0, 0, -8}), contents::kSolid | contents::kOpaque);
+  const PointContentsResult badAxis = pointContents(floor(), {{0, 0, -8}, nan}, work_);
+  EXPECT_EQ(badAxis.status, QueryStatus::BadModelAxis);
+  EXPECT_EQ(badAxis.contents, 0u);
+  const PointContentsResult scaledAxis = pointContents(floor(), {{0, 0, -8}, scaled}, work_);
+  EXPECT_EQ(scaledAxis.status, QueryStatus::BadModelAxis);
+  EXPECT_EQ(scaledAxis.contents, 0u);
+  const PointContentsResult badOrigin = pointContents(floor(), {{0, 0, -8}, nanOrigin}, work_);
+  EXPECT_EQ(badOrigin.status, QueryStatus::NonFinite);
+  EXPECT_EQ(badOrigin.contents, 0u);
+  const PointContentsResult inside = pointContents(floor(), {{0, 0, -8}, {}}, work_);
+  EXPECT_EQ(inside.status, QueryStatus::Ok);
+  EXPECT_EQ(inside.contents, contents::kSolid | contents::kOpaque);
 }
 
 TEST_F(QueryGuards, PositionsMustBeFiniteAndInRange) {
@@ -427,17 +435,37 @@ TEST_F(QueryGuards, PositionsMustBeFiniteAndInRange) {
   EXPECT_EQ(far.status, QueryStatus::Ok);
   EXPECT_EQ(far.fraction, 1);
   // Position tests and point contents at NaN are not "inside".
+  // The status of a contents test is on the result (and on its trace).
   const ContentsResult c = contentsTest(floor(), {&box_, Mat3::identity(), {kNaN, 0, 0}, 1, {}}, work_);
+  EXPECT_EQ(c.status, QueryStatus::NonFinite);
   EXPECT_EQ(c.trace.status, QueryStatus::NonFinite);
   EXPECT_EQ(c.contents, 0u);
   const ContentsResult p = contentsTest(floor(), {nullptr, Mat3::identity(), {kNaN, 0, -8}, 1, {}}, work_);
-  EXPECT_EQ(p.trace.status, QueryStatus::NonFinite);
+  EXPECT_EQ(p.status, QueryStatus::NonFinite);
   EXPECT_EQ(p.contents, 0u);
-  EXPECT_EQ(pointContents(floor(), {kNaN, kNaN, kNaN}), 0u);
-  EXPECT_EQ(pointContents(floor(), {0, 0, -8}), contents::kSolid | contents::kOpaque);
-  const Penetration pen = penetration(floor(), {&box_, Mat3::identity(), {0, kNaN, -8}, 1, {}}, work_);
+  const ContentsResult ok = contentsTest(floor(), {&box_, Mat3::identity(), {0, 0, -8}, 1, {}}, work_);
+  EXPECT_EQ(ok.status, QueryStatus::Ok);
+  EXPECT_EQ(ok.trace.status, QueryStatus::Ok);
+  EXPECT_NE(ok.contents, 0u);
+  // pointContents refuses a NaN or far point with its status (contents 0,
+  // as before it had a status).
+  const PointContentsResult nanPoint = pointContents(floor(), {{kNaN, kNaN, kNaN}, {}}, work_);
+  EXPECT_EQ(nanPoint.status, QueryStatus::NonFinite);
+  EXPECT_EQ(nanPoint.contents, 0u);
+  const PointContentsResult farPoint = pointContents(floor(), {{0, 0, -2e9f}, {}}, work_);
+  EXPECT_EQ(farPoint.status, QueryStatus::OutOfRange);
+  EXPECT_EQ(farPoint.contents, 0u);
+  EXPECT_EQ(pointContents(floor(), {{0, 0, -8}, {}}, work_).contents, contents::kSolid | contents::kOpaque);
+  // penetration refuses likewise: not stuck.
+  const PenetrationResult pen = penetration(floor(), {&box_, Mat3::identity(), {0, kNaN, -8}, 1, {}}, work_);
   EXPECT_EQ(pen.status, QueryStatus::NonFinite);
   EXPECT_FALSE(pen.stuck);
+  const PenetrationResult farPen =
+      penetration(floor(), {&box_, Mat3::identity(), {0, 0, -8}, 1, {{3e9f, 0, 0}, {}}}, work_);
+  EXPECT_EQ(farPen.status, QueryStatus::OutOfRange);
+  EXPECT_FALSE(farPen.stuck);
+  EXPECT_EQ(penetration(floor(), {&box_, Mat3::identity(), {0, 0, -8}, 1, {}}, work_).status,
+            QueryStatus::Ok);
 }
 
 TEST_F(QueryGuards, ContactsNeedAFiniteMove) {
@@ -509,13 +537,13 @@ TEST(PointContents, IsTheOrOfEveryBrushAndPointsHonourTheMask) {
                                 axialBrush({{0, 0, 32}, {64, 64, 96}}, "textures/common/clip") + "}\n");
   ASSERT_EQ(models.size(), 1u);
   const CollisionModel& m = *models[0];
-  const std::uint32_t clip = pointContents(m, {32, 32, 80});
+  const std::uint32_t clip = test::pointContentsAt(m, {32, 32, 80});
   ASSERT_NE(clip, 0u);
   EXPECT_EQ(clip & contents::kSolid, 0u);
   // In both brushes: both brushes' contents.
-  const std::uint32_t solid = pointContents(m, {32, 32, 16});
+  const std::uint32_t solid = test::pointContentsAt(m, {32, 32, 16});
   EXPECT_EQ(solid, contents::kSolid | contents::kOpaque);
-  EXPECT_EQ(pointContents(m, {32, 32, 48}), clip | solid);
+  EXPECT_EQ(test::pointContentsAt(m, {32, 32, 48}), clip | solid);
   // A point position test reports only what matches the mask, like a box.
   const TraceModel tiny = trm("box:-1,-1,-1,1,1,1");
   QueryWork work;
@@ -536,7 +564,7 @@ TEST(PointContents, Lt4PointInsideSolidReportsSolid) {
   // found) although the point is 21.8 units inside a solid brush.
   const auto models = buildLt4(false);
   ASSERT_FALSE(models.empty());
-  const std::uint32_t c = pointContents(*models[0], {2373.79028f, -987.413635f, -463.604645f});
+  const std::uint32_t c = test::pointContentsAt(*models[0], {2373.79028f, -987.413635f, -463.604645f});
   EXPECT_NE(c & contents::kSolid, 0u);
   EXPECT_NE(c & contents::kMonsterClip, 0u);
 }
@@ -568,7 +596,8 @@ TEST(BrushSides, MoreThanTheCapIsAClearError) {
   EXPECT_NE(models.error().message.find("has 4097 sides; at most 4096 are supported"), std::string::npos)
       << models.error().message;
   EXPECT_LT(seconds, 1.0);
-  const Status entity = writeCollisionModelForMapEntity(*map, 0, "/nonexistent-dir/x.cm", MaterialTable{});
+  const Result<EntityModelReport> entity =
+      writeCollisionModelForMapEntity(*map, 0, "/nonexistent-dir/x.cm", MaterialTable{});
   ASSERT_FALSE(entity.ok());
   EXPECT_NE(entity.error().message.find("4097 sides"), std::string::npos) << entity.error().message;
 }

@@ -25,8 +25,8 @@ class SpeedTest : public ::testing::Test {
     auto map = loadMapFile((test::testDataDir() / "maps" / "features.map").string());
     ASSERT_TRUE(map.ok());
     auto models = buildCollisionModels(*map, MaterialTable{});
-    ASSERT_TRUE(models.ok() && !models->empty());
-    world = models->front();
+    ASSERT_TRUE(models.ok() && !models->models.empty());
+    world = models->models.front();
     auto box = TraceModel::parse("box:-16,-16,0,16,16,64");
     ASSERT_TRUE(box.ok());
     trm = *box;

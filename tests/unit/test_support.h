@@ -18,6 +18,7 @@
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/proc_file.h"
+#include "cmkit/query.h"
 #include "io/fields.h"
 
 /// Skips a test that checks the original's float results bit for bit (.cm
@@ -120,7 +121,9 @@ inline Result<std::vector<ModelPtr>> buildAsLoaded(const MapFile& map, const std
   if (!proc) return proc.error();
   BuildOptions options;
   if (proc->has_value()) options.procBsp = &**proc;
-  return buildCollisionModels(map, MaterialTable{}, options);
+  Result<BuildResult> built = buildCollisionModels(map, MaterialTable{}, options);
+  if (!built) return built.error();
+  return std::move(built->models);
 }
 
 /// Loads a .map and builds its models (buildAsLoaded). A failure is a test
@@ -132,6 +135,14 @@ inline std::vector<ModelPtr> buildMapModels(const std::filesystem::path& path) {
   auto models = buildAsLoaded(*map, path);
   EXPECT_TRUE(models.ok()) << (models.ok() ? "" : models.error().toString());
   return models.ok() ? *models : std::vector<ModelPtr>{};
+}
+
+/// pointContents(m, {p, placement}, a QueryWork of its own).contents: the
+/// contents alone, for tests of what a point is inside.
+inline std::uint32_t pointContentsAt(const CollisionModel& m, const Vec3& p,
+                                     const Placement& placement = {}) {
+  QueryWork work;
+  return pointContents(m, {p, placement}, work).contents;
 }
 
 }  // namespace cmkit::test

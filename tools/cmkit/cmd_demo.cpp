@@ -79,24 +79,25 @@ int runDemo(const DemoOptions& o) {
   ProgressBar bar(isatty(fileno(stderr)) != 0);
   BuildOptions build;
   build.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-  auto models = buildCollisionModels(*map, MaterialTable{}, build);
+  Result<BuildResult> built = buildCollisionModels(*map, MaterialTable{}, build);
   bar.finish();
-  if (!models || models->empty()) {
+  if (!built || built->models.empty()) {
     fmt::print(stderr, "cmkit demo: {}\n",
-               models ? "the map has no collision models" : models.error().toString());
+               built ? "the map has no collision models" : built.error().toString());
     return kExitBadInput;
   }
+  const std::vector<ModelPtr>& models = built->models;
   const double buildMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::size_t polygons = 0, brushes = 0;
-  for (const ModelPtr& m : *models) {
+  for (const ModelPtr& m : models) {
     polygons += m->polygons().size();
     brushes += m->brushes().size();
   }
   fmt::print("{} entities -> {} collision models, {} polygons, {} brushes in {:.0f} ms\n\n",
-             map->entities.size(), models->size(), polygons, brushes, buildMs);
+             map->entities.size(), models.size(), polygons, brushes, buildMs);
 
-  const CollisionModel& world = *models->front();
+  const CollisionModel& world = *models.front();
   auto trm = TraceModel::parse(kSpeedTestDefaultTrm);
   if (!trm) {
     fmt::print(stderr, "cmkit demo: {}\n", trm.error().toString());
@@ -153,7 +154,7 @@ int runDemo(const DemoOptions& o) {
   focus.max.z = world.bounds().max.z;
   picture.camera = frameCamera(focus, CameraView::TopDown, Real(picture.width) / Real(picture.height));
   // The world model only: inline models are in their entities' local frames.
-  const Image image = renderPicture(std::span(models->data(), 1), traces, picture);
+  const Image image = renderPicture(std::span(models.data(), 1), traces, picture);
   if (Status s = savePng(o.output, image); !s) {
     fmt::print(stderr, "cmkit demo: {}\n", s.error().toString());
     return kExitBadInput;

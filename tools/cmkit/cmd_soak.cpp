@@ -72,7 +72,9 @@ Result<std::vector<ModelPtr>> loadMovedMap(const SoakOptions& o, const Vec3& off
   moveWorldGeometry(*map, offset);
   BuildOptions options;
   options.robustEdges = o.robustEdges;
-  return buildCollisionModels(*map, *materials, options);
+  Result<BuildResult> built = buildCollisionModels(*map, *materials, options);
+  if (!built) return built.error();
+  return std::move(built->models);
 }
 
 int runSoak(const SoakOptions& o) {

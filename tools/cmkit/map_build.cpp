@@ -42,19 +42,17 @@ int runEntityWrite(const MapBuildRequest& request, const MapFile& map, const Mat
     fmt::print(stderr, "cmkit {}: {}\n", cmd, index.error().toString());
     return kExitBadInput;
   }
-  std::vector<std::string> warnings;
-  EntityModelReport report;
   EntityModelOptions options;
   options.testTraceModel = request.testTrm;
   options.robustEdges = request.robustEdges;
-  options.warnings = &warnings;
-  options.report = &report;
-  const Status written = writeCollisionModelForMapEntity(map, *index, request.outPath, materials, options);
-  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
+  const Result<EntityModelReport> written =
+      writeCollisionModelForMapEntity(map, *index, request.outPath, materials, options);
   if (!written) {
     fmt::print(stderr, "cmkit {}: {}\n", cmd, written.error().toString());
     return kExitBadInput;
   }
+  const EntityModelReport& report = *written;
+  for (const std::string& w : report.warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
   const CollisionModel& m = *report.model;
   fmt::print("entity #{}: model \"{}\": {} vertices, {} edges, {} polygons, {} brushes\n", *index, m.name(),
              m.vertices().size(), m.numEdges(), m.polygons().size(), m.brushes().size());
@@ -143,29 +141,30 @@ int runMapBuild(const MapBuildRequest& request) {
   const std::uintmax_t fileSize = std::filesystem::file_size(request.mapPath, ec);
   ProgressBar bar(!request.json && isatty(fileno(stderr)) && !ec && fileSize >= kProgressMinFileSize);
   BuildOptions options;
-  options.warnings = &warnings;
   if (proc->bsp) options.procBsp = &*proc->bsp;
   options.robustEdges = request.robustEdges;
   options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-  auto models = buildCollisionModels(*map, materials, options);
+  Result<BuildResult> built = buildCollisionModels(*map, materials, options);
   bar.finish();
-  if (!models) {
-    fmt::print(stderr, "cmkit {}: {}\n", cmd, models.error().toString());
+  if (!built) {
+    fmt::print(stderr, "cmkit {}: {}\n", cmd, built.error().toString());
     return kExitBadInput;
   }
   const auto elapsed = std::chrono::steady_clock::now() - start;
+  const std::vector<ModelPtr>& models = built->models;
+  warnings.insert(warnings.end(), built->warnings.begin(), built->warnings.end());
   for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
-  fmt::print(stderr, "{}\n", procNote(*proc, request.mapPath, *models));
+  fmt::print(stderr, "{}\n", procNote(*proc, request.mapPath, models));
 
   // "-o -": the .cm text goes to standard output and the report to stderr.
   const bool cmToStdout = request.outPath == kStdinPath;
   std::FILE* report = cmToStdout ? stderr : stdout;
   if (cmToStdout) {
-    const std::string text = writeCmText(*models, map->geometryCrc);
+    const std::string text = writeCmText(models, map->geometryCrc);
     std::fwrite(text.data(), 1, text.size(), stdout);
     std::fflush(stdout);
   } else if (!request.outPath.empty()) {
-    if (const Status st = saveCmFile(request.outPath, *models, map->geometryCrc); !st) {
+    if (const Status st = saveCmFile(request.outPath, models, map->geometryCrc); !st) {
       fmt::print(stderr, "cmkit {}: {}\n", cmd, st.error().toString());
       return kExitBadInput;
     }
@@ -179,13 +178,13 @@ int runMapBuild(const MapBuildRequest& request) {
   context.cmkitMemory = request.memory;
   if (proc->bsp) context.procFile = proc->path;
   if (request.json) {
-    fmt::print(report, "{}", statsJson(*models, context));
+    fmt::print(report, "{}", statsJson(models, context));
   } else {
-    printStatsText(report, *models, context);
+    printStatsText(report, models, context);
     if (!request.outPath.empty())
       fmt::print(report, "wrote {} ({} model{})\n",
-                 cmToStdout ? "the .cm to standard output" : request.outPath, models->size(),
-                 models->size() == 1 ? "" : "s");
+                 cmToStdout ? "the .cm to standard output" : request.outPath, models.size(),
+                 models.size() == 1 ? "" : "s");
   }
   return 0;
 }

@@ -74,13 +74,15 @@ Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& ma
   load.up = options.up == "y" ? MeshUpAxis::Y : options.up == "z" ? MeshUpAxis::Z : MeshUpAxis::Auto;
   load.scale = static_cast<Real>(options.scale);
   MeshBuildOptions build;
-  build.warnings = warnings;
   if (!options.contents.empty()) {
     Result<std::uint32_t> c = contentsFromString(options.contents);
     if (!c) return Error("--contents: " + c.error().message);
     build.contents = *c;
   }
-  return loadMeshModel(path, materials, load, build);
+  Result<MeshBuildResult> built = loadMeshModel(path, materials, load, build);
+  if (!built) return built.error();
+  if (warnings) warnings->insert(warnings->end(), built->warnings.begin(), built->warnings.end());
+  return std::move(built->model);
 }
 
 Result<std::string> readCliText(const std::string& path) {
@@ -124,7 +126,9 @@ Result<std::vector<ModelPtr>> modelsFromText(const std::string& text, const std:
   if (!map) return map.error();
   BuildOptions options;
   options.robustEdges = robustEdges;
-  return buildCollisionModels(*map, materials, options);
+  Result<BuildResult> built = buildCollisionModels(*map, materials, options);
+  if (!built) return built.error();
+  return std::move(built->models);
 }
 
 }  // namespace
@@ -161,9 +165,10 @@ Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const st
     BuildOptions options;
     if (proc->bsp) options.procBsp = &*proc->bsp;
     options.robustEdges = robustEdges;
-    auto models = buildCollisionModels(*map, materials, options);
-    if (models) fmt::print(stderr, "{}\n", procNote(*proc, path, *models));
-    return models;
+    Result<BuildResult> built = buildCollisionModels(*map, materials, options);
+    if (!built) return built.error();
+    fmt::print(stderr, "{}\n", procNote(*proc, path, built->models));
+    return std::move(built->models);
   }
   if (isMeshFileName(path)) {
     std::vector<std::string> warnings;

@@ -360,7 +360,7 @@ struct Soak::Impl {
   /// contents test reports the first brush containing it whatever the mask,
   /// so points use pointContents and the mask here.)
   bool isFree(Ctx& c, const Shape& s, const Vec3& pos) const {
-    if (s.trm.isPoint()) return (pointContents(world_, pos) & o_.mask) == 0;
+    if (s.trm.isPoint()) return (pointContents(world_, {pos, {}}, c.work).contents & o_.mask) == 0;
     return (contentsTest(world_, at(s, pos), c.work).contents & o_.mask) == 0;
   }
   /// A free position inside the map: point traces along +-x, +-y, +-z all
@@ -413,7 +413,9 @@ struct Soak::Impl {
 
   /// Why the trace model at `end` overlaps solid after moving from `from`.
   Finding classify(Ctx& c, const Shape& s, const Vec3& from, const Vec3& end) const {
-    const Penetration pen = penetration(world_, at(s, end), c.work);
+    const ContentsQuery q = at(s, end);
+    const PenetrationResult pen =
+        penetration(world_, {q.trm, q.trmAxis, q.position, q.contentMask, q.placement}, c.work);
     if (pen.stuck && pen.depth <= kPrecisionDepth) return Finding::Precision;
     Vec3 dir = end - from;
     const Real length = dir.length();

@@ -14,10 +14,8 @@
 
 namespace cmkit {
 
-/// The name of a contact type in result lines: "none", "edge", "modelvertex",
-/// "trmvertex".
-const char* toString(ContactType type);
-/// The contact type of a name written by toString; nullopt for another text.
+/// The contact type of a name written by toString(ContactType) (query.h);
+/// nullopt for another text.
 std::optional<ContactType> parseContactType(std::string_view name);
 
 /// The operation of a query line.

@@ -294,7 +294,7 @@ double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQ
   const TraceModel* trm = q.trm ? &*q.trm : nullptr;
   switch (q.op) {
     case QueryOp::PointContents:
-      return pointContents(m, q.position, q.placement);
+      return pointContents(m, {q.position, q.placement}, work).contents;
     case QueryOp::Translation:
       return translate(m, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement, false}, work)
           .fraction;
@@ -313,7 +313,7 @@ double runParsedQueryUnformatted(std::span<const ModelPtr> models, const ParsedQ
 namespace {
 
 // The line of a query the library refused (QueryStatus).
-std::string refusedLine(QueryStatus status) { return std::string("error=refused: ") + describe(status); }
+std::string refusedLine(QueryStatus status) { return std::string("error=refused: ") + toString(status); }
 
 }  // namespace
 
@@ -323,7 +323,8 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
   std::string out;
   switch (q.op) {
     case QueryOp::PointContents:
-      return "contents=" + std::to_string(pointContents(m, q.position, q.placement));
+      // (A refused point reads as contents 0, as before there was a status.)
+      return "contents=" + std::to_string(pointContents(m, {q.position, q.placement}, work).contents);
     case QueryOp::Translation: {
       const TraceResult r =
           translate(m, {trm, q.trmAxis, q.position, q.end, q.contentMask, q.placement, false}, work);
@@ -334,7 +335,7 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
     case QueryOp::Contents: {
       const ContentsResult r =
           contentsTest(m, {trm, q.trmAxis, q.position, q.contentMask, q.placement}, work);
-      if (r.trace.status != QueryStatus::Ok) return refusedLine(r.trace.status);
+      if (r.status != QueryStatus::Ok) return refusedLine(r.status);
       out = "result=" + std::to_string(r.contents) + " ";
       appendTrace(out, m, r.trace);
       return out;
@@ -363,27 +364,10 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
   return "error=unknown operation";
 }
 
-namespace {
-
-// The names of the contact types in result lines.
-constexpr std::pair<ContactType, const char*> kContactTypeNames[] = {
-    {ContactType::None, "none"},
-    {ContactType::Edge, "edge"},
-    {ContactType::ModelVertex, "modelvertex"},
-    {ContactType::TrmVertex, "trmvertex"},
-};
-
-}  // namespace
-
-const char* toString(ContactType type) {
-  for (const auto& [t, name] : kContactTypeNames)
-    if (t == type) return name;
-  return "?";
-}
-
 std::optional<ContactType> parseContactType(std::string_view name) {
-  for (const auto& [t, n] : kContactTypeNames)
-    if (name == n) return t;
+  for (const ContactType t :
+       {ContactType::None, ContactType::Edge, ContactType::ModelVertex, ContactType::TrmVertex})
+    if (name == toString(t)) return t;
   return std::nullopt;
 }
 
