@@ -108,6 +108,52 @@ inline void countPolygonsMet(TraceWork& tw, const CmNode& node) {
   }
 }
 
+/// The walk of a node's polygons through its cull blocks, shared by the
+/// translation and rotation walks: the contents and bounds of up to
+/// kChunkBlocks blocks at a time (chunkPass), then, block by block in order,
+/// the kind's own culls of the lanes left (Kind::blockPass(tw, block): the
+/// lanes that pass), then Kind::test(tw, polyNum, polygon) for each lane left
+/// whose polygon this query has not checked yet, in order; stops, returning
+/// true, when a test does (the trace model is blocked completely). With
+/// Kind::kShrinks (a translation: a hit shrinks the trace bounds) the lanes
+/// left and the blocks after a hit are culled again with the new bounds.
+template <class Kind>
+bool walkCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
+  QueryScratch& s = tw.scratch;
+  const std::size_t first = node.firstPolygonRef, end = first + node.numPolygonRefs;
+  countPolygonsMet(tw, node);
+  BoundsLanes bounds(tw);
+  const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
+  for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunkBlocks) {
+    const Real maskFraction = tw.fraction;
+    const bool blocked = forEachBlockPassing(
+        chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end), [&](std::size_t k, unsigned pass) {
+          const CullBlock& b = d.culls[chunk + k];
+          if constexpr (Kind::kShrinks) {
+            if (tw.fraction != maskFraction && (pass &= bounds.pass(b)) == 0) return false;
+          }
+          pass &= Kind::blockPass(tw, b);
+          const std::size_t entry = (chunk + k) * kLanes;
+          while (pass) {
+            const std::int32_t polyNum = tw.model.polygonRefs()[entry + std::size_t(std::countr_zero(pass))];
+            pass &= pass - 1;
+            if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
+            [[maybe_unused]] const Real before = tw.fraction;
+            if (Kind::test(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
+            if constexpr (Kind::kShrinks) {
+              if (tw.fraction != before) {  // the bounds may have shrunk
+                bounds.load(tw);
+                pass &= bounds.pass(b);
+              }
+            }
+          }
+          return false;
+        });
+    if (blocked) return true;
+  }
+  return false;
+}
+
 }  // namespace cmkit::detail
 
 #endif  // CMKIT_QUERY_LANES

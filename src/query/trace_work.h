@@ -261,7 +261,7 @@ struct TraceWork {
   }
 };
 
-// ---- shared steps (tree_walk.cpp, translate.cpp, contents.cpp) -------------
+// ---- shared steps (tree_walk.cpp, translate.cpp, position_test.cpp) --------
 
 /// Walks the model's tree along tw.start -> tw.end testing the polygons met
 /// for a translation (a point's or a trace model's, by tw.pointTrace).
@@ -274,9 +274,18 @@ void positionTestThroughModel(TraceWork& tw);
 void rotateThroughBox(TraceWork& tw, const Bounds& box);
 
 /// A translation's heart planes and the trace model's greatest distances
-/// from them (query.cpp), made when a polygon first needs them (most queries'
+/// from them (translate_setup.cpp), made when a polygon first needs them (most queries'
 /// polygons fail the box cull before).
 void makeTranslationHeartPlanes(TraceWork& tw);
+/// Runs a translation (start != end) into tw, set up from the query
+/// (translate_setup.cpp); contacts mode, collecting up to maxContacts
+/// contacts, when `out` is set (contacts.cpp).
+void runTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation& o,
+                    std::vector<ContactInfo>* out, int maxContacts);
+/// The OR of the contents matching `mask` of every brush containing a world
+/// point (point_contents.cpp; contentsTest's points and pointContents).
+std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
+                                  std::uint32_t mask);
 
 /// Translation tests of a list of polygons (a node's) for a trace model;
 /// true when one blocks completely.
@@ -292,7 +301,7 @@ bool rotateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polyg
 /// The same for a node's polygons (from the model's query data when it has it).
 bool rotateTrmThroughNode(TraceWork& tw, const CmNode& node);
 
-/// Position tests (contents.cpp); true when stuck.
+/// Position tests (position_test.cpp); true when stuck.
 /// testTrmVertsInBrushes: a trace-model vertex inside one of the brushes?
 /// testTrmInPolygons: the trace model crossing one of the polygons? True
 /// (stuck, tw.c set) at the first; items met before in the query are skipped.

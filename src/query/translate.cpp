@@ -525,40 +525,18 @@ namespace {
 // culled there again (the culls only get stricter as the bounds shrink), so
 // the polygons tested, and their order, are those of
 // translateTrmThroughPolygons.
-bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
-  QueryScratch& s = tw.scratch;
-  const std::size_t first = node.firstPolygonRef, end = first + node.numPolygonRefs;
-  countPolygonsMet(tw, node);
-  BoundsLanes bounds(tw);
-  // The contents and bounds of up to 16 blocks at a time (chunkPass), then
-  // the blocks with a lane left, in order. A hit shrinks the bounds: the
-  // blocks after it are culled again with the new ones.
-  const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;
-  for (std::size_t chunk = firstBlock; chunk < endBlock; chunk += kChunkBlocks) {
-    const Real maskFraction = tw.fraction;
-    const bool blocked = forEachBlockPassing(
-        chunkPass(bounds, d.culls.data(), chunk, endBlock, first, end), [&](std::size_t k, unsigned pass) {
-          const CullBlock& b = d.culls[chunk + k];
-          if (tw.fraction != maskFraction && (pass &= bounds.pass(b)) == 0) return false;
-          pass &= blockFacesPass(tw, b);
-          const std::size_t entry = (chunk + k) * kLanes;
-          while (pass) {
-            const std::int32_t polyNum = tw.model.polygonRefs()[entry + std::size_t(std::countr_zero(pass))];
-            pass &= pass - 1;
-            if (s.testAndMark(s.polygonChecked, std::size_t(polyNum))) continue;
-            const Real before = tw.fraction;
-            if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)]))
-              return true;
-            if (tw.fraction != before) {  // the bounds may have shrunk
-              bounds.load(tw);
-              pass &= bounds.pass(b);
-            }
-          }
-          return false;
-        });
-    if (blocked) return true;
+/// What the translation adds to walkCullBlocks: the back-face and heart-plane
+/// culls, the polygon test, and bounds that shrink at a hit.
+struct TranslationCullBlocks {
+  static constexpr bool kShrinks = true;
+  static unsigned blockPass(TraceWork& tw, const CullBlock& b) { return blockFacesPass(tw, b); }
+  static bool test(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+    return translateTrmThroughPolygon(tw, polyNum, poly);
   }
-  return false;
+};
+
+bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
+  return walkCullBlocks<TranslationCullBlocks>(tw, d, node);
 }
 #endif
 
