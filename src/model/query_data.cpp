@@ -2,6 +2,7 @@
 #include "model/query_data.h"
 
 #include "model/model_access.h"
+#include "util/assert.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -28,6 +29,7 @@ std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
   if constexpr (kCullBlocks) {
     d->culls.resize(blocksSpanned(0, model.polygonRefs.size()));
     for (std::size_t r = 0; r < model.polygonRefs.size(); ++r) {
+      CMKIT_ASSERT(model.polygonRefs[r] >= 0 && std::size_t(model.polygonRefs[r]) < model.polygons.size());
       const CmPolygon& p = model.polygons[std::size_t(model.polygonRefs[r])];
       CullBlock& b = d->culls[r / kLanes];
       const std::size_t j = r % kLanes;

@@ -121,6 +121,7 @@ template <class Kind>
 bool walkCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
   QueryScratch& s = tw.scratch;
   const std::size_t first = node.firstPolygonRef, end = first + node.numPolygonRefs;
+  CMKIT_ASSERT(end <= tw.model.polygonRefs().size() && d.culls.size() * kLanes >= end);
   countPolygonsMet(tw, node);
   BoundsLanes bounds(tw);
   const std::size_t firstBlock = first / kLanes, endBlock = (end + kLanes - 1) / kLanes;

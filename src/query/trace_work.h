@@ -13,6 +13,7 @@
 
 #include "cmkit/query.h"
 #include "model/query_data.h"
+#include "util/assert.h"
 
 namespace cmkit::detail {
 
@@ -113,11 +114,18 @@ struct QueryScratch {
   /// Starts a query on `model`: sizes the arrays and invalidates all marks.
   void begin(const CollisionModel& model);
 
+  // (The marks are grown to the model by begin(): an index past them is a
+  // number of the model out of range, which create() refuses.)
   bool isChecked(const std::vector<std::uint32_t>& marks, std::size_t i) const {
+    CMKIT_ASSERT(i < marks.size());
     return marks[i] == generation;
   }
-  void mark(std::vector<std::uint32_t>& marks, std::size_t i) { marks[i] = generation; }
+  void mark(std::vector<std::uint32_t>& marks, std::size_t i) {
+    CMKIT_ASSERT(i < marks.size());
+    marks[i] = generation;
+  }
   bool testAndMark(std::vector<std::uint32_t>& marks, std::size_t i) {
+    CMKIT_ASSERT(i < marks.size());
     if (marks[i] == generation) return true;
     marks[i] = generation;
     return false;
