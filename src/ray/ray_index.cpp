@@ -1,17 +1,18 @@
 // RayIndex: an 8-wide bounding volume hierarchy over a model's polygons for
 // closest-crossing ray casts (see cmkit/ray_index.h for the contract).
 //
-// Build: a binary hierarchy by binned surface-area heuristic, collapsed into
-// 8-wide nodes (each node's children are tested at once: AVX2 in
-// ray_index_avx2.cpp, two halves with SSE2 here). Cast: the walk in
-// ray_index_kernel.h. Every polygon test is exact in the sense that the index
-// returns precisely what testing every polygon would return (tests compare it
-// with that brute force): node boxes are padded beyond the region in which a
-// polygon accepts a crossing. The node boxes, the slab reciprocals and entry
-// distances are float on purpose (SIMD float lanes; ray_index_layout.h); the
-// geometry is Real.
+// This file: the index's construction (the build itself, a binary hierarchy
+// by binned surface-area heuristic collapsed into 8-wide nodes, is in
+// ray_index_build.cpp) and the casts: single rays and coherence-sorted
+// batches through the walk in ray_index_kernel.h, each node's eight children
+// tested at once (AVX2 in ray_index_avx2.cpp, two halves with SSE2 here). Every polygon test is exact in the
+// sense that the index returns precisely what testing every polygon would return (tests compare it with that
+// brute force): node boxes are padded beyond the region in which a polygon accepts a crossing. The node
+// boxes, the slab reciprocals and entry distances are float on purpose (SIMD float lanes;
+// ray_index_layout.h); the geometry is Real.
 #include "cmkit/ray_index.h"
 
+#include "ray/ray_index_data.h"
 #include "ray/ray_index_kernel.h"
 #include "ray/ray_index_layout.h"
 
@@ -31,187 +32,19 @@
 
 namespace cmkit {
 
-namespace detail {
-/// What a RayIndex holds (built once, then shared by its copies).
-struct RayIndexData : RayLayout {
-  std::vector<Node> nodes;
-  std::vector<Leaf> leaves;
-  std::vector<Polygon> polygons;
-  std::vector<EdgeLine> edges;
-  std::vector<PolygonDetail> details;  ///< parallel to polygons
-  bool avx2 = false;
-};
-}  // namespace detail
-
 namespace {
 
 using Node = detail::RayLayout::Node;
 constexpr int kWidth = detail::RayLayout::kWidth;
 
-/// Polygons per leaf the builder aims for (the surface-area heuristic may
-/// stop earlier); more than this and a node is always split.
-constexpr std::uint32_t kMaxLeafPolygons = 4;
-/// Below this depth splits follow the surface-area heuristic; deeper ones cut
-/// at the median, so that no input (at most 2^32 polygons) makes the
-/// hierarchy deeper than kSahDepthLimit + 32 = detail::kMaxDepth, which
-/// sizes the walk's stack.
-constexpr int kSahDepthLimit = 36;
-static_assert(kSahDepthLimit + 32 <= detail::kMaxDepth, "the walk's stack is sized by kMaxDepth");
-/// The surface-area heuristic's cost of visiting a node, in polygon tests.
-constexpr Real kNodeCost = 1;
-/// Bins of the surface-area heuristic per axis.
-constexpr int kBins = 16;
 /// Reciprocal of a zero (or denormal) direction component: large but finite,
 /// so that the slab test never computes 0 * infinity.
 constexpr float kHugeInverse = 1e30f;
-
-Real maxAbs(const Bounds& b) {
-  Real m = 0;
-  for (int k = 0; k < 3; ++k) m = std::max({m, std::fabs(b.min[k]), std::fabs(b.max[k])});
-  return m;
-}
-
-/// The box padded by `relative` times its largest coordinate magnitude plus one.
-Bounds padded(const Bounds& b, Real relative) { return b.expanded(relative * (maxAbs(b) + 1)); }
-
-Real halfArea(const Bounds& b) {
-  const Vec3 d = b.max - b.min;
-  return d.x * d.y + d.y * d.z + d.z * d.x;
-}
-
-/// The temporary binary hierarchy.
-struct BinaryNode {
-  Bounds bounds;
-  std::uint32_t first = 0, count = 0;  ///< polygons (leaves)
-  std::uint32_t left = 0, right = 0;   ///< children (inner nodes: count == 0)
-  std::uint32_t contents = 0;
-};
-
-class BinaryBuilder {
- public:
-  BinaryBuilder(std::vector<Bounds> boxes, std::vector<std::uint32_t> contents)
-      : boxes_(std::move(boxes)), contents_(std::move(contents)) {
-    order_.resize(boxes_.size());
-    centres_.resize(boxes_.size());
-    for (std::uint32_t i = 0; i < order_.size(); ++i) {
-      order_[i] = i;
-      centres_[i] = boxes_[i].center();
-    }
-    nodes_.reserve(2 * boxes_.size() + 1);
-    nodes_.emplace_back();
-    build(0, 0, std::uint32_t(order_.size()), 0);
-  }
-  const std::vector<BinaryNode>& nodes() const { return nodes_; }
-  const std::vector<std::uint32_t>& order() const { return order_; }
-
- private:
-  void build(std::uint32_t nodeIndex, std::uint32_t first, std::uint32_t count, int depth) {
-    Bounds box, centres;
-    std::uint32_t contents = 0;
-    for (std::uint32_t i = first; i < first + count; ++i) {
-      box.addBounds(boxes_[order_[i]]);
-      centres.addPoint(centres_[order_[i]]);
-      contents |= contents_[order_[i]];
-    }
-    nodes_[nodeIndex].bounds = box;
-    nodes_[nodeIndex].contents = contents;
-    const auto leaf = [&] {
-      nodes_[nodeIndex].first = first;
-      nodes_[nodeIndex].count = count;
-    };
-    if (count <= 1) return leaf();
-
-    std::uint32_t leftCount = 0;
-    if (depth < kSahDepthLimit) {
-      const Split split = bestSplit(first, count, centres);
-      if (count <= kMaxLeafPolygons &&
-          (split.axis < 0 || split.cost + kNodeCost * halfArea(box) >= halfArea(box) * Real(count)))
-        return leaf();
-      if (split.axis >= 0) {
-        const auto mid = std::partition(
-            order_.begin() + first, order_.begin() + first + count,
-            [&](std::uint32_t p) { return binOf(centres_[p], centres, split.axis) < split.bin; });
-        leftCount = std::uint32_t(mid - (order_.begin() + first));
-      }
-    } else if (count <= kMaxLeafPolygons) {
-      return leaf();
-    }
-    if (leftCount == 0 || leftCount == count) {  // no useful split: halves along the widest axis
-      const Vec3 extent = centres.max - centres.min;
-      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-      leftCount = count / 2;
-      std::nth_element(
-          order_.begin() + first, order_.begin() + first + leftCount, order_.begin() + first + count,
-          [&](std::uint32_t a, std::uint32_t b) { return centres_[a][axis] < centres_[b][axis]; });
-    }
-    const auto left = std::uint32_t(nodes_.size());
-    nodes_.emplace_back();
-    build(left, first, leftCount, depth + 1);
-    const auto right = std::uint32_t(nodes_.size());
-    nodes_.emplace_back();
-    build(right, first + leftCount, count - leftCount, depth + 1);
-    nodes_[nodeIndex].left = left;
-    nodes_[nodeIndex].right = right;
-  }
-
-  struct Split {
-    int axis = -1;
-    int bin = 0;
-    Real cost = std::numeric_limits<Real>::max();
-  };
-  static int binOf(const Vec3& c, const Bounds& centres, int axis) {
-    const Real lo = centres.min[axis], hi = centres.max[axis];
-    return std::clamp(int((c[axis] - lo) / (hi - lo) * kBins), 0, kBins - 1);
-  }
-  Split bestSplit(std::uint32_t first, std::uint32_t count, const Bounds& centres) const {
-    Split best;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!(centres.max[axis] > centres.min[axis])) continue;
-      std::array<Bounds, kBins> bins;
-      std::array<std::uint32_t, kBins> binCount{};
-      for (std::uint32_t i = first; i < first + count; ++i) {
-        const int b = binOf(centres_[order_[i]], centres, axis);
-        bins[std::size_t(b)].addBounds(boxes_[order_[i]]);
-        ++binCount[std::size_t(b)];
-      }
-      // Areas and counts left of each cut, then sweep from the right.
-      std::array<Real, kBins> leftArea{};
-      std::array<std::uint32_t, kBins> leftCount{};
-      Bounds acc;
-      std::uint32_t n = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        if (binCount[std::size_t(b)]) acc.addBounds(bins[std::size_t(b)]);
-        n += binCount[std::size_t(b)];
-        leftArea[std::size_t(b)] = n ? halfArea(acc) : 0;
-        leftCount[std::size_t(b)] = n;
-      }
-      acc.clear();
-      n = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        if (binCount[std::size_t(b)]) acc.addBounds(bins[std::size_t(b)]);
-        n += binCount[std::size_t(b)];
-        const std::uint32_t nl = leftCount[std::size_t(b - 1)];
-        if (nl == 0 || n == 0) continue;
-        const Real cost = leftArea[std::size_t(b - 1)] * Real(nl) + halfArea(acc) * Real(n);
-        if (cost < best.cost) best = {axis, b, cost};
-      }
-    }
-    return best;
-  }
-
-  std::vector<Bounds> boxes_;
-  std::vector<std::uint32_t> contents_;
-  std::vector<Vec3> centres_;
-  std::vector<std::uint32_t> order_;
-  std::vector<BinaryNode> nodes_;
-};
 
 // The node test loads each row of eight floats (and the contents) with one
 // aligned 32-byte load (AVX2) or two 16-byte ones (SSE2).
 static_assert(sizeof(Node) == 256 && alignof(Node) % 32 == 0);
 static_assert(offsetof(Node, max) % 32 == 0 && offsetof(Node, contents) % 32 == 0);
-
-bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
 
 /// Which children of a node the ray enters before `best` and that hold
 /// contents of the mask (bit k for child k), and where it enters each box
@@ -271,104 +104,7 @@ RayIndex::RayIndex(const CollisionModel& model, NodeTest nodeTest) {
   data_ = data;
   Index& d = *data;
   d.avx2 = nodeTest == NodeTest::Auto && avx2Available();
-  // The polygons that can be crossed: finite plane and bounds, an outline.
-  std::vector<std::uint32_t> usable;
-  std::vector<Bounds> boxes;
-  std::vector<std::uint32_t> contents;
-  for (std::size_t i = 0; i < model.polygons().size(); ++i) {
-    const CmPolygon& p = model.polygons()[i];
-    if (p.numEdges < 3 || !isFinite(p.bounds) || !p.plane.normal.isFinite() || !std::isfinite(p.plane.dist))
-      continue;
-    usable.push_back(std::uint32_t(i));
-    boxes.push_back(padded(p.bounds, tol::kRayAcceptPadding));
-    contents.push_back(p.contents);
-  }
-  if (usable.empty()) return;
-
-  const BinaryBuilder binary(boxes, std::move(contents));
-  const std::vector<BinaryNode>& bn = binary.nodes();
-
-  // Polygons and their edge lines in leaf order.
-  d.polygons.reserve(usable.size());
-  d.details.reserve(usable.size());
-  for (const std::uint32_t k : binary.order()) {
-    const CmPolygon& p = model.polygons()[usable[k]];
-    Index::Polygon r;
-    r.normal = p.plane.normal;
-    r.dist = p.plane.dist;
-    r.contents = p.contents;
-    r.index = std::int32_t(usable[k]);
-    r.firstEdge = std::uint32_t(d.edges.size());
-    r.numEdges = p.numEdges;
-    for (const std::int32_t e : model.edgesOf(p)) {
-      const CmEdge& edge = model.edges()[std::size_t(std::abs(e))];
-      const Pluecker line = Pluecker::fromLine(model.vertices()[std::size_t(edge.vertex[0])],
-                                               model.vertices()[std::size_t(edge.vertex[1])]);
-      Index::EdgeLine l{};
-      for (int c = 0; c < 6; ++c) l.p[c] = line[c];
-      l.reversed = e < 0;
-      d.edges.push_back(l);
-    }
-    d.polygons.push_back(r);
-    d.details.push_back({boxes[k], p.material});
-  }
-
-  // Collapse: each 8-wide node takes the binary node's children, then opens
-  // the largest inner child until it has eight.
-  const auto collapse = [&](auto&& self, std::uint32_t b) -> std::uint32_t {
-    std::array<std::uint32_t, kWidth> kids{};
-    std::size_t n = 0;
-    if (bn[b].count) {
-      kids[n++] = b;
-    } else {
-      kids[n++] = bn[b].left;
-      kids[n++] = bn[b].right;
-    }
-    while (n < kWidth) {
-      std::size_t open = n;
-      for (std::size_t k = 0; k < n; ++k)
-        if (!bn[kids[k]].count &&
-            (open == n || halfArea(bn[kids[k]].bounds) > halfArea(bn[kids[open]].bounds)))
-          open = k;
-      if (open == n) break;
-      const std::uint32_t inner = kids[open];
-      kids[open] = bn[inner].left;
-      kids[n++] = bn[inner].right;
-    }
-    const auto me = std::uint32_t(d.nodes.size());
-    d.nodes.emplace_back();
-    std::array<std::uint32_t, kWidth> refs{};
-    for (std::size_t k = 0; k < n; ++k) {
-      const BinaryNode& c = bn[kids[k]];
-      if (c.count) {
-        refs[k] = Index::kLeaf | std::uint32_t(d.leaves.size());
-        d.leaves.push_back({c.first, c.count});
-      } else {
-        refs[k] = self(self, kids[k]);
-      }
-    }
-    Node& node = d.nodes[me];
-    for (std::size_t k = 0; k < kWidth; ++k) {
-      if (k >= n) {  // an empty slot: a box nothing enters, no contents
-        for (int a = 0; a < 3; ++a) {
-          node.min[a][k] = std::numeric_limits<float>::max();
-          node.max[a][k] = -std::numeric_limits<float>::max();
-        }
-        node.child[k] = Index::kLeaf;
-        node.contents[k] = 0;
-        continue;
-      }
-      const Bounds box = padded(bn[kids[k]].bounds, tol::kRayNodePadding);
-      for (int a = 0; a < 3; ++a) {
-        node.min[a][k] = float(box.min[a]);
-        node.max[a][k] = float(box.max[a]);
-      }
-      node.child[k] = refs[k];
-      node.contents[k] = bn[kids[k]].contents;
-    }
-    return me;
-  };
-  collapse(collapse, 0);
+  detail::buildRayIndex(model, d);
 }
 
 RayIndex::~RayIndex() = default;

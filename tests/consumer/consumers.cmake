@@ -1,7 +1,7 @@
 # Shared by the consumer tests (run_consumer_test.cmake, tests/install/run_deb_test.cmake):
-# builds and runs the consumer program (tests/consumer) against an installed cmkit, once
-# through find_package (CMAKE_PREFIX_PATH = prefix) and once with the flags of
-# `pkg-config --cflags --libs cmkit` (PKG_CONFIG_PATH = pcdir).
+# builds and runs the consumer programs (tests/consumer: main.cpp, api_queries.cpp) against
+# an installed cmkit, once through find_package (CMAKE_PREFIX_PATH = prefix) and once with
+# the flags of `pkg-config --cflags --libs cmkit` (PKG_CONFIG_PATH = pcdir).
 function(cmkit_run_checked what)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -14,6 +14,7 @@ function(cmkit_build_consumers source prefix pcdir work cxx)
     ${CMAKE_COMMAND} -S ${source} -B ${work}/build -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
   cmkit_run_checked("building the find_package consumer" ${CMAKE_COMMAND} --build ${work}/build)
   cmkit_run_checked("the find_package consumer" ${work}/build/consumer)
+  cmkit_run_checked("the find_package API consumer" ${work}/build/consumer_api)
   find_program(PKG_CONFIG pkg-config REQUIRED)
   execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pcdir} ${PKG_CONFIG} --cflags --libs cmkit
                   OUTPUT_VARIABLE flags OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
@@ -25,4 +26,7 @@ function(cmkit_build_consumers source prefix pcdir work cxx)
   cmkit_run_checked("building the pkg-config consumer"
     ${cxx} -std=c++20 ${source}/main.cpp ${flags} -o ${work}/consumer_pc)
   cmkit_run_checked("the pkg-config consumer" ${work}/consumer_pc)
+  cmkit_run_checked("building the pkg-config API consumer"
+    ${cxx} -std=c++20 ${source}/api_queries.cpp ${flags} -o ${work}/consumer_api_pc)
+  cmkit_run_checked("the pkg-config API consumer" ${work}/consumer_api_pc)
 endfunction()
