@@ -25,6 +25,16 @@ cmkit::Placement placementOf(const py::object& origin, const py::object& axis) {
   return p;
 }
 
+// The fields every trace-model query shares, from the Python arguments.
+template <class Query>
+void setTraceModelQuery(Query& q, const TrmArg& t, const py::object& axis, std::int64_t mask,
+                        const py::object& origin, const py::object& modelAxis) {
+  q.trm = t.trm;
+  q.trmAxis = matrix(axis, "axis");
+  q.contentMask = maskOf(mask);
+  q.placement = placementOf(origin, modelAxis);
+}
+
 // Batch options with the progress hook: the Python callable (if any) is
 // called with the GIL; Ctrl-C (a pending signal) cancels the batch.
 struct Hook {
@@ -143,10 +153,7 @@ py::dict translateBatch(PyModel& self, const py::object& trm, const py::object& 
   const TrmArg t = trmArg(trm);
   const auto s = vectors(starts, "starts"), e = vectors(ends, "ends");
   cmkit::TranslationBatch b;
-  b.query.trm = t.trm;
-  b.query.trmAxis = matrix(axis, "axis");
-  b.query.contentMask = maskOf(mask);
-  b.query.placement = placementOf(origin, modelAxis);
+  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
   b.query.detectStartSolid = startSolid;
   b.starts = s;
   b.ends = e;
@@ -179,10 +186,7 @@ py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& sta
     rotations[i] = cmkit::Rotation(o[o.size() == 1 ? 0 : i], ax, angle);
   }
   cmkit::RotationBatch b;
-  b.query.trm = t.trm;
-  b.query.trmAxis = matrix(axis, "axis");
-  b.query.contentMask = maskOf(mask);
-  b.query.placement = placementOf(origin, modelAxis);
+  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
   b.query.detectStartSolid = startSolid;
   b.starts = s;
   b.rotations = rotations;
@@ -259,10 +263,7 @@ py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& p
   const TrmArg t = trmArg(trm);
   const auto p = vectors(positions, "positions");
   cmkit::ContentsBatch b;
-  b.query.trm = t.trm;
-  b.query.trmAxis = matrix(axis, "axis");
-  b.query.contentMask = maskOf(mask);
-  b.query.placement = placementOf(origin, modelAxis);
+  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
   b.positions = p;
   std::vector<cmkit::ContentsResult> out(p.size());
   Hook hook(threads, progress);
@@ -289,12 +290,9 @@ py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& s
   if (!std::isfinite(depth) || depth < 0) throw py::value_error("depth must be finite and not negative");
   if (maxContacts < 1 || maxContacts > 1024) throw py::value_error("max_contacts must be 1..1024");
   cmkit::ContactsBatch b;
-  b.query.trm = t.trm;
-  b.query.trmAxis = matrix(axis, "axis");
+  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
   b.query.depth = Real(depth);
   b.query.maxContacts = maxContacts;
-  b.query.contentMask = maskOf(mask);
-  b.query.placement = placementOf(origin, modelAxis);
   b.starts = s;
   b.dirs = dv;
   const std::size_t n = unwrap(cmkit::batchSize(s.size(), dv.size(), "starts and dirs"));
