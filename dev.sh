@@ -7,6 +7,9 @@
 #                    package's pytest suite, the Doxygen reference, the
 #                    Clang build's tests, the double-precision build's
 #                    tests, ASan+UBSan tests)
+#   ./dev.sh check   the inner loop: build the `debug` preset (build/debug,
+#                    with the library's assertions, CMKIT_ASSERTS) and run its
+#                    tests on 2 cores; installs nothing (./dev.sh deps does)
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
@@ -76,6 +79,32 @@ build() {  # build PRESET [CACHE OPTIONS...]
   cmake --build --preset "$preset"
 }
 
+# The inner loop's tools: it installs nothing, so it says what is missing.
+require_tools() {
+  local missing=()
+  command -v cmake >/dev/null 2>&1 || missing+=(cmake)
+  command -v ninja >/dev/null 2>&1 || missing+=(ninja)
+  command -v c++ >/dev/null 2>&1 || command -v g++ >/dev/null 2>&1 || missing+=("a C++ compiler (c++/g++)")
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "error: ./dev.sh check needs ${missing[*]}, not found on PATH." >&2
+    echo "       Run ./dev.sh deps to install the Debian packages cmkit needs." >&2
+    exit 1
+  fi
+}
+
+check() {
+  require_tools
+  echo "== configure (preset debug: build/debug, with CMKIT_ASSERTS)"
+  if ! cmake --preset debug >/dev/null; then
+    echo "error: configuring failed (see above); a missing library is installed by ./dev.sh deps." >&2
+    exit 1
+  fi
+  echo "== build"
+  cmake --build --preset debug -j2
+  echo "== tests"
+  ctest --preset debug -j2
+}
+
 format_check() {
   echo "== format check (clang-format)"
   local files
@@ -86,6 +115,7 @@ format_check() {
 
 case "${1:-}" in
   deps) deps ;;
+  check) check ;;
   build) deps; build release ;;
   demo)
     deps

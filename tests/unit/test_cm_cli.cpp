@@ -48,12 +48,10 @@ TEST(CmCli, ValidateAcceptsGoodFilesAndReportsViolations) {
 
 TEST(CmCli, InfoPrintsStatisticsOfACmFile) {
   REQUIRE_CLI();
-  CMKIT_REQUIRE_SHARED();
   int rc = 0;
-  const std::string out =
-      cmkit::test::runCapture(std::string(CMKIT_CLI_PATH) + " info '" +
-                                  (cmkit::test::sharedDir() / "reference" / "box_room.cm").string() + "'",
-                              rc);
+  const std::string out = cmkit::test::runCapture(
+      std::string(CMKIT_CLI_PATH) + " info '" + cmkit::test::dataFile("reference/box_room.cm").string() + "'",
+      rc);
   EXPECT_EQ(rc, 0) << out;
   // The counts stored in the file equal those the original printed when it built it.
   for (const char* line : {"   120 vertices (2 KB)", "   209 edges (7 KB)", "    77 polygons (5 KB)",

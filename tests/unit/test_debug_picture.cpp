@@ -202,8 +202,7 @@ TEST(DebugPicture, CliViewRemovesItsSceneFolderWhenStopped) {
 }
 
 TEST(DebugPicture, CliRendersLt4) {
-  const fs::path map = test::sharedDir() / "maps" / "lt4" / "lt4.map";
-  if (!fs::exists(map)) GTEST_SKIP() << map << " is absent (shared data beside the clone); skipped";
+  const fs::path map = test::dataFile("maps/lt4/lt4.map");  // bundled in data/maps/lt4
   if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the cmkit CLI is not built";
   const test::ScratchDir scratch("debug_picture_lt4");
   const fs::path png = scratch.path() / "lt4.png";

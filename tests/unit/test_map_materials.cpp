@@ -1,9 +1,14 @@
-// Material names -> contents: canonical names, default rules, .mtr files.
+// Material names -> contents: canonical names, default rules, .mtr files,
+// and the contents and materials they give a map's brushes and polygons
+// (water_clip.map, checked by hand).
 #include <filesystem>
 #include <fstream>
 
+#include "cmkit/compile.h"
 #include "cmkit/contents.h"
+#include "cmkit/map.h"
 #include "cmkit/materials.h"
+#include "cmkit/query.h"
 #include "test_support.h"
 
 namespace {
@@ -240,3 +245,143 @@ TEST(Material, RandomCorruptionNeverCrashes) {
 }
 
 }  // namespace
+
+// ---- a map's brushes and polygons -------------------------------------------
+
+namespace {
+
+/// The models of water_clip.map (the project's own map, bundled in
+/// tests/data/shared/maps/synthetic; one brush per material rule,
+/// docs/materials.md) built with `materials`.
+std::vector<cmkit::ModelPtr> waterClipModels(const MaterialTable& materials) {
+  auto map = cmkit::loadMapFile(cmkit::test::dataFile("maps/synthetic/water_clip.map").string());
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
+  if (!map) return {};
+  auto models = cmkit::buildCollisionModels(*map, materials);
+  EXPECT_TRUE(models.ok()) << (models.ok() ? "" : models.error().toString());
+  return models ? models->models : std::vector<cmkit::ModelPtr>{};
+}
+
+/// The name of the material of the brush containing `p` (the only one).
+std::string brushMaterialAt(const cmkit::CollisionModel& m, const cmkit::Vec3& p) {
+  std::string name;
+  int found = 0;
+  for (const cmkit::CmBrush& b : m.brushes()) {
+    bool inside = b.bounds.containsPoint(p);
+    for (const cmkit::Plane& plane : m.planesOf(b)) inside = inside && plane.distance(p) < 0;
+    if (!inside) continue;
+    ++found;
+    name = b.material >= 0 ? m.materials()[std::size_t(b.material)] : "-";
+  }
+  return found == 1 ? name : "(" + std::to_string(found) + " brushes)";
+}
+
+}  // namespace
+
+TEST(MaterialsOnAMap, BrushContentsAndMaterialsFollowTheDefaultRules) {
+  // Hand-read from the map: each brush's box, its material and the
+  // contents the default rules (docs/materials.md) give it.
+  const auto models = waterClipModels(MaterialTable{});
+  ASSERT_EQ(models.size(), 3u);  // worldspawn, trigger_once_1, func_liquid_1
+  const cmkit::CollisionModel& world = *models[0];
+  struct Probe {
+    cmkit::Vec3 point;
+    std::uint32_t contents;
+    const char* material;  // of the brush there ("(0 brushes)": none kept)
+  };
+  const Probe probes[] = {
+      {{-250, -250, 32}, c::kWater, "textures/liquids/water_calm"},     // primitive 6
+      {{8, -256, 64}, c::kPlayerClip, "textures/common/player_clip"},   // 7
+      {{8, 128, 64}, c::kMonsterClip, "textures/common/monster_clip"},  // 8
+      {{232, 232, 32}, c::kPlayerClip | c::kMonsterClip | c::kMoveableClip, "textures/common/clip"},  // 9
+      {{232, -232, 32}, c::kSolid | c::kOpaque, "textures/common/nodraw"},                            // 10
+      {{332, -232, 32}, c::kSolid, "textures/common/nodrawsolid"},                                    // 11
+      {{332, 232, 32}, 0, "(0 brushes)"},  // 12: noclip has no contents
+      {{432, 232, 32}, 0, "(0 brushes)"},  // 13: textures/editor/ has none
+      // 14: a wall top over caulk sides; the brush takes the material of
+      // the second-to-last side (caulk).
+      {{-268, 332, 48}, c::kSolid | c::kOpaque, "textures/common/caulk"},
+      // 15: noclip sides but the last: the contents leave out the last
+      // side, so no brush is kept.
+      {{-125, 325, 25}, 0, "(0 brushes)"},
+      {{140, 370, 40}, c::kWater, "textures/liquids/water_murky"},               // 16 alone
+      {{200, 450, 20}, c::kSolid | c::kOpaque, "textures/base_wall/lfwall27d"},  // 17 alone
+      {{-500, 0, 512}, 0, "(0 brushes)"},                                        // the room's air
+  };
+  for (const Probe& p : probes) {
+    SCOPED_TRACE(::testing::Message() << p.point.x << "," << p.point.y << "," << p.point.z);
+    EXPECT_EQ(cmkit::test::pointContentsAt(world, p.point), p.contents);
+    EXPECT_EQ(brushMaterialAt(world, p.point), p.material);
+  }
+  // Where 16 (water) and 17 (wall) overlap: both.
+  EXPECT_EQ(cmkit::test::pointContentsAt(world, {160, 410, 20}), c::kWater | c::kSolid | c::kOpaque);
+  // The inline models: the trigger in its own frame (brushes relative to
+  // the entity's origin), the liquid likewise.
+  EXPECT_EQ(models[1]->name(), "trigger_once_1");
+  EXPECT_EQ(cmkit::test::pointContentsAt(*models[1], {0, 0, 64}), c::kTrigger);
+  EXPECT_EQ(cmkit::test::pointContentsAt(*models[1], {0, 0, 140}), 0u);
+  EXPECT_EQ(models[2]->name(), "func_liquid_1");
+  EXPECT_EQ(cmkit::test::pointContentsAt(*models[2], {0, 0, 16}), c::kWater);
+}
+
+TEST(MaterialsOnAMap, PolygonsTakeTheirSidesContentsAndMaterials) {
+  // Brush 15's last side (y = 300, wall) still makes a polygon although its
+  // brush was dropped; brush 14's top is wall, its other sides caulk.
+  const auto models = waterClipModels(MaterialTable{});
+  ASSERT_FALSE(models.empty());
+  const cmkit::CollisionModel& world = *models[0];
+  cmkit::QueryWork work;
+  const auto pointTrace = [&](const cmkit::Vec3& from, const cmkit::Vec3& to) {
+    cmkit::TranslationQuery q;
+    q.start = from;
+    q.end = to;
+    q.contentMask = cmkit::contents::kMaskAll;
+    return cmkit::translate(world, q, work);
+  };
+  const auto materialOf = [&](const cmkit::TraceResult& r) {
+    return r.contact.material >= 0 ? world.materials()[std::size_t(r.contact.material)] : std::string("-");
+  };
+  // Into brush 15's wall side from -y.
+  cmkit::TraceResult r = pointTrace({-125, 250, 25}, {-125, 350, 25});
+  ASSERT_LT(r.fraction, 1);
+  EXPECT_EQ(r.contact.normal, cmkit::Vec3(0, -1, 0));
+  EXPECT_EQ(r.contact.contents, c::kSolid | c::kOpaque);
+  EXPECT_EQ(materialOf(r), "textures/base_wall/lfwall27d");
+  // Onto brush 14's top (wall) and into its side (caulk).
+  r = pointTrace({-268, 332, 200}, {-268, 332, 50});
+  ASSERT_LT(r.fraction, 1);
+  EXPECT_EQ(r.contact.normal, cmkit::Vec3(0, 0, 1));
+  EXPECT_EQ(materialOf(r), "textures/base_wall/lfwall27d");
+  r = pointTrace({-200, 332, 48}, {-268, 332, 48});
+  ASSERT_LT(r.fraction, 1);
+  EXPECT_EQ(r.contact.normal, cmkit::Vec3(1, 0, 0));
+  EXPECT_EQ(r.contact.contents, c::kSolid | c::kOpaque);
+  EXPECT_EQ(materialOf(r), "textures/common/caulk");
+  // Into the water (brush 6) from above: water contents and material.
+  r = pointTrace({-250, -250, 100}, {-250, -250, 10});
+  ASSERT_LT(r.fraction, 1);
+  EXPECT_EQ(r.contact.contents, c::kWater);
+  EXPECT_EQ(materialOf(r), "textures/liquids/water_calm");
+}
+
+TEST(MaterialsOnAMap, MtrDeclarationsOverrideTheDefaultRules) {
+  // caulk declared nonsolid + playerclip (opaque | playerclip), noclip
+  // declared solid: brush 14 is wall | caulk = solid, opaque, playerclip;
+  // brush 12 (all noclip) now exists; brush 15 too (its contents leave out
+  // only the last side).
+  MaterialTable table;
+  table.addMtrText(
+      "textures/common/caulk { nonsolid playerclip }\n"
+      "textures/common/noclip { solid }\n",
+      "override.mtr");
+  ASSERT_TRUE(table.warnings().empty());
+  const auto models = waterClipModels(table);
+  ASSERT_FALSE(models.empty());
+  const cmkit::CollisionModel& world = *models[0];
+  EXPECT_EQ(cmkit::test::pointContentsAt(world, {-268, 332, 48}), c::kSolid | c::kOpaque | c::kPlayerClip);
+  EXPECT_EQ(cmkit::test::pointContentsAt(world, {332, 232, 32}), c::kSolid | c::kOpaque);
+  EXPECT_EQ(brushMaterialAt(world, {332, 232, 32}), "textures/common/noclip");
+  EXPECT_EQ(cmkit::test::pointContentsAt(world, {-125, 325, 25}), c::kSolid | c::kOpaque);
+  // Undeclared materials keep the default rules.
+  EXPECT_EQ(cmkit::test::pointContentsAt(world, {232, 232, 32}), c::kPlayerClip | c::kMonsterClip | c::kMoveableClip);
+}

@@ -202,19 +202,25 @@ float snap(float v) {
 }
 
 TEST(PatchReference, EveryGridPointIsAVertexOfTheReferenceModel) {
-  CMKIT_REQUIRE_SHARED();
   // Maps whose patches are neither chopped by brushes nor welded to other
   // vertices: every tessellated point must be printed exactly in the .cm.
   const std::pair<const char*, const char*> maps[] = {
       {"synthetic/inline_patch.map", "inline_patch.cm"},
       {"darkradiant-edgecases/modelexport_patch.map", "modelexport_patch.cm"},
       {"darkradiant-edgecases/weld_patches_out_of_bounds.map", "weld_patches_out_of_bounds.cm"}};
+  int checked = 0;
   for (const auto& [mapName, cmName] : maps) {
     SCOPED_TRACE(mapName);
-    auto map = cmkit::loadMapFile((cmkit::test::sharedDir() / "maps" / mapName).string());
+    const auto mapPath = cmkit::test::dataFile(std::string("maps/") + mapName);
+    if (!std::filesystem::exists(mapPath)) {
+      std::printf("note: %s left out: %s\n", mapName, cmkit::test::whyNotBundled(mapName).c_str());
+      continue;
+    }
+    ++checked;
+    auto map = cmkit::loadMapFile(mapPath.string());
     ASSERT_TRUE(map.ok()) << map.error().toString();
     std::set<std::string> vertices;
-    std::istringstream cm(cmkit::test::readFile(cmkit::test::sharedDir() / "reference" / cmName));
+    std::istringstream cm(cmkit::test::readFile(cmkit::test::dataFile(std::string("reference/") + cmName)));
     for (std::string line; std::getline(cm, line);) {
       // Vertex lines read "/* N */ ( x y z )"; keep the three numbers as printed.
       const auto open = line.find("*/ (");
@@ -238,6 +244,7 @@ TEST(PatchReference, EveryGridPointIsAVertexOfTheReferenceModel) {
     }
     EXPECT_GT(points, 30);
   }
+  EXPECT_GE(checked, 1);
 }
 
 }  // namespace

@@ -191,9 +191,7 @@ TEST(ProcPruning, TheTwoProcMapsGiveTheOriginalsCmFiles) {
     const auto [text, models] = buildWithProcBeside(procData() / (std::string(name) + ".map"));
     EXPECT_EQ(text, test::readFile(procData() / (std::string(name) + ".cm")));
     EXPECT_GT(models[0]->stats().procPolygonsRemoved, 0);
-    if (test::haveShared()) {
-      EXPECT_EQ(text, test::readFile(test::sharedDir() / "reference-proc" / (std::string(name) + ".cm")));
-    }
+    EXPECT_EQ(text, test::readFile(test::dataFile("reference-proc/" + std::string(name) + ".cm")));
   }
 }
 

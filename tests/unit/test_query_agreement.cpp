@@ -120,7 +120,11 @@ std::vector<ModelPtr> referenceModels(const std::string& name) {
 
 TEST(Agreement, TranslationContentsContactsAndPointContentsMatchTheOriginal) {
   CMKIT_FLOAT_BUILD_ONLY();
-  CMKIT_REQUIRE_SHARED();
+  CMKIT_REQUIRE_SHARED(
+      "the original's reference queries and answers, reference/*.queries.txt and *.results.txt: about 700 KB "
+      "per map, not bundled to keep the repository small, and some made from the GPL-2.0+ darkradiant maps, "
+      "whose licence does not allow bundling them; data/reference/lt4 is the bundled slice (ctest "
+      "fidelity_lt4_slice)");
   std::map<std::string, Tally> total;
   // reference-proc: maps with a .proc beside them, built with it (referenceModels)
   std::vector<std::pair<std::string, fs::directory_entry>> queryFiles;

@@ -21,7 +21,7 @@ using namespace cmkit;
 namespace {
 
 std::vector<ModelPtr> buildMap(const std::string& relative) {
-  return test::buildMapModels(test::sharedDir() / "maps" / relative);
+  return test::buildMapModels(test::dataFile("maps/" + relative));
 }
 
 bool finite(const TraceResult& r) {
@@ -101,7 +101,6 @@ CollisionModel generatedScene() {
 TEST(QueryProperties, GeneratedSceneFreeMovesEndFree) { checkFreeMovesEndFree(generatedScene(), 1, 3000); }
 
 TEST(QueryProperties, SharedMapsFreeMovesEndFree) {
-  CMKIT_REQUIRE_SHARED();
   // Not altar.map: it is mostly patches, one-sided surfaces with no volume
   // behind them; a move that starts behind one passes through it (only front
   // faces collide, as in the original) and may end overlapping it.
@@ -119,7 +118,6 @@ TEST(QueryProperties, SharedMapsFreeMovesEndFree) {
 }
 
 TEST(QueryProperties, SealedRoomHolds) {
-  CMKIT_REQUIRE_SHARED();
   // box_room is a closed room: nothing inside gets out, however far it goes.
   const auto models = buildMap("synthetic/box_room.map");
   ASSERT_FALSE(models.empty());
@@ -345,7 +343,6 @@ TEST(QueryData, SmallerThanTheModelsArrays) {
 }
 
 TEST(QueryDeterminism, SameResultsOnOneAndManyThreadsLt4) {
-  CMKIT_REQUIRE_SHARED();
   const auto models = buildMap("lt4/lt4.map");
   ASSERT_FALSE(models.empty());
   const auto lines = generatedQueries(models[0]->bounds(), 10000);

@@ -1,7 +1,7 @@
 // Hand-computed rotations: fractions from trigonometry (with the 0.25 clip
 // epsilon along the surface normal), both directions, parts above 180 and
 // 360 degrees, axes through and far from the trace model, placed models,
-// points, angle 0; and regressions for the original's two rotation bugs.
+// points, angle 0. The original's rotation bugs: test_original_bugs.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -311,76 +311,4 @@ TEST(Rotation, ArcBoxesOfManyVerticesAreEachVertexsArcBox) {
       ASSERT_EQ(boxes.get(std::size_t(i)), expected[std::size_t(i)]) << round << " " << i;
     ASSERT_EQ(got, expectedAll) << round;
   }
-}
-
-// ---- the original's rotation bugs ------------------------------------------
-
-TEST(RotationRegression, LongArcReachesLeavesItsChordMisses) {
-  // A tree split at y = -50: the back leaf (y < -50) holds a pillar at
-  // (0, -100). A point at (100, 0) turns 170 degrees clockwise about the z
-  // axis: its chord (100, 0) -> (-98.5, -17.4) stays above y = -18, so the
-  // original's walk (one chord, extents = 1 + the 64-unit-chord sagitta, a
-  // few units) never enters the back leaf; the arc passes y = -100.
-  ModelArrays arrays = ModelMaker().addBox({{-10, -110, -50}, {10, -90, 50}}).buildArrays();
-  CmNode root;
-  root.planeType = 1;
-  root.planeDist = -50;
-  root.children[0] = 1;
-  root.children[1] = 2;
-  CmNode front, back;
-  front.parent = back.parent = 0;
-  back.numPolygonRefs = std::uint32_t(arrays.polygons.size());
-  back.numBrushRefs = std::uint32_t(arrays.brushes.size());
-  arrays.nodes = {root, front, back};
-  const CollisionModel m = **CollisionModel::create(std::move(arrays));
-  QueryWork work;
-  RotationQuery q;
-  q.start = {100, 0, 0};
-  q.rotation = Rotation({0, 0, 0}, {0, 0, 1}, 170);
-  const TraceResult r = rotate(m, q, work);
-  ASSERT_LT(r.fraction, 1.0f);
-  // It meets the pillar's face x = 10 (r = 100: 100 cos a = 10.25).
-  EXPECT_NEAR(r.fraction * 170, std::acos(10.25 / 100) * kDeg, 1e-3);
-  expectVecNear(r.contact.normal, {1, 0, 0}, 1e-6f);
-}
-
-TEST(RotationRegression, ResultDoesNotDependOnPolygonOrder) {
-  // The original marked a model edge tested with the first polygon that
-  // contained it even when that polygon's culls had skipped trace-model
-  // edges, so which edge pairs were tested depended on polygon order. A
-  // cluster of boxes, its polygon list in several orders: every rotation
-  // gives the same bits.
-  ModelMaker mk;
-  mk.addBox({{0, 0, 0}, {40, 40, 40}})
-      .addBox({{40, 10, 0}, {60, 30, 60}})
-      .addBox({{-30, -30, 0}, {0, 80, 8}});
-  mk.addConvex(*TraceModel::octahedron({{10, 50, 0}, {50, 90, 40}}));
-  const CollisionModel base = mk.build();
-  std::vector<TraceModel> trms = {*TraceModel::box({{-8, -8, -8}, {8, 8, 8}}), *TraceModel::bone(50, 10),
-                                  *TraceModel::cylinder({{-6, -6, -12}, {6, 6, 12}}, 6)};
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> pos(-40, 100), ang(-200, 200), unit(-1, 1);
-  QueryWork work;
-  int hits = 0;
-  for (int n = 0; n < 300; ++n) {
-    RotationQuery q;
-    q.trm = &trms[std::size_t(n) % trms.size()];
-    q.start = {pos(rng), pos(rng), pos(rng) * 0.5f};
-    Vec3 axis{unit(rng), unit(rng), unit(rng)};
-    if (axis.normalize() == 0) continue;
-    q.rotation = Rotation(q.start + Vec3{unit(rng), unit(rng), unit(rng)} * 20, axis, ang(rng));
-    ModelArrays arrays = base.arrays();
-    const TraceResult ref = rotate(base, q, work);
-    hits += ref.fraction < 1;
-    for (int order = 0; order < 3; ++order) {
-      std::vector<std::int32_t>& refs = arrays.polygonRefs;
-      if (order == 0) std::reverse(refs.begin(), refs.end());
-      if (order == 1) std::rotate(refs.begin(), refs.begin() + 7, refs.end());
-      if (order == 2) std::shuffle(refs.begin(), refs.end(), rng);
-      const TraceResult r = rotate(**CollisionModel::create(arrays), q, work);
-      ASSERT_EQ(r.fraction, ref.fraction) << "query " << n << " order " << order;
-      ASSERT_EQ(r.endPos, ref.endPos);
-    }
-  }
-  EXPECT_GT(hits, 30);
 }

@@ -335,19 +335,6 @@ TEST(Translation, InternalEdgesAreNeverReported) {
   for (std::int32_t e : seam) EXPECT_NE(std::abs(r.contact.modelFeature), e);
 }
 
-TEST(Translation, AnyLengthWorks) {
-  // The original refused trace-model moves over 4096 units.
-  const CollisionModel m = floorModel();
-  const TraceModel box = *TraceModel::box(kPlayer);
-  QueryWork work;
-  TranslationQuery q;
-  q.trm = &box;
-  q.start = {0, 0, 10000};
-  q.end = {0, 0, -10000};
-  const TraceResult r = translate(m, q, work);
-  EXPECT_NEAR(r.endPos.z, 0.25f, 2e-3f);
-}
-
 namespace {
 
 // A floor (top at z = 0) and a wall (x from 20 to 40), for the contacts tests.

@@ -1,7 +1,10 @@
-// The speed test (include/cmkit/speed_test.h): same results at any thread
-// count, hits on a real map; `cmkit bench` prints its statistics lines.
+// The speed test (include/cmkit/tools/speed_test.h): same results at any
+// thread count, hits on a real map, hits and fractions computed by hand on a
+// floor; `cmkit bench` prints its statistics lines.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -9,6 +12,8 @@
 #include "cmkit/compile.h"
 #include "cmkit/map.h"
 #include "cmkit/tools/speed_test.h"
+#include "debug/speed_test.h"  // planSpeedTest: the queries of a run
+#include "model_fixtures.h"
 #include "test_support.h"
 
 namespace cmkit {
@@ -101,12 +106,114 @@ TEST_F(SpeedTest, SeedChangesTheQueries) {
 }
 
 TEST_F(SpeedTest, RandomManySharesOneEndPoint) {
+  // Every query is the same one, so all hit or none does: as that one
+  // query, run here on its own.
   SpeedTestOptions o = options;
   o.randomMany = true;
+  const detail::SpeedTestPlan plan = detail::planSpeedTest(o);
+  ASSERT_EQ(plan.moves.size(), std::size_t(kTestTimes));
+  for (std::size_t i = 1; i < plan.moves.size(); ++i) {
+    ASSERT_EQ(plan.moves[i], plan.moves[0]);
+    ASSERT_EQ(plan.turns[i].axis, plan.turns[0].axis);
+    ASSERT_EQ(plan.turns[i].originOffset, plan.turns[0].originOffset);
+  }
+  QueryWork work;
+  TranslationQuery t;
+  t.trm = &trm;
+  t.start = o.origin;
+  t.end = o.origin + plan.moves[0];
+  t.contentMask = o.contentMask;
+  const TraceResult move = translate(*world, t, work);
+  RotationQuery q;
+  q.trm = &trm;
+  q.start = o.origin;
+  q.rotation = Rotation(o.origin + plan.turns[0].originOffset, plan.turns[0].axis, o.angle);
+  q.contentMask = o.contentMask;
+  const TraceResult turn = rotate(*world, q, work);
+  ASSERT_LT(move.fraction, 1) << "features.map: the shared move from its centre meets a wall";
   const auto r = run(o);
-  // Every query is the same: all hit or none does.
-  EXPECT_TRUE(r.translation.hits == 0 || r.translation.hits == kTestTimes);
-  EXPECT_TRUE(r.rotation.hits == 0 || r.rotation.hits == kTestTimes);
+  EXPECT_EQ(r.translation.count, kTestTimes);
+  EXPECT_EQ(r.translation.hits, kTestTimes);
+  EXPECT_EQ(r.rotation.count, kTestTimes);
+  EXPECT_EQ(r.rotation.hits, turn.fraction < 1 ? kTestTimes : 0);
+}
+
+/// A floor slab (top at z = 0) under a box standing 8 units above it: which
+/// of the speed test's moves hit is a matter of their z alone.
+TEST(SpeedTestOnAFloor, HitsAndFractionsAreTheHandComputedOnes) {
+  const CollisionModel floor = test::ModelMaker().addBox({{-4096, -4096, -64}, {4096, 4096, 0}}).build();
+  const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 64}});
+  SpeedTestOptions o;
+  o.times = kTestTimes;
+  o.length = 256;
+  o.radius = 64;
+  o.origin = {0, 0, 8};
+  const detail::SpeedTestPlan plan = detail::planSpeedTest(o);
+  ASSERT_EQ(plan.moves.size(), std::size_t(kTestTimes));
+
+  // Translations: a move hits when it takes the box's bottom (z = 8) below
+  // the floor's top; it then stops 0.25 above it, at fraction 7.75 / -z.
+  int expectedHits = 0;
+  QueryWork work;
+  std::uint64_t hash = kFnvOffsetBasis;
+  auto mix = [&hash](Real v) { hash = fnv1a(hash, &v, sizeof v); };
+  for (const Vec3& move : plan.moves) {
+    ASSERT_FALSE(std::fabs(move.z + 8) < 0.5f) << "a move ending on the floor: its hit is not clear-cut";
+    const bool hit = move.z < -8;
+    expectedHits += hit;
+    TranslationQuery q;
+    q.trm = &box;
+    q.start = o.origin;
+    q.end = o.origin + move;
+    q.contentMask = o.contentMask;
+    const TraceResult r = translate(floor, q, work);
+    if (hit) {
+      EXPECT_NEAR(r.fraction, 7.75 / -move.z, 1e-5) << move.z;
+      EXPECT_NEAR(r.endPos.z, 0.25f, 1e-3f);
+    } else {
+      EXPECT_EQ(r.fraction, 1) << move.z;
+    }
+    // The report's hash: fraction, end position, end axis, contact normal.
+    mix(r.fraction);
+    for (int k = 0; k < 3; ++k) mix(r.endPos[k]);
+    for (int row = 0; row < 3; ++row)
+      for (int k = 0; k < 3; ++k) mix(r.endAxis[row][k]);
+    for (int k = 0; k < 3; ++k) mix(r.contact.normal[k]);
+  }
+  ASSERT_GT(expectedHits, kTestTimes / 4);
+  ASSERT_LT(expectedHits, kTestTimes * 3 / 4);
+
+  // Rotations: a rotation hits when a corner of the box goes below the
+  // floor's top on its arc (sampled every 0.03 degrees; the arcs are at most
+  // ~200 units long, so a sample lies within 0.1 units of the lowest point).
+  // Rotations whose lowest corner comes within half a unit of the floor
+  // could go either way and are not counted as sure.
+  int sureHits = 0, sureMisses = 0;
+  for (const detail::SpeedTestTurn& turn : plan.turns) {
+    Real lowest = 1e9f;
+    constexpr int kSteps = 2000;
+    for (int step = 0; step <= kSteps; ++step) {
+      const Rotation partial(o.origin + turn.originOffset, turn.axis, o.angle * Real(step) / kSteps);
+      for (int v = 0; v < box.numVertices(); ++v)
+        lowest = std::min(lowest, partial.rotatePoint(o.origin + box.vertex(v)).z);
+    }
+    sureHits += lowest < -0.5f;
+    sureMisses += lowest > 0.5f;
+  }
+  ASSERT_GT(sureHits, 10);
+  ASSERT_GT(sureMisses, 10);
+
+  for (int threads : {1, 2}) {
+    SCOPED_TRACE(threads);
+    o.threads = threads;
+    const SpeedTestReport report = runSpeedTest(floor, box, o);
+    EXPECT_EQ(report.translation.count, kTestTimes);
+    EXPECT_EQ(report.translation.hits, expectedHits);
+    EXPECT_EQ(report.translation.hash, hash);
+    EXPECT_EQ(report.rotation.count, kTestTimes);
+    EXPECT_GE(report.rotation.hits, sureHits);
+    EXPECT_LE(report.rotation.hits, kTestTimes - sureMisses);
+  }
 }
 
 TEST_F(SpeedTest, CliBenchPrintsStatistics) {

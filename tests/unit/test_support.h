@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -67,19 +68,70 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-/// The shared data folder beside the clone (../shared): maps, reference
-/// results, specs. Absent in a user's clone.
 /// A model's array (a span) as a vector, to compare with EXPECT_EQ.
 template <class T>
 std::vector<std::remove_const_t<T>> toVector(std::span<T> items) {
   return {items.begin(), items.end()};
 }
 
+/// The shared data folder beside the clone (../shared, or the configure
+/// option CMKIT_SHARED_DIR): maps, reference results, specs. Absent in a
+/// user's clone.
 inline std::filesystem::path sharedDir() { return CMKIT_SHARED_DIR; }
 inline bool haveShared() { return std::filesystem::exists(sharedDir() / "reference"); }
 
 /// The project's own test data (tests/data), always present.
 inline std::filesystem::path testDataDir() { return CMKIT_TEST_DATA_DIR; }
+
+/// The part of the shared data whose licence allows bundling it, in the
+/// shared folder's layout (tests/data/shared/README.md).
+inline std::filesystem::path bundledSharedDir() { return testDataDir() / "shared"; }
+
+/// Where the tests read shared data from: the shared folder when present,
+/// else its bundled part.
+inline std::filesystem::path dataDir() { return haveShared() ? sharedDir() : bundledSharedDir(); }
+
+/// A file of the shared data by its path in the shared folder ("maps/..."):
+/// there when the folder is present, else in its bundled part; lt4's map is
+/// bundled in data/maps/lt4 (the demo's map).
+inline std::filesystem::path dataFile(const std::string& relative) {
+  if (haveShared()) return sharedDir() / relative;
+  if (relative.rfind("maps/lt4/", 0) == 0) return std::filesystem::path(CMKIT_SOURCE_DIR) / "data" / relative;
+  return bundledSharedDir() / relative;
+}
+
+/// Why a file of the shared data (its path in the shared folder) is not in
+/// tests/data/shared.
+inline std::string whyNotBundled(const std::string& relative) {
+  if (relative.find("darkradiant") != std::string::npos || relative.find("altar") != std::string::npos ||
+      relative.find("modelexport_patch") != std::string::npos ||
+      relative.find("weld_patches") != std::string::npos)
+    return "a GPL-2.0+ map (or made from one), which its licence does not allow bundling "
+           "(../shared/maps/README.md)";
+  if (relative.find(".queries.txt") != std::string::npos ||
+      relative.find(".results.txt") != std::string::npos)
+    return "the original's reference queries and answers (about 700 KB per map) are not bundled, to keep "
+           "the repository small";
+  return "too large to bundle (tests/data/shared/README.md)";
+}
+
+/// Every .map of the shared data (dataDir()/maps, and lt4 from data/maps
+/// when the shared folder is absent), sorted.
+inline std::vector<std::filesystem::path> dataMaps() {
+  std::vector<std::filesystem::path> maps;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dataDir() / "maps"))
+    if (e.is_regular_file() && e.path().extension() == ".map") maps.push_back(e.path());
+  if (!haveShared()) maps.push_back(dataFile("maps/lt4/lt4.map"));
+  std::sort(maps.begin(), maps.end());
+  return maps;
+}
+
+/// A note for a test run on the bundled part of the shared data only.
+inline std::string bundledOnlyNote() {
+  return "the shared folder " + sharedDir().string() +
+         " is absent: ran on its bundled part (tests/data/shared); the GPL-2.0+ darkradiant maps, "
+         "whose licence does not allow bundling them, and the files too large to bundle were left out";
+}
 
 /// The numbers of a query- or result-line value ("1,2,3"), read as cmkit
 /// reads them (src/io/fields.h); the ones before a malformed number.
@@ -147,10 +199,12 @@ inline std::uint32_t pointContentsAt(const CollisionModel& m, const Vec3& p,
 
 }  // namespace cmkit::test
 
-/// Skips the current test with a message when ../shared is absent.
-#define CMKIT_REQUIRE_SHARED()                                                              \
-  do {                                                                                      \
-    if (!::cmkit::test::haveShared())                                                       \
-      GTEST_SKIP() << "needs the shared data folder " << ::cmkit::test::sharedDir()         \
-                   << " (maps and reference results beside the clone); absent, so skipped"; \
+/// Skips the current test with a message when ../shared is absent: for
+/// tests over all of its data. `what` names the files needed and why they
+/// are not bundled.
+#define CMKIT_REQUIRE_SHARED(what)                                                                    \
+  do {                                                                                                \
+    if (!::cmkit::test::haveShared())                                                                 \
+      GTEST_SKIP() << "needs the shared data folder " << ::cmkit::test::sharedDir() << " (" << (what) \
+                   << "); absent, so skipped";                                                        \
   } while (0)

@@ -60,7 +60,7 @@ void registerExport(CLI::App& app) {
       "query/results pair, as glTF 2.0 (.gltf with the buffer embedded, or binary .glb) or\n"
       "Wavefront OBJ (+ .mtl beside it). Map coordinates (z up) are kept in the buffers; the\n"
       "glTF root node turns them y-up. One material per contents value; edges, internal edges\n"
-      "and each trace are separate meshes/nodes (docs: include/cmkit/debug_export.h).\n\n"
+      "and each trace are separate meshes/nodes (docs: include/cmkit/tools/export.h).\n\n"
       "Examples:\n"
       "  cmkit export maps/lt4.map -o lt4.glb\n"
       "  cmkit export maps/box_room.map --queries q.txt --results r.txt -o box_room.gltf\n"

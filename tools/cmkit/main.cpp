@@ -9,8 +9,8 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "cmkit - collision models for id Tech 4 (Doom 3) level geometry.\n"
-      "Builds trace models (the shapes you move) and, in later commands, collision models\n"
-      "from .map and .cm files, and runs exact swept-shape queries against them.\n"
+      "Builds trace models (the shapes you move) and collision models (from .map, .cm and mesh\n"
+      "files), runs exact swept-shape queries against them, draws, exports and times them.\n"
       "Run 'cmkit COMMAND --help' for the options of a command."};
   app.require_subcommand(1);
   app.set_version_flag(

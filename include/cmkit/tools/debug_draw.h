@@ -5,7 +5,7 @@
 // - The library never depends on a renderer: drawModel() and drawTrace()
 //   walk the geometry and call a DebugDraw that the caller implements (a
 //   recorder, the software rasteriser of picture.h, the glTF/OBJ
-//   writers of debug_export.h, an engine's debug renderer...).
+//   writers of export.h, an engine's debug renderer...).
 // - Everything handed to a DebugDraw is in WORLD space (the model's
 //   placement applied), in map units.
 // - drawModel() follows the original's DrawModel: polygons whose contents
