@@ -383,5 +383,6 @@ TEST(MaterialsOnAMap, MtrDeclarationsOverrideTheDefaultRules) {
   EXPECT_EQ(brushMaterialAt(world, {332, 232, 32}), "textures/common/noclip");
   EXPECT_EQ(cmkit::test::pointContentsAt(world, {-125, 325, 25}), c::kSolid | c::kOpaque);
   // Undeclared materials keep the default rules.
-  EXPECT_EQ(cmkit::test::pointContentsAt(world, {232, 232, 32}), c::kPlayerClip | c::kMonsterClip | c::kMoveableClip);
+  EXPECT_EQ(cmkit::test::pointContentsAt(world, {232, 232, 32}),
+            c::kPlayerClip | c::kMonsterClip | c::kMoveableClip);
 }

@@ -76,7 +76,8 @@ TEST(OriginalBug, PointContentsIsTheOrOfEveryBrushNotTheFirstFound) {
                                .build();
   EXPECT_EQ(test::pointContentsAt(m, {32, 32, 80}), contents::kMonsterClip);
   EXPECT_EQ(test::pointContentsAt(m, {32, 32, 16}), contents::kSolid | contents::kOpaque);
-  EXPECT_EQ(test::pointContentsAt(m, {32, 32, 48}), contents::kMonsterClip | contents::kSolid | contents::kOpaque);
+  EXPECT_EQ(test::pointContentsAt(m, {32, 32, 48}),
+            contents::kMonsterClip | contents::kSolid | contents::kOpaque);
 }
 
 TEST(OriginalBug, PointPositionTestHonoursTheMask) {
