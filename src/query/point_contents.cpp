@@ -41,16 +41,16 @@ inline bool behindAllPlanes(std::span<const Plane> planes, const Vec3& p) {
 
 std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
                                   std::uint32_t mask) {
-  // The range check waits for a point found inside something: the walk is
-  // safe for any input (NaN goes down the back sides and is inside no brush)
-  // and most points are in no brush. A turned model's axis is checked first:
-  // an axis that is no rotation would move the point anywhere.
+  // The point, the origin and a turned model's axis were checked by the
+  // caller's guard (query_guards.cpp): they are not checked again.
   const bool rotated = isRotated(placement.axis);
-  if (model.nodes().empty() || (rotated && !validateAxis(placement.axis).ok())) return 0;
+  const std::span<const CmNode> nodes = model.nodes();
+  const std::span<const CmBrush> brushes = model.brushes();
+  if (nodes.empty()) return 0;
   Vec3 p = point - placement.origin;
   if (rotated) p = placement.axis * p;    // world -> model frame
   const Real coord[3] = {p.x, p.y, p.z};  // indexed by split axis below
-  const bool prefetchBrushes = model.brushes().size() > kPointContentsCachedBrushes;
+  const bool prefetchBrushes = brushes.size() > kPointContentsCachedBrushes;
 
   // Every brush on the path from the root to the point's leaf: brushes
   // straddling a split are stored at interior nodes (the original looked at
@@ -67,11 +67,11 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   while (!atLeaf) {
     int count = 0;
     while (count < kPath) {
-      const CmNode& node = model.nodes()[std::size_t(n)];
+      const CmNode& node = nodes[std::size_t(n)];
       if (node.numBrushRefs != 0) {
         withBrushes[count++] = &node;
         if (prefetchBrushes)
-          for (std::int32_t b : model.brushesAt(node)) prefetch(&model.brushes()[std::size_t(b)]);
+          for (std::int32_t b : model.brushesAt(node)) prefetch(&brushes[std::size_t(b)]);
       }
       if (node.isLeaf()) {
         atLeaf = true;
@@ -81,14 +81,13 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
     }
     while (count > 0) {
       for (std::int32_t brushNum : model.brushesAt(*withBrushes[--count])) {
-        const CmBrush& b = model.brushes()[std::size_t(brushNum)];
+        const CmBrush& b = brushes[std::size_t(brushNum)];
         if (!(b.contents & mask & ~contents) || !b.bounds.containsPoint(p) || b.numPlanes == 0) continue;
         if (behindAllPlanes(model.planesOf(b), p)) contents |= b.contents;
       }
     }
   }
-  if (contents == 0 || (withinQueryRange(point) && withinQueryRange(placement.origin))) return contents;
-  return 0;  // out of range (a turned model's axis was checked first)
+  return contents;
 }
 
 }  // namespace cmkit::detail
@@ -102,11 +101,17 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
   // The guard only decides the status: the contents are computed from the
   // query as given (a slightly drifted axis is not re-orthonormalised), so
   // that they stay what they were before pointContents had a status (every
-  // input the guard refuses already gave 0).
-  PointContentsQuery checked = query;
-  r.status = guardPointContents(checked);
-  if (r.status != QueryStatus::Ok) return r;
-  r.contents = pointContentsMasked(model, query.point, query.placement, ~std::uint32_t(0));
+  // input the guard refuses already gave 0). The usual query, a point and an
+  // origin in range and no turn, needs no more than the range test (a point
+  // query costs a few tens of nanoseconds: the guard's copy and calls
+  // showed).
+  const Placement& placement = query.placement;
+  if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement.axis)) {
+    PointContentsQuery checked = query;
+    r.status = guardPointContents(checked);
+    if (r.status != QueryStatus::Ok) return r;
+  }
+  r.contents = pointContentsMasked(model, query.point, placement, ~std::uint32_t(0));
   return r;
 }
 

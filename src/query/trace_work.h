@@ -291,7 +291,9 @@ void makeTranslationHeartPlanes(TraceWork& tw);
 void runTranslation(TraceWork& tw, const TranslationQuery& q, const Orientation& o,
                     std::vector<ContactInfo>* out, int maxContacts);
 /// The OR of the contents matching `mask` of every brush containing a world
-/// point (point_contents.cpp; contentsTest's points and pointContents).
+/// point (point_contents.cpp; contentsTest's points and pointContents). The
+/// placement must have passed a guard (its axis a rotation): it is not
+/// checked again.
 std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
                                   std::uint32_t mask);
 
