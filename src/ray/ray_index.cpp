@@ -35,7 +35,7 @@ namespace cmkit {
 namespace {
 
 using Node = detail::RayLayout::Node;
-constexpr int kWidth = detail::RayLayout::kWidth;
+[[maybe_unused]] constexpr int kWidth = detail::RayLayout::kWidth;  // (the portable node test's)
 
 /// Reciprocal of a zero (or denormal) direction component: large but finite,
 /// so that the slab test never computes 0 * infinity.
