@@ -56,7 +56,7 @@ TEST(SealedModel, CreateRefusesArraysWithNumbersOutOfRange) {
       {"polygon edge", [](ModelArrays& a) { a.polygonEdges[2] = 1000; }, "polygon 0"},
       {"polygon reference", [](ModelArrays& a) { a.polygonRefs[0] = 12; }, "node 0"},
       {"brush planes", [](ModelArrays& a) { a.brushes[1].numPlanes = 100; }, "brush 1"},
-      {"no root", [](ModelArrays& a) { a.nodes.clear(); }, "model"},
+      {"no root", [](ModelArrays& a) { a.nodes.clear(); }, "no tree but items"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);
