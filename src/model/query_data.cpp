@@ -40,6 +40,7 @@ std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
       }
       b.contents[j] = p.contents;
     }
+    d->bvh = buildPolygonBvh(model);
   }
   return d;
 }
@@ -57,7 +58,8 @@ ModelMemory modelMemory(const CollisionModel& model) {
              bytes(model.polygons()) + bytes(model.brushPlanes()) + bytes(model.brushes()) +
              bytes(model.nodes()) + bytes(model.polygonRefs()) + bytes(model.brushRefs());
   if (const detail::QueryData* d = detail::queryDataOf(model))
-    m.queryData = bytes(d->lines) + bytes(d->culls);
+    m.queryData = bytes(d->lines) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
+                  bytes(d->bvh.polygons);
   return m;
 }
 

@@ -105,6 +105,13 @@ struct QueryScratch {
   };
   std::vector<WalkSegment> walkStack;   ///< the far sides the tree walk has still to visit
   std::vector<std::int32_t> nodeStack;  ///< nodes a box walk has still to visit (penetration)
+  /// A child of the polygons' hierarchy still to visit, and the fraction at
+  /// which the move reaches its (grown) box.
+  struct BvhEntry {
+    std::int32_t child;
+    float near;
+  };
+  std::vector<BvhEntry> bvhStack;  ///< the hierarchy walk's children still to visit
   TrmFeatures trm;                      ///< the trace model of the current query
   QueryStats stats;                     ///< work counters (count(), CMKIT_QUERY_STATS builds)
   /// A rotation part's per-feature data (rotate_work.h), made on the first
@@ -274,6 +281,10 @@ struct TraceWork {
 /// Walks the model's tree along tw.start -> tw.end testing the polygons met
 /// for a translation (a point's or a trace model's, by tw.pointTrace).
 void translateThroughModel(TraceWork& tw);
+/// translateThroughModel through the polygons' hierarchy (bvh_walk.cpp);
+/// false, doing nothing, when the model has none (no query data, or a build
+/// without float lanes).
+bool translateThroughBvh(TraceWork& tw);
 /// Walks the model's tree around tw.start for a position test (brushes, then
 /// polygons), stopping once stuck.
 void positionTestThroughModel(TraceWork& tw);
@@ -304,6 +315,12 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
 bool translateTrmThroughNode(TraceWork& tw, const CmNode& node);
 /// The same for a point trace and a list of polygons (a node's).
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
+/// The lanes `pass` of leaf `leaf` of the polygons' hierarchy (those whose
+/// contents and bounds passed), culled further and tested in lane order, by
+/// a trace model's or a point's translation. True when the trace model is
+/// blocked completely (or the walk may stop: tw.quickExit).
+bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass);
+bool translatePointThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass);
 
 /// Rotation tests of a list of polygons (a node's; rotate.cpp); true when
 /// one blocks completely.

@@ -538,7 +538,42 @@ struct TranslationCullBlocks {
 bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNode& node) {
   return walkCullBlocks<TranslationCullBlocks>(tw, d, node);
 }
+
+bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
+  const CullBlock& b = bvh.leaves[leaf];
+  pass &= blockFacesPass(tw, b);
+  const std::int32_t* polygons = &bvh.polygons[leaf * kLanes];
+  while (pass) {
+    const int lane = std::countr_zero(pass);
+    pass &= pass - 1;
+    const std::int32_t polyNum = polygons[lane];
+    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
+    // (The bounds may have shrunk at a hit in this leaf.)
+    if (!boxesTouch(tw.bounds, poly.bounds)) continue;
+    if (translateTrmThroughPolygon(tw, polyNum, poly) || tw.quickExit) return true;
+  }
+  return false;
+}
 #endif
+
+bool translatePointThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
+  const std::int32_t* polygons = &bvh.polygons[leaf * kLanes];
+  while (pass) {
+    const int lane = std::countr_zero(pass);
+    pass &= pass - 1;
+    const std::int32_t polyNum = polygons[lane];
+    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
+    if (!pointMayTouch(tw, poly)) continue;
+    count(tw.scratch, &QueryStats::polygonsTested);
+    count(tw.scratch, &QueryStats::vertexTests);
+    const Real before = tw.fraction;
+    translatePointThroughPolygon(tw, polyNum, poly);
+    if (tw.fraction == before) continue;
+    shrinkTraceBounds(tw);
+    if (tw.fraction == 0) return true;
+  }
+  return false;
+}
 
 bool translateTrmThroughNode(TraceWork& tw, const CmNode& node) {
 #ifdef CMKIT_SIDES_SSE2

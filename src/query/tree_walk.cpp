@@ -165,6 +165,7 @@ void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {
 }
 
 void translateThroughModel(TraceWork& tw) {
+  if (translateThroughBvh(tw)) return;  // the polygons' hierarchy, where the model has one
   if (tw.model.nodes().empty()) return;
   if (tw.pointTrace)
     walkSegment<TranslatePointItems>(tw);

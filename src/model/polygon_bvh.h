@@ -1,0 +1,67 @@
+// Internal: cmkit's own query layout of a model's polygons, made once with
+// the model (query_data.h) beside the .cm file's axial BSP tree: a 4-wide
+// bounding volume hierarchy. Every polygon is in exactly one leaf (the BSP
+// tree lists a polygon at every node it straddles, so its walks mark what
+// they met); a leaf is one CullBlock of up to kLanes polygons, so the
+// culls of a leaf are one block's. Only kCullBlocks builds (float lanes)
+// make one; the queries fall back to the BSP tree without it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/query_blocks.h"
+
+namespace cmkit::detail {
+
+/// An inner node: the bounds of its up to kLanes children, one array per
+/// coordinate (lane j is child j). child[j] >= 0: node child[j]; < 0: leaf
+/// ~child[j]. An unused lane has inverted bounds (min > max), which no box
+/// touches.
+struct alignas(64) BvhNode {
+  float min[3][kLanes];
+  float max[3][kLanes];
+  std::int32_t child[kLanes];
+  // (Padded to two whole cache lines: 112 bytes at 16-byte alignment would
+  // straddle a third line every other node.)
+};
+static_assert(sizeof(BvhNode) == 128);
+
+/// A leaf: its polygons' culls, on whole cache lines (the first two hold
+/// what the first cull reads: bounds and contents).
+struct alignas(64) BvhLeaf : CullBlock {};
+static_assert(sizeof(BvhLeaf) == 192);
+
+/// The hierarchy of a model's polygons.
+struct PolygonBvh {
+  /// Node 0 is the root (none for a model without polygons).
+  std::vector<BvhNode> nodes;
+  /// Leaf b's polygons' culls (bounds, contents, normal); an unused lane
+  /// has contents 0 and inverted bounds.
+  std::vector<BvhLeaf> leaves;
+  /// The polygon number of leaf b's lane j at b * kLanes + j (-1: unused).
+  std::vector<std::int32_t> polygons;
+  /// Inner nodes on the longest path from the root (the walks' stacks hold
+  /// at most (kLanes - 1) * depth + 1 entries).
+  std::size_t depth = 0;
+
+  bool empty() const { return nodes.empty(); }
+  /// Entries a walk's stack needs.
+  std::size_t stackSize() const { return (kLanes - 1) * depth + 1; }
+};
+
+/// Models with at most this many polygons get no hierarchy (their
+/// translations walk the BSP tree): a walk of a small model's tree meets a
+/// handful of polygons as fast, and a hierarchy's nodes and leaves (128 and
+/// 192 bytes, a leaf for about three polygons) would outweigh the model's
+/// own arrays (a map's small brush entities: 1.6x their arrays at 32).
+inline constexpr std::size_t kBvhMinPolygons = 256;
+
+/// The hierarchy of the model's polygons (the arrays' numbers in range);
+/// empty for a model with kBvhMinPolygons or fewer.
+/// Made top-down, splitting each set of polygons in two at the cheapest of
+/// a few planes along its widest axis by the surface-area cost (binned), into
+/// up to kLanes children per node; sets of up to kLanes polygons are leaves.
+PolygonBvh buildPolygonBvh(const ModelArrays& m);
+
+}  // namespace cmkit::detail
