@@ -1,4 +1,4 @@
-// cmkit_peers: the speed test's translations run through cmkit and through
+// cmkit_peers --speed-test: the speed test's translations run through cmkit and through
 // Bullet (btCollisionWorld::convexSweepTest with a box against a
 // btBvhTriangleMeshShape of the world model's polygons; rayTest for points)
 // and, when built with Embree (Debian libembree-dev), the points through
@@ -8,7 +8,7 @@
 // (the first surface crossing, what the peers compute). Each timing is the fastest of
 // --passes runs over all the queries (robust against a busy machine).
 //
-//   cmkit_peers [MAP] [--times N] [--passes N]
+//   cmkit_peers --speed-test [MAP] [--times N] [--passes N]
 //
 // Semantic differences (docs/performance.md): cmkit stops 0.25 units in front
 // of a surface and collides only with the front faces of polygons; Bullet's
@@ -21,8 +21,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <functional>
 #include <memory>
 #include <span>
@@ -35,16 +33,12 @@
 #include "cmkit/query.h"
 #include "cmkit/ray_index.h"
 #include "cmkit/tools/speed_test.h"
+#include "peers.h"
 
 namespace {
 
-namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-/// Queries per kind by default (as the speed test).
-constexpr int kDefaultTimes = 1000;
-/// Timed runs over all queries per kind; the fastest is reported.
-constexpr int kDefaultPasses = 5;
 /// The speed test's box (cm_testBox) and move length (cm_testLength).
 constexpr cmkit::Real kBoxHalfX = 16, kBoxHalfY = 16, kBoxHalfZ = 32, kBoxCentreZ = 32;
 constexpr cmkit::Real kLength = 1024;
@@ -184,43 +178,9 @@ void batchThroughput(const cmkit::CollisionModel& world, const cmkit::RayIndex& 
   }
 }
 
-std::string defaultMap() {
-  const fs::path source(CMKIT_SOURCE_DIR);
-  for (const fs::path& p :
-       {source / ".." / "shared" / "maps" / "lt4" / "lt4.map", source / "data" / "maps" / "lt4" / "lt4.map"})
-    if (fs::exists(p)) return p.lexically_normal().string();
-  return {};
-}
-
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string mapPath;
-  int times = kDefaultTimes;
-  int passes = kDefaultPasses;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--times" && i + 1 < argc) {
-      times = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--passes" && i + 1 < argc) {
-      passes = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "-h" || arg == "--help") {
-      std::printf(
-          "usage: cmkit_peers [MAP] [--times N] [--passes N]\n"
-          "  MAP        a Doom 3 .map (default: lt4); its world model is the scene\n"
-          "  --times    translations per kind (default %d)\n"
-          "  --passes   timed runs per kind, the fastest is printed (default %d)\n",
-          kDefaultTimes, kDefaultPasses);
-      return 0;
-    } else {
-      mapPath = arg;
-    }
-  }
-  if (mapPath.empty()) mapPath = defaultMap();
-  if (mapPath.empty()) {
-    std::fprintf(stderr, "cmkit_peers: no map given and lt4.map not found\n");
-    return 2;
-  }
+int peers::runSpeedTestSection(const std::string& mapPath, int times, int passes) {
   auto map = cmkit::loadMapFile(mapPath);
   if (!map) {
     std::fprintf(stderr, "cmkit_peers: %s\n", map.error().toString().c_str());

@@ -1,0 +1,376 @@
+// cmkit_peers: cmkit against Jolt, Bullet and Embree on the same triangles
+// and the same queries, in one run and one process, with the agreement of
+// each engine with an exact reference (reference.cpp). `--help` explains.
+// The old program (the speed test's moves on lt4 and the batches) is the
+// `--speed-test` section (speed_test_section.cpp).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cmkit_side.h"
+#include "peers.h"
+#include "reference.h"
+
+namespace {
+
+using namespace peers;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kDefaultQueries = 10000;
+constexpr int kDefaultPasses = 5;
+constexpr int kDefaultSpeedTestTimes = 1000;
+constexpr std::uint64_t kQuerySeed = 7;
+constexpr double kMinLength = 1, kMaxLength = 2000;
+
+/// Distance tolerance of the peers against the exact contact. Their answers
+/// are float fractions of moves of up to 2000 units (float's step there is
+/// ~1e-4 of a unit) found by iterative methods with their own tolerances
+/// (Jolt's and Bullet's GJK-based casts converge to ~1e-3 units); 0.05
+/// units is far above both and far below any shape's size.
+constexpr double kPeerTolerance = 0.05;
+/// Distance tolerance of cmkit against the clip-epsilon model. cmkit backs
+/// off exactly kClipEpsilon along the plane's normal for a face contact, but
+/// for an edge-edge contact it shifts the trace-model edge by the epsilon
+/// along the edge's own normal (the bisector of its two faces), not along
+/// the contact's normal: the model is exact for face contacts and off by a
+/// fraction of the epsilon (< 0.25 / |cos|) for edge contacts. 0.1 units.
+constexpr double kCmkitTolerance = 0.1;
+
+/// The fastest of `passes` runs of run(), in ns per query of n.
+template <class F>
+double fastest(int passes, std::size_t n, F&& run) {
+  double best = 0;
+  for (int p = 0; p < passes; ++p) {
+    const auto t0 = Clock::now();
+    run();
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(n);
+    best = p == 0 ? ns : std::min(best, ns);
+  }
+  return best;
+}
+
+/// The queries: starts uniform in the scene's bounds, directions uniform on
+/// the sphere, lengths log-uniform in [kMinLength, kMaxLength].
+std::vector<Query> makeQueries(const Scene& scene, std::size_t n) {
+  Rng rng(kQuerySeed);
+  std::vector<Query> qs(n);
+  for (Query& q : qs) {
+    double d[3], len2;
+    do {
+      for (double& c : d) c = rng.uniform(-1, 1);
+      len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    } while (len2 > 1 || len2 < 1e-6);
+    const double length = std::exp(rng.uniform(std::log(kMinLength), std::log(kMaxLength))) / std::sqrt(len2);
+    for (int k = 0; k < 3; ++k) {
+      const double s = rng.uniform(scene.boundsMin[k], scene.boundsMax[k]);
+      q.start[k] = float(s);
+      q.end[k] = float(s + d[k] * length);
+    }
+  }
+  return qs;
+}
+
+/// A fixed orientation that turns every axis (rows = the shape's axes): 37
+/// degrees about (1, 2, 3).
+void fixedAxis(float (&axis)[9]) {
+  const double a = 37 * 3.14159265358979323846 / 180, l = std::sqrt(14.0);
+  const double x = 1 / l, y = 2 / l, z = 3 / l, c = std::cos(a), s = std::sin(a), t = 1 - c;
+  const double m[9] = {t * x * x + c,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
+                       t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+  for (int i = 0; i < 9; ++i) axis[i] = float(m[i]);
+}
+
+struct Kind {
+  const char* name;
+  const char* trm;
+  bool turned;
+};
+constexpr Kind kKinds[] = {{"point ray", "point", false},
+                           {"box", "box:-16,-16,0,16,16,64", false},
+                           {"box+axis", "box:-16,-16,0,16,16,64", true},
+                           {"cylinder:8", "cylinder:8:-16,-16,0,16,16,64", false},
+                           {"cylinder:8+axis", "cylinder:8:-16,-16,0,16,16,64", true}};
+constexpr int kNumKinds = 5;
+enum Engine { kCmkit, kJolt, kBullet, kEmbree, kEngines };
+constexpr const char* kEngineNames[kEngines] = {"cmkit", "Jolt", "Bullet", "Embree"};
+
+/// One engine's agreement with the reference on one kind.
+struct Agreement {
+  int hitAgree = 0;
+  int bothHit = 0;
+  int distAgree = 0;
+  double worst = 0;  // largest distance error where both hit
+};
+
+struct Row {
+  double ns[kEngines] = {-1, -1, -1, -1};
+  Agreement agree[kEngines];
+  int excluded = 0, considered = 0, refHits = 0;
+};
+
+Agreement agreement(const std::vector<RefAnswer>& ref, std::span<const Query> qs, const std::vector<float>& f,
+                    bool cmkitModel, double tolerance) {
+  Agreement a;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    if (ref[i].startOverlap) continue;
+    const bool expectHit = cmkitModel ? ref[i].cmkitHit : ref[i].hit;
+    const double expect = cmkitModel ? ref[i].cmkitDist : ref[i].dist;
+    const bool hit = f[i] <= 1;
+    if (hit == expectHit) ++a.hitAgree;
+    if (!hit || !expectHit) continue;
+    ++a.bothHit;
+    double len = 0;
+    for (int k = 0; k < 3; ++k) len += double(qs[i].end[k] - qs[i].start[k]) * double(qs[i].end[k] - qs[i].start[k]);
+    const double err = std::abs(double(f[i]) * std::sqrt(len) - expect);
+    a.worst = std::max(a.worst, err);
+    if (err <= tolerance) ++a.distAgree;
+  }
+  return a;
+}
+
+std::string cell(double v, const char* fmt) {
+  if (v < 0) return "-";
+  char b[32];
+  std::snprintf(b, sizeof b, fmt, v);
+  return b;
+}
+
+std::string pct(int n, int of) { return of > 0 ? cell(100.0 * n / of, "%.2f") : "-"; }
+
+struct SceneReport {
+  std::string title;
+  Row rows[kNumKinds];
+  double buildMs[kEngines] = {-1, -1, -1, -1};
+  double rayIndexMs = -1;
+  bool present[kEngines] = {true, false, false, false};
+};
+
+void printReport(const SceneReport& r, bool markdown) {
+  const char* sep = markdown ? " | " : "  ";
+  auto line = [&](const std::vector<std::string>& cells, const std::vector<int>& widths) {
+    std::string s = markdown ? "| " : "";
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      char b[64];
+      std::snprintf(b, sizeof b, i == 0 ? "%-*s" : "%*s", widths[i], cells[i].c_str());
+      s += b;
+      if (i + 1 < cells.size()) s += sep;
+    }
+    std::printf("%s%s\n", s.c_str(), markdown ? " |" : "");
+  };
+  auto rule = [&](const std::vector<int>& widths) {
+    if (!markdown) return;
+    std::string s = "|";
+    for (std::size_t i = 0; i < widths.size(); ++i) s += (i == 0 ? ":" : "") + std::string(std::size_t(widths[i] + 1), '-') + (i == 0 ? "|" : ":|");
+    std::printf("%s\n", s.c_str());
+  };
+  std::printf("\n%s%s\n\n", markdown ? "#### " : "", r.title.c_str());
+  const std::vector<int> w = {22, 9, 9, 9, 9, 10, 12, 12};
+  line({"ns/query (fastest pass)", "cmkit", "Jolt", "Bullet", "Embree", "cmkit/Jolt", "cmkit/Bullet", "cmkit/Embree"}, w);
+  rule(w);
+  auto ratio = [](double a, double b) { return a > 0 && b > 0 ? cell(a / b, "%.2f") : std::string("-"); };
+  for (int k = 0; k < kNumKinds; ++k) {
+    const Row& row = r.rows[k];
+    line({kKinds[k].name, cell(row.ns[kCmkit], "%.0f"), cell(row.ns[kJolt], "%.0f"), cell(row.ns[kBullet], "%.0f"),
+          cell(row.ns[kEmbree], "%.0f"), ratio(row.ns[kCmkit], row.ns[kJolt]), ratio(row.ns[kCmkit], row.ns[kBullet]),
+          ratio(row.ns[kCmkit], row.ns[kEmbree])},
+         w);
+  }
+  const double* b = r.buildMs;
+  line({"build, model (ms)", cell(b[kCmkit], "%.1f"), cell(b[kJolt], "%.1f"), cell(b[kBullet], "%.1f"), "-",
+        ratio(b[kCmkit], b[kJolt]), ratio(b[kCmkit], b[kBullet]), "-"},
+       w);
+  line({"build, ray index (ms)", cell(r.rayIndexMs, "%.1f"), "-", "-", cell(b[kEmbree], "%.1f"), "-", "-",
+        ratio(r.rayIndexMs, b[kEmbree])},
+       w);
+  std::printf("\n");
+  std::vector<std::string> head = {"agreement: hit% / dist%", "excluded", "ref hits"};
+  std::vector<int> w2 = {23, 8, 8};
+  for (int e = 0; e < kEngines; ++e)
+    if (r.present[e]) {
+      head.push_back(kEngineNames[e]);
+      w2.push_back(15);
+    }
+  line(head, w2);
+  rule(w2);
+  for (int k = 0; k < kNumKinds; ++k) {
+    const Row& row = r.rows[k];
+    std::vector<std::string> c = {kKinds[k].name, std::to_string(row.excluded), std::to_string(row.refHits)};
+    for (int e = 0; e < kEngines; ++e) {
+      if (!r.present[e]) continue;
+      c.push_back(row.ns[e] < 0 ? "-" : pct(row.agree[e].hitAgree, row.considered) + " / " + pct(row.agree[e].distAgree, row.agree[e].bothHit));
+    }
+    line(c, w2);
+  }
+}
+
+SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads, bool verbose) {
+  SceneReport r;
+  std::printf("%s: %zu triangles, %zu vertices; %zu queries (starts uniform in the bounds, directions uniform, "
+              "lengths log-uniform in [%g, %g]); fastest of %d passes\n",
+              scene.name.c_str(), scene.numTriangles(), scene.numVertices(), n, kMinLength, kMaxLength, passes);
+  std::fflush(stdout);
+  std::unique_ptr<Peer> peers[kEngines] = {nullptr, makeJoltPeer(), makeBulletPeer(), makeEmbreePeer()};
+  CmkitEngine cmkit;
+  bool ok = true;
+  r.buildMs[kCmkit] = fastest(passes, 1, [&] { ok = cmkit.buildModel(scene); }) * 1e-6;
+  if (!ok) return r;
+  r.rayIndexMs = fastest(passes, 1, [&] { cmkit.buildRayIndex(); }) * 1e-6;
+  for (int e = kJolt; e < kEngines; ++e)
+    if (peers[e]) {
+      r.present[e] = true;
+      r.buildMs[e] = fastest(passes, 1, [&] { peers[e]->build(scene); }) * 1e-6;
+    }
+  const std::vector<Query> qs = makeQueries(scene, n);
+  const RefScene refScene(scene);
+  float axis[9];
+  fixedAxis(axis);
+  const float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  std::vector<float> f(n);
+  for (int k = 0; k < kNumKinds; ++k) {
+    const Kind& kind = kKinds[k];
+    ShapeSpec spec;
+    spec.name = kind.name;
+    if (!cmkit.prepare(kind.trm, kind.turned ? axis : identity, spec)) continue;
+    const auto t0 = Clock::now();
+    const std::vector<RefAnswer> ref = exactReference(refScene, spec, qs, threads);
+    const double refSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    Row& row = r.rows[k];
+    for (const RefAnswer& a : ref) {
+      row.excluded += a.startOverlap;
+      row.refHits += !a.startOverlap && a.hit;
+    }
+    row.considered = int(n) - row.excluded;
+    row.ns[kCmkit] = fastest(passes, n, [&] { spec.point ? cmkit.rays(qs, f.data()) : cmkit.sweep(qs, f.data()); });
+    row.agree[kCmkit] = agreement(ref, qs, f, !spec.point, spec.point ? kPeerTolerance : kCmkitTolerance);
+    for (int e = kJolt; e < kEngines; ++e) {
+      if (!peers[e] || (!spec.point && !peers[e]->hasSweeps())) continue;
+      peers[e]->prepare(spec);
+      row.ns[e] = fastest(passes, n, [&] { spec.point ? peers[e]->rays(qs, f.data()) : peers[e]->sweep(qs, f.data()); });
+      row.agree[e] = agreement(ref, qs, f, false, kPeerTolerance);
+    }
+    if (verbose) {
+      std::printf("  %-16s reference %.1f s; largest distance error where both hit:", kind.name, refSeconds);
+      for (int e = 0; e < kEngines; ++e)
+        if (row.ns[e] >= 0) std::printf(" %s %.4g", kEngineNames[e], row.agree[e].worst);
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+  }
+  r.title = scene.name + ", " + std::to_string(scene.numTriangles()) + " triangles, " + std::to_string(n) + " queries";
+  return r;
+}
+
+std::string defaultMap() {
+  namespace fs = std::filesystem;
+  const fs::path source(CMKIT_SOURCE_DIR);
+  for (const fs::path& p : {source / ".." / "shared" / "maps" / "lt4" / "lt4.map", source / "data" / "maps" / "lt4" / "lt4.map"})
+    if (fs::exists(p)) return p.lexically_normal().string();
+  return {};
+}
+
+void help() {
+  std::printf(
+      "usage: cmkit_peers [--queries N] [--passes N] [--scene lt4|generated|both] [--map MAP] [--markdown]\n"
+      "                   [--threads N] [--verbose]\n"
+      "       cmkit_peers --speed-test [MAP] [--times N] [--passes N]\n"
+      "\n"
+      "Times cmkit against Jolt, Bullet and Embree on the same triangles and the same queries, in\n"
+      "one process, and checks every engine against an exact reference.\n"
+      "\n"
+      "Scenes: lt4's world model (every solid|playerclip polygon as a triangle fan) and a generated\n"
+      "scene (~50k triangles: terrain, crates, stairs, ramps). Every engine gets the same triangles,\n"
+      "two-sided: cmkit a mesh with one two-sided solid material (buildCollisionModelFromTriangles),\n"
+      "Jolt a MeshShape (back faces collide), Bullet a btBvhTriangleMeshShape, Embree a scene.\n"
+      "\n"
+      "Queries (fixed seed): starts uniform in the scene's bounds, directions uniform on the sphere,\n"
+      "lengths log-uniform in [1, 2000]; the same for every kind and engine. Kinds: point ray\n"
+      "(cmkit RayIndex::cast, Jolt MeshShape::CastRay, Bullet rayTest, Embree rtcIntersect1); box\n"
+      "-16,-16,0..16,16,64 and an 8-sided cylinder of the same bounds, each also turned by a fixed\n"
+      "orientation (+axis): cmkit translate(), Jolt BoxShape/ConvexHullShape (convex radius 0) cast\n"
+      "with CollisionDispatch::sCastShapeVsShapeLocalSpace, Bullet convexSweepTest (margins 0).\n"
+      "Times: ns per query, the fastest of --passes passes over all queries; builds in ms.\n"
+      "Ratios: cmkit time / peer time (below 1: cmkit faster).\n"
+      "\n"
+      "Agreement: hit%% = queries whose hit/miss matches the reference; dist%% = of the queries both\n"
+      "hit, those whose stop distance matches (peers: the exact contact within %.2g units; cmkit's\n"
+      "sweeps: the contact less 0.25 / |cos(move, contact normal)| within %.2g units, since cmkit\n"
+      "stops 0.25 units in front of a surface along its normal, and also stops on a surface the\n"
+      "move ends within 0.25 of). Queries starting in contact with a triangle (by the reference)\n"
+      "are excluded and counted. The reference is brute force in double precision (reference.cpp).\n"
+      "\n"
+      "  --queries N   queries per kind (default %d)\n"
+      "  --passes N    timed passes, the fastest counts (default %d)\n"
+      "  --scene S     lt4, generated or both (default both)\n"
+      "  --map MAP     the map of the lt4 scene (default: lt4.map of the shared data or data/)\n"
+      "  --markdown    print the tables as Markdown\n"
+      "  --threads N   threads of the reference (not timed; default 2)\n"
+      "  --verbose     the reference's time and each engine's largest distance error per kind\n"
+      "  --speed-test  the older comparison instead: the speed test's moves from lt4's centre\n"
+      "                through cmkit, Bullet and Embree, and batches on 1 and 2 threads\n"
+      "                (--times N moves, default %d)\n"
+      "\n"
+      "Jolt is compared when cmkit_peers was built with it (bench/peers/build_jolt.sh), Embree\n"
+      "when libembree-dev was found.\n",
+      kPeerTolerance, kCmkitTolerance, kDefaultQueries, kDefaultPasses, kDefaultSpeedTestTimes);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int queries = kDefaultQueries, passes = kDefaultPasses, times = kDefaultSpeedTestTimes, threads = 2;
+  std::string sceneArg = "both", mapPath;
+  bool markdown = false, speedTest = false, verbose = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--queries" && hasValue) queries = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--passes" && hasValue) passes = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--times" && hasValue) times = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--threads" && hasValue) threads = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--scene" && hasValue) sceneArg = argv[++i];
+    else if (arg == "--map" && hasValue) mapPath = argv[++i];
+    else if (arg == "--markdown") markdown = true;
+    else if (arg == "--verbose") verbose = true;
+    else if (arg == "--speed-test") speedTest = true;
+    else if (arg == "-h" || arg == "--help") {
+      help();
+      return 0;
+    } else if (speedTest && arg[0] != '-') mapPath = arg;
+    else {
+      std::fprintf(stderr, "cmkit_peers: unknown argument '%s' (--help)\n", arg.c_str());
+      return 2;
+    }
+  }
+  if (sceneArg != "lt4" && sceneArg != "generated" && sceneArg != "both") {
+    std::fprintf(stderr, "cmkit_peers: --scene lt4, generated or both\n");
+    return 2;
+  }
+  if (mapPath.empty()) mapPath = defaultMap();
+  if (speedTest) {
+    if (mapPath.empty()) {
+      std::fprintf(stderr, "cmkit_peers: no map given and lt4.map not found\n");
+      return 2;
+    }
+    return runSpeedTestSection(mapPath, times, passes);
+  }
+  if (!joltCompiledIn()) std::printf("Jolt: not compared (run bench/peers/build_jolt.sh)\n");
+  if (!embreeCompiledIn()) std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
+  std::vector<SceneReport> reports;
+  if (sceneArg != "generated") {
+    if (mapPath.empty()) {
+      std::fprintf(stderr, "cmkit_peers: no map given and lt4.map not found\n");
+      return 2;
+    }
+    const Scene lt4 = loadMapScene(mapPath);
+    if (lt4.indices.empty()) return 2;
+    reports.push_back(runScene(lt4, std::size_t(queries), passes, threads, verbose));
+  }
+  if (sceneArg != "lt4") reports.push_back(runScene(generatedScene(), std::size_t(queries), passes, threads, verbose));
+  for (const SceneReport& r : reports) printReport(r, markdown);
+  return 0;
+}
