@@ -1,6 +1,7 @@
 // cmkit_side.cpp: cmkit as an engine of cmkit_peers (cmkit_side.h).
 #include "cmkit_side.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "cmkit/materials.h"
@@ -70,6 +71,8 @@ bool CmkitEngine::prepare(const char* trmSpec, const float (&axis)[9], ShapeSpec
   spec.hull.clear();
   for (const cmkit::Vec3& v : trm->vertices()) spec.hull.insert(spec.hull.end(), {v.x, v.y, v.z});
   for (int i = 0; i < 9; ++i) spec.axis[i] = axis[i];
+  spec.edgeNormalMax = 1;
+  for (int e = 1; e <= trm->numEdges(); ++e) spec.edgeNormalMax = std::max(spec.edgeNormalMax, float(trm->edge(e).normal.length()));
   return true;
 }
 

@@ -40,6 +40,10 @@ struct ShapeSpec {
   float halfExtents[3] = {0, 0, 0};
   std::vector<float> hull;
   float axis[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  /// The longest of cmkit's edge normals of the shape (TrmEdge::normal: the
+  /// bisector of the edge's faces scaled to a component of 1 along each;
+  /// sqrt(2) for a box), for the reference's model of cmkit's clip epsilon.
+  float edgeNormalMax = 1;
 };
 
 /// A small deterministic generator (splitmix64): the same scene and queries

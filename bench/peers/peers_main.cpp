@@ -33,13 +33,13 @@ constexpr double kMinLength = 1, kMaxLength = 2000;
 /// (Jolt's and Bullet's GJK-based casts converge to ~1e-3 units); 0.05
 /// units is far above both and far below any shape's size.
 constexpr double kPeerTolerance = 0.05;
-/// Distance tolerance of cmkit against the clip-epsilon model. cmkit backs
-/// off exactly kClipEpsilon along the plane's normal for a face contact, but
-/// for an edge-edge contact it shifts the trace-model edge by the epsilon
-/// along the edge's own normal (the bisector of its two faces), not along
-/// the contact's normal: the model is exact for face contacts and off by a
-/// fraction of the epsilon (< 0.25 / |cos|) for edge contacts. 0.1 units.
-constexpr double kCmkitTolerance = 0.1;
+/// Distance tolerance of cmkit against its clip-epsilon bracket
+/// (reference.h): the bracket is exact in double; cmkit works in float on
+/// coordinates up to ~8000 (a float step of 5e-4 there) and fractions of moves
+/// up to 2000 units (a step of ~1e-4): 0.02 units is 40 times those.
+constexpr double kCmkitTolerance = 0.02;
+/// --list: print every query whose answer disagrees.
+bool gList = false;
 
 /// The fastest of `passes` runs of run(), in ns per query of n.
 template <class F>
@@ -117,18 +117,27 @@ Agreement agreement(const std::vector<RefAnswer>& ref, std::span<const Query> qs
                     bool cmkitModel, double tolerance) {
   Agreement a;
   for (std::size_t i = 0; i < ref.size(); ++i) {
-    if (ref[i].startOverlap) continue;
-    const bool expectHit = cmkitModel ? ref[i].cmkitHit : ref[i].hit;
-    const double expect = cmkitModel ? ref[i].cmkitDist : ref[i].dist;
-    const bool hit = f[i] <= 1;
-    if (hit == expectHit) ++a.hitAgree;
-    if (!hit || !expectHit) continue;
-    ++a.bothHit;
+    const RefAnswer& r = ref[i];
+    if (r.startOverlap) continue;
     double len = 0;
     for (int k = 0; k < 3; ++k) len += double(qs[i].end[k] - qs[i].start[k]) * double(qs[i].end[k] - qs[i].start[k]);
-    const double err = std::abs(double(f[i]) * std::sqrt(len) - expect);
+    len = std::sqrt(len);
+    const bool hit = f[i] <= 1;
+    // The exact contact, or cmkit's bracket (reference.h).
+    const bool mustHit = cmkitModel ? r.cmkitMustHit : r.hit, mayHit = cmkitModel ? r.cmkitMayHit : r.hit;
+    const double earliest = cmkitModel ? r.cmkitEarliest : r.dist, latest = cmkitModel ? r.cmkitLatest : r.dist;
+    if (hit ? mayHit : !mustHit) ++a.hitAgree;
+    else if (gList)
+      std::printf("  disagrees: query %zu length %.3f answered %s, expected %s\n", i, len, hit ? "hit" : "miss",
+                  mustHit ? "hit" : "miss");
+    if (!hit || !mayHit) continue;
+    ++a.bothHit;
+    const double d = double(f[i]) * len;
+    const double err = d < earliest ? earliest - d : d > latest ? d - latest : 0;
     a.worst = std::max(a.worst, err);
     if (err <= tolerance) ++a.distAgree;
+    else if (gList)
+      std::printf("  disagrees: query %zu length %.3f exact %.4f expected %.4f..%.4f answered %.4f\n", i, len, r.dist, earliest, latest, d);
   }
   return a;
 }
@@ -276,7 +285,7 @@ std::string defaultMap() {
 void help() {
   std::printf(
       "usage: cmkit_peers [--queries N] [--passes N] [--scene lt4|generated|both] [--map MAP] [--markdown]\n"
-      "                   [--threads N] [--verbose]\n"
+      "                   [--threads N] [--verbose] [--list]\n"
       "       cmkit_peers --speed-test [MAP] [--times N] [--passes N]\n"
       "\n"
       "Times cmkit against Jolt, Bullet and Embree on the same triangles and the same queries, in\n"
@@ -297,10 +306,11 @@ void help() {
       "Ratios: cmkit time / peer time (below 1: cmkit faster).\n"
       "\n"
       "Agreement: hit%% = queries whose hit/miss matches the reference; dist%% = of the queries both\n"
-      "hit, those whose stop distance matches (peers: the exact contact within %.2g units; cmkit's\n"
-      "sweeps: the contact less 0.25 / |cos(move, contact normal)| within %.2g units, since cmkit\n"
-      "stops 0.25 units in front of a surface along its normal, and also stops on a surface the\n"
-      "move ends within 0.25 of). Queries starting in contact with a triangle (by the reference)\n"
+      "hit, those whose stop distance matches (peers and cmkit's rays: the exact contact within\n"
+      "%.2g units; cmkit's sweeps: within %.2g units of the bracket of its clip epsilon: cmkit stops\n"
+      "0.25 units in front of a surface along its normal, so it meets the shapes with their\n"
+      "separating planes pushed out by 0.25, by up to 0.25 x |edge normal| on edge pairs, see\n"
+      "reference.h). Queries starting in contact with a triangle (by the reference)\n"
       "are excluded and counted. The reference is brute force in double precision (reference.cpp).\n"
       "\n"
       "  --queries N   queries per kind (default %d)\n"
@@ -310,6 +320,7 @@ void help() {
       "  --markdown    print the tables as Markdown\n"
       "  --threads N   threads of the reference (not timed; default 2)\n"
       "  --verbose     the reference's time and each engine's largest distance error per kind\n"
+      "  --list        also every query on which an engine disagrees (before its kind's line)\n"
       "  --speed-test  the older comparison instead: the speed test's moves from lt4's centre\n"
       "                through cmkit, Bullet and Embree, and batches on 1 and 2 threads\n"
       "                (--times N moves, default %d)\n"
@@ -336,6 +347,7 @@ int main(int argc, char** argv) {
     else if (arg == "--map" && hasValue) mapPath = argv[++i];
     else if (arg == "--markdown") markdown = true;
     else if (arg == "--verbose") verbose = true;
+    else if (arg == "--list") gList = verbose = true;
     else if (arg == "--speed-test") speedTest = true;
     else if (arg == "-h" || arg == "--help") {
       help();

@@ -12,7 +12,8 @@
 // polyhedra, a triangle being a flat one). The first contact is the latest
 // entry, if it is no later than the earliest exit; the axis of that entry is
 // the contact's normal. Triangles whose bounds miss the swept shape's bounds
-// are skipped.
+// are skipped. cmkit's answers are modelled by the same test with every
+// axis's interval widened by a margin (reference.h, RefAnswer).
 #include "reference.h"
 
 #include <algorithm>
@@ -24,13 +25,10 @@ namespace peers {
 
 namespace {
 
-/// How far past the end of a move a surface can still stop cmkit (a move
-/// ending within kClipEpsilon of a surface along its normal stops): the
-/// culling bounds are padded by this, which covers every surface met at
-/// |cos| >= kClipEpsilon / kReach = 1/32. (Closer to grazing, a near-end
-/// surface may be missed by the model; such moves are rare and counted as
-/// disagreements, not hidden.)
-constexpr double kReach = 8;
+/// Padding of the culling bounds for the widened tests: beyond the largest
+/// margin (0.25 x sqrt(2) for a box), for the sharp corners of the widened
+/// shapes.
+constexpr double kCullPad = 2;
 /// Cross products of nearly parallel edges are no axes (their interval is
 /// that of other axes).
 constexpr double kParallel = 1e-12;
@@ -114,13 +112,19 @@ struct Contact {
   double cosine = 1;
 };
 
-/// The polytope moving by `move` from `start` against triangle (a, b, c), for t in [0, tLimit].
-Contact sweepTriangle(const Polytope& p, const D3& start, const D3& move, const D3 (&tri)[3], double tLimit) {
+/// The polytope moving by `move` from `start` against triangle (a, b, c), for
+/// t in [0, 1], each axis's overlap widened by faceMargin (face normals) or
+/// edgeMargin (edge pairs).
+Contact sweepTriangle(const Polytope& p, const D3& start, const D3& move, const D3 (&tri)[3], double faceMargin,
+                      double edgeMargin) {
   Contact c;
   double enter = -std::numeric_limits<double>::infinity(), exit = std::numeric_limits<double>::infinity();
   D3 enterAxis{0, 0, 1};
   const D3 te[3] = {tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]};
-  auto axis = [&](const D3& n) {
+  double margin = faceMargin;
+  auto axis = [&](D3 n) {
+    const double len = std::sqrt(dot(n, n));
+    n = {n.x / len, n.y / len, n.z / len};
     double pmin = 1e300, pmax = -1e300;
     for (const D3& v : p.vertices) {
       const double d = dot(n, v);
@@ -131,7 +135,7 @@ Contact sweepTriangle(const Polytope& p, const D3& start, const D3& move, const 
     pmin += s;
     pmax += s;
     const double t0 = dot(n, tri[0]), t1 = dot(n, tri[1]), t2 = dot(n, tri[2]);
-    const double tmin = std::min({t0, t1, t2}), tmax = std::max({t0, t1, t2});
+    const double tmin = std::min({t0, t1, t2}) - margin, tmax = std::max({t0, t1, t2}) + margin;
     const double v = dot(n, move);
     if (v == 0) {
       if (pmin > tmax || pmax < tmin) exit = -1;  // separated for ever
@@ -145,13 +149,14 @@ Contact sweepTriangle(const Polytope& p, const D3& start, const D3& move, const 
     }
     exit = std::min(exit, out);
   };
-  auto separated = [&] { return enter > exit || exit < 0 || enter > tLimit; };
+  auto separated = [&] { return enter > exit || exit < 0 || enter > 1; };
   axis(cross(te[0], te[1]));
   if (separated()) return c;
   for (const D3& f : p.faces) {
     axis(f);
     if (separated()) return c;
   }
+  margin = edgeMargin;
   for (const D3& e : p.edges)
     for (const D3& t : te) {
       const D3 n = cross(e, t);
@@ -183,22 +188,21 @@ double segmentTriangle(const D3& start, const D3& move, const D3 (&tri)[3]) {
   return t >= 0 && t <= 1 ? t : -1;
 }
 
-RefAnswer answer(const RefScene& scene, const Polytope* p, const Query& q) {
+RefAnswer answer(const RefScene& scene, const Polytope* p, double edgeNormalMax, const Query& q) {
   RefAnswer r;
   const D3 start{q.start[0], q.start[1], q.start[2]};
   const D3 move = D3{q.end[0], q.end[1], q.end[2]} - start;
   const double length = std::sqrt(dot(move, move));
   if (length == 0) return r;
-  const double pad = p ? kReach : 0;
+  const double pad = (p ? kCullPad : 0) + 1e-3;
   const D3 lo = p ? p->lo : D3{0, 0, 0}, hi = p ? p->hi : D3{0, 0, 0};
-  const float bx0 = float(std::min(start.x, start.x + move.x) + lo.x - pad - 1e-3);
-  const float by0 = float(std::min(start.y, start.y + move.y) + lo.y - pad - 1e-3);
-  const float bz0 = float(std::min(start.z, start.z + move.z) + lo.z - pad - 1e-3);
-  const float bx1 = float(std::max(start.x, start.x + move.x) + hi.x + pad + 1e-3);
-  const float by1 = float(std::max(start.y, start.y + move.y) + hi.y + pad + 1e-3);
-  const float bz1 = float(std::max(start.z, start.z + move.z) + hi.z + pad + 1e-3);
-  const double tLimit = 1 + kReach / length;
-  double best = 2, cmkitBest = std::numeric_limits<double>::infinity();
+  const float bx0 = float(std::min(start.x, start.x + move.x) + lo.x - pad);
+  const float by0 = float(std::min(start.y, start.y + move.y) + lo.y - pad);
+  const float bz0 = float(std::min(start.z, start.z + move.z) + lo.z - pad);
+  const float bx1 = float(std::max(start.x, start.x + move.x) + hi.x + pad);
+  const float by1 = float(std::max(start.y, start.y + move.y) + hi.y + pad);
+  const float bz1 = float(std::max(start.z, start.z + move.z) + hi.z + pad);
+  double best = 2, late = 2, early = 2;
   const std::size_t n = scene.minX.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (scene.minX[i] > bx1 || scene.maxX[i] < bx0 || scene.minY[i] > by1 || scene.maxY[i] < by0 ||
@@ -211,20 +215,27 @@ RefAnswer answer(const RefScene& scene, const Polytope* p, const Query& q) {
       if (t >= 0) best = std::min(best, t);
       continue;
     }
-    const Contact c = sweepTriangle(*p, start, move, tri, tLimit);
-    if (!c.touches) continue;
-    if (c.overlapAtStart) r.startOverlap = true;
-    if (c.t <= 1) best = std::min(best, c.t);
-    if (c.cosine > 0) cmkitBest = std::min(cmkitBest, c.t * length - kClipEpsilon / c.cosine);
+    const Contact c = sweepTriangle(*p, start, move, tri, 0, 0);
+    if (c.touches) {
+      r.startOverlap |= c.overlapAtStart;
+      best = std::min(best, c.t);
+    }
+    const Contact e = sweepTriangle(*p, start, move, tri, kClipEpsilon, kClipEpsilon * edgeNormalMax);
+    if (!e.touches) continue;  // the widest: nothing narrower touches
+    early = std::min(early, e.t);
+    const Contact l = sweepTriangle(*p, start, move, tri, kClipEpsilon, kClipEpsilon);
+    if (l.touches) late = std::min(late, l.t);
   }
   r.hit = best <= 1;
   r.dist = r.hit ? best * length : 0;
   if (!p) {
-    r.cmkitHit = r.hit;
-    r.cmkitDist = r.dist;
+    r.cmkitMustHit = r.cmkitMayHit = r.hit;
+    r.cmkitLatest = r.cmkitEarliest = r.dist;
   } else {
-    r.cmkitHit = cmkitBest < length;
-    r.cmkitDist = r.cmkitHit ? std::max(cmkitBest, 0.0) : 0;
+    r.cmkitMustHit = late <= 1;
+    r.cmkitMayHit = early <= 1;
+    r.cmkitLatest = r.cmkitMustHit ? late * length : length;
+    r.cmkitEarliest = r.cmkitMayHit ? early * length : length;
   }
   return r;
 }
@@ -258,7 +269,7 @@ std::vector<RefAnswer> exactReference(const RefScene& scene, const ShapeSpec& sh
   for (int t = 0; t < threads; ++t)
     pool.emplace_back([&, t] {
       for (std::size_t i = std::size_t(t); i < queries.size(); i += std::size_t(threads))
-        out[i] = answer(scene, pp, queries[i]);
+        out[i] = answer(scene, pp, shape.edgeNormalMax, queries[i]);
     });
   for (std::thread& th : pool) th.join();
   return out;

@@ -22,13 +22,23 @@ struct RefAnswer {
   /// `dist` units along it.
   bool hit = false;
   double dist = 0;
-  /// What cmkit's translate() should answer by the clip-epsilon model: it
-  /// stops kClipEpsilon in front of each surface along the surface's normal,
-  /// i.e. at d - kClipEpsilon / |cos(move, normal)| for a contact at d (at
-  /// 0 at the least), and a move that ends within the epsilon of a surface
-  /// stops too. The minimum over every triangle the extended move reaches.
-  bool cmkitHit = false;
-  double cmkitDist = 0;
+  /// What cmkit's translate() may answer. cmkit stops kClipEpsilon in front
+  /// of surfaces: a trace-model vertex stops that far from a polygon's plane
+  /// along its normal, a model vertex that far from a trace-model face, and
+  /// an edge pair when the trace-model edge, shifted by kClipEpsilon times
+  /// the edge's normal (the bisector of its faces, scaled to a component of 1
+  /// along each), meets the polygon edge. That is the exact contact of the
+  /// shapes with every separating plane pushed out by a margin: kClipEpsilon
+  /// on face normals, between kClipEpsilon and kClipEpsilon x the longest
+  /// edge normal (ShapeSpec::edgeNormalMax) on edge-pair planes, depending
+  /// on the edge pair. So cmkit's answer is bracketed by two contacts: with
+  /// kClipEpsilon on every plane (`late`: cmkit must hit if it does, and stop
+  /// no later) and with the larger margin on edge planes (`early`: cmkit may
+  /// hit only if it does, and stops no earlier). Stops at 0 at the least.
+  bool cmkitMustHit = false;
+  bool cmkitMayHit = false;
+  double cmkitLatest = 0;    // the stop of the `late` contact, or the move's length
+  double cmkitEarliest = 0;  // the stop of the `early` contact
 };
 
 /// The scene's triangles in double, with their bounds for culling.
