@@ -1,370 +1,388 @@
-// cmkit_peers: the speed test's translations run through cmkit and through
-// Bullet (btCollisionWorld::convexSweepTest with a box against a
-// btBvhTriangleMeshShape of the world model's polygons; rayTest for points)
-// and, when built with Embree (Debian libembree-dev), the points through
-// rtcIntersect1 against the same triangles, in the same run: ns/query, the
-// ratio cmkit/peer, and the hit agreement. The points run twice in cmkit:
-// as point translations (the original's point trace) and as RayIndex casts
-// (the first surface crossing, what the peers compute). Each timing is the fastest of
-// --passes runs over all the queries (robust against a busy machine).
-//
-//   cmkit_peers [MAP] [--times N] [--passes N]
-//
-// Semantic differences (docs/performance.md): cmkit stops 0.25 units in front
-// of a surface and collides only with the front faces of polygons; Bullet's
-// triangles are two-sided and its convex sweeps allow no margin here (0).
-#include <btBulletCollisionCommon.h>
-#ifdef CMKIT_HAVE_EMBREE
-#include <embree3/rtcore.h>
-#endif
-
+// cmkit_peers: cmkit against Jolt, Bullet and Embree on the same triangles
+// and the same queries, in one run and one process, with the agreement of
+// each engine with an exact reference (reference.cpp). `--help` explains.
+// The old program (the speed test's moves on lt4 and the batches) is the
+// `--speed-test` section (speed_test_section.cpp).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
-#include <memory>
-#include <span>
 #include <string>
 #include <vector>
 
-#include "cmkit/batch.h"
-#include "cmkit/compile.h"
-#include "cmkit/map.h"
-#include "cmkit/query.h"
-#include "cmkit/ray_index.h"
-#include "cmkit/tools/speed_test.h"
+#include "cmkit_side.h"
+#include "peers.h"
+#include "reference.h"
 
 namespace {
 
-namespace fs = std::filesystem;
+using namespace peers;
 using Clock = std::chrono::steady_clock;
 
-/// Queries per kind by default (as the speed test).
-constexpr int kDefaultTimes = 1000;
-/// Timed runs over all queries per kind; the fastest is reported.
+constexpr int kDefaultQueries = 10000;
 constexpr int kDefaultPasses = 5;
-/// The speed test's box (cm_testBox) and move length (cm_testLength).
-constexpr cmkit::Real kBoxHalfX = 16, kBoxHalfY = 16, kBoxHalfZ = 32, kBoxCentreZ = 32;
-constexpr cmkit::Real kLength = 1024;
-constexpr std::uint32_t kMask = cmkit::contents::kSolid | cmkit::contents::kPlayerClip;
+constexpr int kDefaultSpeedTestTimes = 1000;
+constexpr std::uint64_t kQuerySeed = 7;
+constexpr double kMinLength = 1, kMaxLength = 2000;
 
-btVector3 bt(const cmkit::Vec3& v) { return {v.x, v.y, v.z}; }
+/// Distance tolerance of the peers against the exact contact. Their answers
+/// are float fractions of moves of up to 2000 units (float's step there is
+/// ~1e-4 of a unit) found by iterative methods with their own tolerances
+/// (Jolt's and Bullet's GJK-based casts converge to ~1e-3 units); 0.05
+/// units is far above both and far below any shape's size.
+constexpr double kPeerTolerance = 0.05;
+/// Distance tolerance of cmkit against its clip-epsilon bracket
+/// (reference.h): the bracket is exact in double; cmkit works in float on
+/// coordinates up to ~8000 (a float step of 5e-4 there) and fractions of moves
+/// up to 2000 units (a step of ~1e-4): 0.02 units is 40 times those.
+constexpr double kCmkitTolerance = 0.02;
+/// --list: print every query whose answer disagrees.
+bool gList = false;
 
-/// One kind's comparison.
-struct Comparison {
-  const char* kind = "";
-  const char* peer = "";
-  double cmkitNs = 0;
-  double peerNs = 0;
-  int bothHit = 0;
-  int bothMiss = 0;
-  int differ = 0;
-};
-
-void print(const Comparison& c, int n) {
-  std::printf(
-      "%-19s cmkit %7.0f ns/query   %-6s %7.0f ns/query   cmkit/%-6s %5.2f   both hit %4d  both miss %4d"
-      "  differ %4d (of %d)\n",
-      c.kind, c.cmkitNs, c.peer, c.peerNs, c.peer, c.peerNs > 0 ? c.cmkitNs / c.peerNs : 0.0, c.bothHit,
-      c.bothMiss, c.differ, n);
-}
-
-/// Runs query(i) for every i, `passes` times; returns the fastest pass in ns/query.
-double fastestPass(std::size_t n, int passes, const std::function<void(std::size_t)>& query) {
+/// The fastest of `passes` runs of run(), in ns per query of n.
+template <class F>
+double fastest(int passes, std::size_t n, F&& run) {
   double best = 0;
-  for (int pass = 0; pass < passes; ++pass) {
-    const auto t0 = Clock::now();
-    for (std::size_t i = 0; i < n; ++i) query(i);
-    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(n);
-    best = pass == 0 ? ns : std::min(best, ns);
-  }
-  return best;
-}
-
-/// Counts agreement of two hit lists into c.
-void agreement(Comparison& c, const std::vector<char>& a, const std::vector<char>& b) {
-  for (std::size_t i = 0; i < a.size(); ++i)
-    (a[i] && b[i]) ? ++c.bothHit : (!a[i] && !b[i]) ? ++c.bothMiss : ++c.differ;
-}
-
-#ifdef CMKIT_HAVE_EMBREE
-/// One rtcIntersect1 from `from` to `to` (t in [0, 1] spans the move): whether it hits.
-bool embreeHits(RTCScene scene, RTCIntersectContext& context, const cmkit::Vec3& from,
-                const cmkit::Vec3& to) {
-  RTCRayHit rh{};
-  rh.ray.org_x = from.x;
-  rh.ray.org_y = from.y;
-  rh.ray.org_z = from.z;
-  rh.ray.dir_x = to.x - from.x;
-  rh.ray.dir_y = to.y - from.y;
-  rh.ray.dir_z = to.z - from.z;
-  rh.ray.tnear = 0;
-  rh.ray.tfar = 1;
-  rh.ray.mask = ~0u;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &context, &rh);
-  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-}
-#endif
-
-/// The speed test's translations: `count` end points within +-kLength per
-/// axis of `origin`, seed 0.
-std::vector<cmkit::Vec3> speedTestMoves(const cmkit::Vec3& origin, std::size_t count) {
-  cmkit::SpeedTestRandom random(0);
-  std::vector<cmkit::Vec3> ends(count);
-  for (cmkit::Vec3& e : ends)
-    for (int k = 0; k < 3; ++k) e[k] = origin[k] + random.signedUniform() * kLength;
-  return ends;
-}
-
-/// The fastest of `passes` runs of run(), in ns per query of a batch of n.
-double fastestBatch(std::size_t n, int passes, const std::function<void()>& run) {
-  double best = 0;
-  for (int pass = 0; pass < passes; ++pass) {
+  for (int p = 0; p < passes; ++p) {
     const auto t0 = Clock::now();
     run();
     const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(n);
-    best = pass == 0 ? ns : std::min(best, ns);
+    best = p == 0 ? ns : std::min(best, ns);
   }
   return best;
 }
 
-/// Batches (cmkit/batch.h) of kBatchSize box translations and kRayBatchSize
-/// ray casts (each batch some tens of milliseconds, so that starting the
-/// second thread is noise), on 1 and 2 threads, and the same rays through
-/// `peerRays` (one peer ray per call, one thread) when given. Prints ns per
-/// query and the speed-ups. The moves are the speed test's, continued with
-/// the same generator to the batch size: all different (a ray batch sorts
-/// its rays, and repeated rays would fall next to each other).
-constexpr std::size_t kBatchSize = 20000;
-constexpr std::size_t kRayBatchSize = 200000;
-void batchThroughput(const cmkit::CollisionModel& world, const cmkit::RayIndex& rays,
-                     const cmkit::TraceModel& box, const cmkit::Vec3& origin, int passes,
-                     const std::function<void(const cmkit::Vec3&, const cmkit::Vec3&)>& peerRays,
-                     const char* peerName) {
-  const std::vector<cmkit::Vec3> ends = speedTestMoves(origin, kRayBatchSize);
-  const std::span<const cmkit::Vec3> boxEnds(ends.data(), kBatchSize);
-  const cmkit::Vec3 starts[] = {origin};
-  std::vector<cmkit::TraceResult> traces(kBatchSize);
-  std::vector<cmkit::RayHit> hits(kRayBatchSize);
-  double boxNs[3] = {}, rayNs[3] = {};
-  for (int threads = 1; threads <= 2; ++threads) {
-    cmkit::BatchOptions options;
-    options.threads = threads;
-    cmkit::TranslationQuery shared;
-    shared.trm = &box;
-    shared.contentMask = kMask;
-    const cmkit::TranslationBatch tb{shared, starts, boxEnds};
-    boxNs[threads] =
-        fastestBatch(kBatchSize, passes, [&] { (void)cmkit::translateBatch(world, tb, traces, options); });
-    const cmkit::RayBatch rb{{{}, {}, kMask, {}}, starts, ends};
-    rayNs[threads] =
-        fastestBatch(kRayBatchSize, passes, [&] { (void)cmkit::castRayBatch(rays, rb, hits, options); });
+/// The queries: starts uniform in the scene's bounds, directions uniform on
+/// the sphere, lengths log-uniform in [kMinLength, kMaxLength].
+std::vector<Query> makeQueries(const Scene& scene, std::size_t n) {
+  Rng rng(kQuerySeed);
+  std::vector<Query> qs(n);
+  for (Query& q : qs) {
+    double d[3], len2;
+    do {
+      for (double& c : d) c = rng.uniform(-1, 1);
+      len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    } while (len2 > 1 || len2 < 1e-6);
+    const double length = std::exp(rng.uniform(std::log(kMinLength), std::log(kMaxLength))) / std::sqrt(len2);
+    for (int k = 0; k < 3; ++k) {
+      const double s = rng.uniform(scene.boundsMin[k], scene.boundsMax[k]);
+      q.start[k] = float(s);
+      q.end[k] = float(s + d[k] * length);
+    }
   }
-  std::printf(
-      "\nbatches of %zu box translations and %zu rays (the speed test's moves continued, all different; "
-      "cmkit/batch.h):\n",
-      kBatchSize, kRayBatchSize);
-  std::printf(
-      "translation (box)   batch 1 thread %7.0f ns/query   2 threads %7.0f ns/query   speed-up %.2fx\n",
-      boxNs[1], boxNs[2], boxNs[1] / boxNs[2]);
-  std::printf(
-      "ray cast (point)    batch 1 thread %7.0f ns/query   2 threads %7.0f ns/query   speed-up %.2fx\n",
-      rayNs[1], rayNs[2], rayNs[1] / rayNs[2]);
-  if (peerRays) {
-    const double peerNs = fastestBatch(kRayBatchSize, passes, [&] {
-      for (const cmkit::Vec3& e : ends) peerRays(origin, e);
-    });
-    std::printf(
-        "ray cast (point)    %s loop, 1 thread %7.0f ns/query:  %s / cmkit batch  %.2fx (1 thread)  %.2fx (2 "
-        "threads)\n",
-        peerName, peerNs, peerName, peerNs / rayNs[1], peerNs / rayNs[2]);
+  return qs;
+}
+
+/// A fixed orientation that turns every axis (rows = the shape's axes): 37
+/// degrees about (1, 2, 3).
+void fixedAxis(float (&axis)[9]) {
+  const double a = 37 * 3.14159265358979323846 / 180, l = std::sqrt(14.0);
+  const double x = 1 / l, y = 2 / l, z = 3 / l, c = std::cos(a), s = std::sin(a), t = 1 - c;
+  const double m[9] = {t * x * x + c,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
+                       t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+  for (int i = 0; i < 9; ++i) axis[i] = float(m[i]);
+}
+
+struct Kind {
+  const char* name;
+  const char* trm;
+  bool turned;
+};
+constexpr Kind kKinds[] = {{"point ray", "point", false},
+                           {"box", "box:-16,-16,0,16,16,64", false},
+                           {"box+axis", "box:-16,-16,0,16,16,64", true},
+                           {"cylinder:8", "cylinder:8:-16,-16,0,16,16,64", false},
+                           {"cylinder:8+axis", "cylinder:8:-16,-16,0,16,16,64", true}};
+constexpr int kNumKinds = 5;
+enum Engine { kCmkit, kJolt, kBullet, kEmbree, kEngines };
+constexpr const char* kEngineNames[kEngines] = {"cmkit", "Jolt", "Bullet", "Embree"};
+
+/// One engine's agreement with the reference on one kind.
+struct Agreement {
+  int hitAgree = 0;
+  int bothHit = 0;
+  int distAgree = 0;
+  double worst = 0;  // largest distance error where both hit
+};
+
+struct Row {
+  double ns[kEngines] = {-1, -1, -1, -1};
+  Agreement agree[kEngines];
+  int excluded = 0, considered = 0, refHits = 0;
+};
+
+Agreement agreement(const std::vector<RefAnswer>& ref, std::span<const Query> qs, const std::vector<float>& f,
+                    bool cmkitModel, double tolerance) {
+  Agreement a;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    const RefAnswer& r = ref[i];
+    if (r.startOverlap) continue;
+    double len = 0;
+    for (int k = 0; k < 3; ++k) len += double(qs[i].end[k] - qs[i].start[k]) * double(qs[i].end[k] - qs[i].start[k]);
+    len = std::sqrt(len);
+    const bool hit = f[i] <= 1;
+    // The exact contact, or cmkit's bracket (reference.h).
+    const bool mustHit = cmkitModel ? r.cmkitMustHit : r.hit, mayHit = cmkitModel ? r.cmkitMayHit : r.hit;
+    const double earliest = cmkitModel ? r.cmkitEarliest : r.dist, latest = cmkitModel ? r.cmkitLatest : r.dist;
+    if (hit ? mayHit : !mustHit) ++a.hitAgree;
+    else if (gList)
+      std::printf("  disagrees: query %zu length %.3f answered %s, expected %s\n", i, len, hit ? "hit" : "miss",
+                  mustHit ? "hit" : "miss");
+    if (!hit || !mayHit) continue;
+    ++a.bothHit;
+    const double d = double(f[i]) * len;
+    const double err = d < earliest ? earliest - d : d > latest ? d - latest : 0;
+    a.worst = std::max(a.worst, err);
+    if (err <= tolerance) ++a.distAgree;
+    else if (gList)
+      std::printf("  disagrees: query %zu length %.3f exact %.4f expected %.4f..%.4f answered %.4f\n", i, len, r.dist, earliest, latest, d);
+  }
+  return a;
+}
+
+std::string cell(double v, const char* fmt) {
+  if (v < 0) return "-";
+  char b[32];
+  std::snprintf(b, sizeof b, fmt, v);
+  return b;
+}
+
+std::string pct(int n, int of) { return of > 0 ? cell(100.0 * n / of, "%.2f") : "-"; }
+
+struct SceneReport {
+  std::string title;
+  Row rows[kNumKinds];
+  double buildMs[kEngines] = {-1, -1, -1, -1};
+  double rayIndexMs = -1;
+  bool present[kEngines] = {true, false, false, false};
+};
+
+void printReport(const SceneReport& r, bool markdown) {
+  const char* sep = markdown ? " | " : "  ";
+  auto line = [&](const std::vector<std::string>& cells, const std::vector<int>& widths) {
+    std::string s = markdown ? "| " : "";
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      char b[64];
+      std::snprintf(b, sizeof b, i == 0 ? "%-*s" : "%*s", widths[i], cells[i].c_str());
+      s += b;
+      if (i + 1 < cells.size()) s += sep;
+    }
+    std::printf("%s%s\n", s.c_str(), markdown ? " |" : "");
+  };
+  auto rule = [&](const std::vector<int>& widths) {
+    if (!markdown) return;
+    std::string s = "|";
+    for (std::size_t i = 0; i < widths.size(); ++i) s += (i == 0 ? ":" : "") + std::string(std::size_t(widths[i] + 1), '-') + (i == 0 ? "|" : ":|");
+    std::printf("%s\n", s.c_str());
+  };
+  std::printf("\n%s%s\n\n", markdown ? "#### " : "", r.title.c_str());
+  const std::vector<int> w = {22, 9, 9, 9, 9, 10, 12, 12};
+  line({"ns/query (fastest pass)", "cmkit", "Jolt", "Bullet", "Embree", "cmkit/Jolt", "cmkit/Bullet", "cmkit/Embree"}, w);
+  rule(w);
+  auto ratio = [](double a, double b) { return a > 0 && b > 0 ? cell(a / b, "%.2f") : std::string("-"); };
+  for (int k = 0; k < kNumKinds; ++k) {
+    const Row& row = r.rows[k];
+    line({kKinds[k].name, cell(row.ns[kCmkit], "%.0f"), cell(row.ns[kJolt], "%.0f"), cell(row.ns[kBullet], "%.0f"),
+          cell(row.ns[kEmbree], "%.0f"), ratio(row.ns[kCmkit], row.ns[kJolt]), ratio(row.ns[kCmkit], row.ns[kBullet]),
+          ratio(row.ns[kCmkit], row.ns[kEmbree])},
+         w);
+  }
+  const double* b = r.buildMs;
+  line({"build, model (ms)", cell(b[kCmkit], "%.1f"), cell(b[kJolt], "%.1f"), cell(b[kBullet], "%.1f"), "-",
+        ratio(b[kCmkit], b[kJolt]), ratio(b[kCmkit], b[kBullet]), "-"},
+       w);
+  line({"build, ray index (ms)", cell(r.rayIndexMs, "%.1f"), "-", "-", cell(b[kEmbree], "%.1f"), "-", "-",
+        ratio(r.rayIndexMs, b[kEmbree])},
+       w);
+  std::printf("\n");
+  std::vector<std::string> head = {"agreement: hit% / dist%", "excluded", "ref hits"};
+  std::vector<int> w2 = {23, 8, 8};
+  for (int e = 0; e < kEngines; ++e)
+    if (r.present[e]) {
+      head.push_back(kEngineNames[e]);
+      w2.push_back(15);
+    }
+  line(head, w2);
+  rule(w2);
+  for (int k = 0; k < kNumKinds; ++k) {
+    const Row& row = r.rows[k];
+    std::vector<std::string> c = {kKinds[k].name, std::to_string(row.excluded), std::to_string(row.refHits)};
+    for (int e = 0; e < kEngines; ++e) {
+      if (!r.present[e]) continue;
+      c.push_back(row.ns[e] < 0 ? "-" : pct(row.agree[e].hitAgree, row.considered) + " / " + pct(row.agree[e].distAgree, row.agree[e].bothHit));
+    }
+    line(c, w2);
   }
 }
 
+SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads, bool verbose) {
+  SceneReport r;
+  std::printf("%s: %zu triangles, %zu vertices; %zu queries (starts uniform in the bounds, directions uniform, "
+              "lengths log-uniform in [%g, %g]); fastest of %d passes\n",
+              scene.name.c_str(), scene.numTriangles(), scene.numVertices(), n, kMinLength, kMaxLength, passes);
+  std::fflush(stdout);
+  std::unique_ptr<Peer> peers[kEngines] = {nullptr, makeJoltPeer(), makeBulletPeer(), makeEmbreePeer()};
+  CmkitEngine cmkit;
+  bool ok = true;
+  r.buildMs[kCmkit] = fastest(passes, 1, [&] { ok = cmkit.buildModel(scene); }) * 1e-6;
+  if (!ok) return r;
+  r.rayIndexMs = fastest(passes, 1, [&] { cmkit.buildRayIndex(); }) * 1e-6;
+  for (int e = kJolt; e < kEngines; ++e)
+    if (peers[e]) {
+      r.present[e] = true;
+      r.buildMs[e] = fastest(passes, 1, [&] { peers[e]->build(scene); }) * 1e-6;
+    }
+  const std::vector<Query> qs = makeQueries(scene, n);
+  const RefScene refScene(scene);
+  float axis[9];
+  fixedAxis(axis);
+  const float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  std::vector<float> f(n);
+  for (int k = 0; k < kNumKinds; ++k) {
+    const Kind& kind = kKinds[k];
+    ShapeSpec spec;
+    spec.name = kind.name;
+    if (!cmkit.prepare(kind.trm, kind.turned ? axis : identity, spec)) continue;
+    const auto t0 = Clock::now();
+    const std::vector<RefAnswer> ref = exactReference(refScene, spec, qs, threads);
+    const double refSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    Row& row = r.rows[k];
+    for (const RefAnswer& a : ref) {
+      row.excluded += a.startOverlap;
+      row.refHits += !a.startOverlap && a.hit;
+    }
+    row.considered = int(n) - row.excluded;
+    row.ns[kCmkit] = fastest(passes, n, [&] { spec.point ? cmkit.rays(qs, f.data()) : cmkit.sweep(qs, f.data()); });
+    row.agree[kCmkit] = agreement(ref, qs, f, !spec.point, spec.point ? kPeerTolerance : kCmkitTolerance);
+    for (int e = kJolt; e < kEngines; ++e) {
+      if (!peers[e] || (!spec.point && !peers[e]->hasSweeps())) continue;
+      peers[e]->prepare(spec);
+      row.ns[e] = fastest(passes, n, [&] { spec.point ? peers[e]->rays(qs, f.data()) : peers[e]->sweep(qs, f.data()); });
+      row.agree[e] = agreement(ref, qs, f, false, kPeerTolerance);
+    }
+    if (verbose) {
+      std::printf("  %-16s reference %.1f s; largest distance error where both hit:", kind.name, refSeconds);
+      for (int e = 0; e < kEngines; ++e)
+        if (row.ns[e] >= 0) std::printf(" %s %.4g", kEngineNames[e], row.agree[e].worst);
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+  }
+  r.title = scene.name + ", " + std::to_string(scene.numTriangles()) + " triangles, " + std::to_string(n) + " queries";
+  return r;
+}
+
 std::string defaultMap() {
+  namespace fs = std::filesystem;
   const fs::path source(CMKIT_SOURCE_DIR);
-  for (const fs::path& p :
-       {source / ".." / "shared" / "maps" / "lt4" / "lt4.map", source / "data" / "maps" / "lt4" / "lt4.map"})
+  for (const fs::path& p : {source / ".." / "shared" / "maps" / "lt4" / "lt4.map", source / "data" / "maps" / "lt4" / "lt4.map"})
     if (fs::exists(p)) return p.lexically_normal().string();
   return {};
+}
+
+void help() {
+  std::printf(
+      "usage: cmkit_peers [--queries N] [--passes N] [--scene lt4|generated|both] [--map MAP] [--markdown]\n"
+      "                   [--threads N] [--verbose] [--list]\n"
+      "       cmkit_peers --speed-test [MAP] [--times N] [--passes N]\n"
+      "\n"
+      "Times cmkit against Jolt, Bullet and Embree on the same triangles and the same queries, in\n"
+      "one process, and checks every engine against an exact reference.\n"
+      "\n"
+      "Scenes: lt4's world model (every solid|playerclip polygon as a triangle fan) and a generated\n"
+      "scene (~50k triangles: terrain, crates, stairs, ramps). Every engine gets the same triangles,\n"
+      "two-sided: cmkit a mesh with one two-sided solid material (buildCollisionModelFromTriangles),\n"
+      "Jolt a MeshShape (back faces collide), Bullet a btBvhTriangleMeshShape, Embree a scene.\n"
+      "\n"
+      "Queries (fixed seed): starts uniform in the scene's bounds, directions uniform on the sphere,\n"
+      "lengths log-uniform in [1, 2000]; the same for every kind and engine. Kinds: point ray\n"
+      "(cmkit RayIndex::cast, Jolt MeshShape::CastRay, Bullet rayTest, Embree rtcIntersect1); box\n"
+      "-16,-16,0..16,16,64 and an 8-sided cylinder of the same bounds, each also turned by a fixed\n"
+      "orientation (+axis): cmkit translate(), Jolt BoxShape/ConvexHullShape (convex radius 0) cast\n"
+      "with CollisionDispatch::sCastShapeVsShapeLocalSpace, Bullet convexSweepTest (margins 0).\n"
+      "Times: ns per query, the fastest of --passes passes over all queries; builds in ms.\n"
+      "Ratios: cmkit time / peer time (below 1: cmkit faster).\n"
+      "\n"
+      "Agreement: hit%% = queries whose hit/miss matches the reference; dist%% = of the queries both\n"
+      "hit, those whose stop distance matches (peers and cmkit's rays: the exact contact within\n"
+      "%.2g units; cmkit's sweeps: within %.2g units of the bracket of its clip epsilon: cmkit stops\n"
+      "0.25 units in front of a surface along its normal, so it meets the shapes with their\n"
+      "separating planes pushed out by 0.25, by up to 0.25 x |edge normal| on edge pairs, see\n"
+      "reference.h). Queries starting in contact with a triangle (by the reference)\n"
+      "are excluded and counted. The reference is brute force in double precision (reference.cpp).\n"
+      "\n"
+      "  --queries N   queries per kind (default %d)\n"
+      "  --passes N    timed passes, the fastest counts (default %d)\n"
+      "  --scene S     lt4, generated or both (default both)\n"
+      "  --map MAP     the map of the lt4 scene (default: lt4.map of the shared data or data/)\n"
+      "  --markdown    print the tables as Markdown\n"
+      "  --threads N   threads of the reference (not timed; default 2)\n"
+      "  --verbose     the reference's time and each engine's largest distance error per kind\n"
+      "  --list        also every query on which an engine disagrees (before its kind's line)\n"
+      "  --speed-test  the older comparison instead: the speed test's moves from lt4's centre\n"
+      "                through cmkit, Bullet and Embree, and batches on 1 and 2 threads\n"
+      "                (--times N moves, default %d)\n"
+      "\n"
+      "Jolt is compared when cmkit_peers was built with it (bench/peers/build_jolt.sh), Embree\n"
+      "when libembree-dev was found.\n",
+      kPeerTolerance, kCmkitTolerance, kDefaultQueries, kDefaultPasses, kDefaultSpeedTestTimes);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string mapPath;
-  int times = kDefaultTimes;
-  int passes = kDefaultPasses;
+  int queries = kDefaultQueries, passes = kDefaultPasses, times = kDefaultSpeedTestTimes, threads = 2;
+  std::string sceneArg = "both", mapPath;
+  bool markdown = false, speedTest = false, verbose = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--times" && i + 1 < argc) {
-      times = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--passes" && i + 1 < argc) {
-      passes = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "-h" || arg == "--help") {
-      std::printf(
-          "usage: cmkit_peers [MAP] [--times N] [--passes N]\n"
-          "  MAP        a Doom 3 .map (default: lt4); its world model is the scene\n"
-          "  --times    translations per kind (default %d)\n"
-          "  --passes   timed runs per kind, the fastest is printed (default %d)\n",
-          kDefaultTimes, kDefaultPasses);
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--queries" && hasValue) queries = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--passes" && hasValue) passes = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--times" && hasValue) times = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--threads" && hasValue) threads = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--scene" && hasValue) sceneArg = argv[++i];
+    else if (arg == "--map" && hasValue) mapPath = argv[++i];
+    else if (arg == "--markdown") markdown = true;
+    else if (arg == "--verbose") verbose = true;
+    else if (arg == "--list") gList = verbose = true;
+    else if (arg == "--speed-test") speedTest = true;
+    else if (arg == "-h" || arg == "--help") {
+      help();
       return 0;
-    } else {
-      mapPath = arg;
+    } else if (speedTest && arg[0] != '-') mapPath = arg;
+    else {
+      std::fprintf(stderr, "cmkit_peers: unknown argument '%s' (--help)\n", arg.c_str());
+      return 2;
     }
   }
+  if (sceneArg != "lt4" && sceneArg != "generated" && sceneArg != "both") {
+    std::fprintf(stderr, "cmkit_peers: --scene lt4, generated or both\n");
+    return 2;
+  }
   if (mapPath.empty()) mapPath = defaultMap();
-  if (mapPath.empty()) {
-    std::fprintf(stderr, "cmkit_peers: no map given and lt4.map not found\n");
-    return 2;
+  if (speedTest) {
+    if (mapPath.empty()) {
+      std::fprintf(stderr, "cmkit_peers: no map given and lt4.map not found\n");
+      return 2;
+    }
+    return runSpeedTestSection(mapPath, times, passes);
   }
-  auto map = cmkit::loadMapFile(mapPath);
-  if (!map) {
-    std::fprintf(stderr, "cmkit_peers: %s\n", map.error().toString().c_str());
-    return 2;
+  if (!joltCompiledIn()) std::printf("Jolt: not compared (run bench/peers/build_jolt.sh)\n");
+  if (!embreeCompiledIn()) std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
+  std::vector<SceneReport> reports;
+  if (sceneArg != "generated") {
+    if (mapPath.empty()) {
+      std::fprintf(stderr, "cmkit_peers: no map given and lt4.map not found\n");
+      return 2;
+    }
+    const Scene lt4 = loadMapScene(mapPath);
+    if (lt4.indices.empty()) return 2;
+    reports.push_back(runScene(lt4, std::size_t(queries), passes, threads, verbose));
   }
-  auto models = cmkit::buildCollisionModels(*map, cmkit::MaterialTable{});
-  if (!models || models->models.empty()) {
-    std::fprintf(stderr, "cmkit_peers: %s: no models\n", mapPath.c_str());
-    return 2;
-  }
-  const cmkit::CollisionModel& world = *models->models.front();
-
-  // The same geometry for the peers: every polygon matching the mask, as a
-  // fan of triangles over the model's vertices.
-  std::vector<std::uint32_t> indices;
-  for (const cmkit::CmPolygon& p : world.polygons()) {
-    if ((p.contents & kMask) == 0) continue;
-    std::vector<std::uint32_t> v;
-    for (std::int32_t e : world.edgesOf(p)) v.push_back(std::uint32_t(world.edgeStart(e)));
-    for (std::size_t k = 1; k + 1 < v.size(); ++k) indices.insert(indices.end(), {v[0], v[k], v[k + 1]});
-  }
-  const int triangles = int(indices.size() / 3);
-  auto mesh = std::make_unique<btTriangleMesh>();
-  for (std::size_t t = 0; t < indices.size(); t += 3)
-    mesh->addTriangle(bt(world.vertices()[indices[t]]), bt(world.vertices()[indices[t + 1]]),
-                      bt(world.vertices()[indices[t + 2]]));
-  auto shape = std::make_unique<btBvhTriangleMeshShape>(mesh.get(), true);
-  shape->setMargin(0);
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher(&config);
-  btDbvtBroadphase broadphase;
-  btCollisionWorld bulletWorld(&dispatcher, &broadphase, &config);
-  btCollisionObject object;
-  object.setCollisionShape(shape.get());
-  bulletWorld.addCollisionObject(&object);
-  bulletWorld.updateAabbs();
-  btBoxShape box(btVector3(kBoxHalfX, kBoxHalfY, kBoxHalfZ));
-  box.setMargin(0);
-
-#ifdef CMKIT_HAVE_EMBREE
-  RTCDevice device = rtcNewDevice(nullptr);
-  RTCScene scene = rtcNewScene(device);
-  {
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world.vertices().size()));
-    for (std::size_t i = 0; i < world.vertices().size(); ++i)
-      for (int k = 0; k < 3; ++k) vertices[3 * i + std::size_t(k)] = world.vertices()[i][k];
-    auto* tris = static_cast<std::uint32_t*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                3 * sizeof(std::uint32_t), std::size_t(triangles)));
-    std::copy(indices.begin(), indices.end(), tris);
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(scene, geometry);
-    rtcReleaseGeometry(geometry);
-    rtcCommitScene(scene);
-  }
-#endif
-
-  // The speed test's translations: from the centre of the world, seed 0.
-  const cmkit::Vec3 origin = (world.bounds().min + world.bounds().max) * cmkit::Real(0.5);
-  const std::vector<cmkit::Vec3> ends = speedTestMoves(origin, std::size_t(times));
-  auto boxTrm = cmkit::TraceModel::parse("box:-16,-16,0,16,16,64");
-  if (!boxTrm) return 2;
-  const cmkit::RayIndex rayIndex(world);  // for the ray casts
-  std::printf(
-      "%s: world model %zu polygons -> %d triangles; %d translations from (%g %g %g), mask "
-      "solid|playerclip; ray casts with the %s node test\n",
-      mapPath.c_str(), world.polygons().size(), triangles, times, origin.x, origin.y, origin.z,
-      rayIndex.usesAvx2() ? "AVX2" : "baseline (SSE2)");
-
-  cmkit::QueryWork work;
-  const std::size_t n = ends.size();
-  std::vector<char> cmkitBox(n), cmkitPoint(n), peerBox(n), peerPoint(n);
-  Comparison boxCmp{"translation (box)", "bullet"};
-  boxCmp.cmkitNs = fastestPass(n, passes, [&](std::size_t i) {
-    cmkit::TranslationQuery q;
-    q.trm = &*boxTrm;
-    q.start = origin;
-    q.end = ends[i];
-    q.contentMask = kMask;
-    cmkitBox[i] = cmkit::translate(world, q, work).fraction < 1;
-  });
-  const btVector3 centre(0, 0, kBoxCentreZ);
-  boxCmp.peerNs = fastestPass(n, passes, [&](std::size_t i) {
-    const btTransform from(btMatrix3x3::getIdentity(), bt(origin) + centre);
-    const btTransform to(btMatrix3x3::getIdentity(), bt(ends[i]) + centre);
-    btCollisionWorld::ClosestConvexResultCallback cb(from.getOrigin(), to.getOrigin());
-    bulletWorld.convexSweepTest(&box, from, to, cb, 0);
-    peerBox[i] = cb.hasHit();
-  });
-  agreement(boxCmp, cmkitBox, peerBox);
-  print(boxCmp, times);
-
-  Comparison pointCmp{"translation (point)", "bullet"};
-  pointCmp.cmkitNs = fastestPass(n, passes, [&](std::size_t i) {
-    cmkit::TranslationQuery q;
-    q.start = origin;
-    q.end = ends[i];
-    q.contentMask = kMask;
-    cmkitPoint[i] = cmkit::translate(world, q, work).fraction < 1;
-  });
-  pointCmp.peerNs = fastestPass(n, passes, [&](std::size_t i) {
-    btCollisionWorld::ClosestRayResultCallback cb(bt(origin), bt(ends[i]));
-    bulletWorld.rayTest(bt(origin), bt(ends[i]), cb);
-    peerPoint[i] = cb.hasHit();
-  });
-  agreement(pointCmp, cmkitPoint, peerPoint);
-  print(pointCmp, times);
-
-  // The same rays through the RayIndex of the world model.
-  std::vector<char> cmkitRay(n);
-  Comparison rayCmp{"ray cast (point)", "bullet"};
-  rayCmp.cmkitNs = fastestPass(n, passes, [&](std::size_t i) {
-    cmkitRay[i] = rayIndex.cast({origin, ends[i], kMask}).hit();
-  });
-  rayCmp.peerNs = pointCmp.peerNs;
-  agreement(rayCmp, cmkitRay, peerPoint);
-  print(rayCmp, times);
-
-#ifdef CMKIT_HAVE_EMBREE
-  Comparison embreeCmp{"translation (point)", "embree"};
-  embreeCmp.cmkitNs = pointCmp.cmkitNs;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  embreeCmp.peerNs = fastestPass(
-      n, passes, [&](std::size_t i) { peerPoint[i] = embreeHits(scene, context, origin, ends[i]); });
-  agreement(embreeCmp, cmkitPoint, peerPoint);
-  print(embreeCmp, times);
-  Comparison embreeRayCmp{"ray cast (point)", "embree"};
-  embreeRayCmp.cmkitNs = rayCmp.cmkitNs;
-  embreeRayCmp.peerNs = embreeCmp.peerNs;
-  agreement(embreeRayCmp, cmkitRay, peerPoint);
-  print(embreeRayCmp, times);
-  batchThroughput(
-      world, rayIndex, *boxTrm, origin, passes,
-      [&](const cmkit::Vec3& from, const cmkit::Vec3& to) { (void)embreeHits(scene, context, from, to); },
-      "embree");
-  rtcReleaseScene(scene);
-  rtcReleaseDevice(device);
-#else
-  std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
-  batchThroughput(world, rayIndex, *boxTrm, origin, passes, {}, "");
-#endif
-  bulletWorld.removeCollisionObject(&object);
+  if (sceneArg != "lt4") reports.push_back(runScene(generatedScene(), std::size_t(queries), passes, threads, verbose));
+  for (const SceneReport& r : reports) printReport(r, markdown);
   return 0;
 }
