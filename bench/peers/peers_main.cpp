@@ -217,6 +217,28 @@ void printReport(const SceneReport& r, bool markdown) {
   }
 }
 
+/// Timed passes of a build at most (--build-passes).
+int gBuildPasses = 5;
+/// --no-reference: times only (profiling), no exact reference.
+bool gNoReference = false;
+/// --peers: the peers to run (empty: all), by name.
+std::vector<std::string> gPeers;
+/// --kinds: the kinds to run (empty: all), by name.
+std::vector<std::string> gKinds;
+/// The items of a comma-separated list.
+std::vector<std::string> splitList(const std::string& list) {
+  std::vector<std::string> items;
+  for (std::size_t at = 0; at <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    items.push_back(list.substr(at, comma - at));
+    at = comma + 1;
+  }
+  return items;
+}
+bool wanted(const Kind& kind) {
+  return gKinds.empty() || std::find(gKinds.begin(), gKinds.end(), kind.name) != gKinds.end();
+}
+
 SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads, bool verbose) {
   SceneReport r;
   std::printf("%s: %zu triangles, %zu vertices; %zu queries (starts uniform in the bounds, directions uniform, "
@@ -224,15 +246,19 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
               scene.name.c_str(), scene.numTriangles(), scene.numVertices(), n, kMinLength, kMaxLength, passes);
   std::fflush(stdout);
   std::unique_ptr<Peer> peers[kEngines] = {nullptr, makeJoltPeer(), makeBulletPeer(), makeEmbreePeer()};
+  for (int e = kJolt; e < kEngines; ++e)
+    if (!gPeers.empty() && std::find(gPeers.begin(), gPeers.end(), kEngineNames[e]) == gPeers.end()) peers[e].reset();
   CmkitEngine cmkit;
   bool ok = true;
-  r.buildMs[kCmkit] = fastest(passes, 1, [&] { ok = cmkit.buildModel(scene); }) * 1e-6;
+  // (Builds: the fastest of at most kBuildPasses, whatever --passes says: they take long.)
+  const int buildPasses = std::min(passes, gBuildPasses);
+  r.buildMs[kCmkit] = fastest(buildPasses, 1, [&] { ok = cmkit.buildModel(scene); }) * 1e-6;
   if (!ok) return r;
-  r.rayIndexMs = fastest(passes, 1, [&] { cmkit.buildRayIndex(); }) * 1e-6;
+  r.rayIndexMs = fastest(buildPasses, 1, [&] { cmkit.buildRayIndex(); }) * 1e-6;
   for (int e = kJolt; e < kEngines; ++e)
     if (peers[e]) {
       r.present[e] = true;
-      r.buildMs[e] = fastest(passes, 1, [&] { peers[e]->build(scene); }) * 1e-6;
+      r.buildMs[e] = fastest(buildPasses, 1, [&] { peers[e]->build(scene); }) * 1e-6;
     }
   const std::vector<Query> qs = makeQueries(scene, n);
   const RefScene refScene(scene);
@@ -242,11 +268,13 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
   std::vector<float> f(n);
   for (int k = 0; k < kNumKinds; ++k) {
     const Kind& kind = kKinds[k];
+    if (!wanted(kind)) continue;
     ShapeSpec spec;
     spec.name = kind.name;
     if (!cmkit.prepare(kind.trm, kind.turned ? axis : identity, spec)) continue;
     const auto t0 = Clock::now();
-    const std::vector<RefAnswer> ref = exactReference(refScene, spec, qs, threads);
+    // (--no-reference: every query counted as a reference miss; the agreement columns then mean nothing.)
+    const std::vector<RefAnswer> ref = gNoReference ? std::vector<RefAnswer>(n) : exactReference(refScene, spec, qs, threads);
     const double refSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     Row& row = r.rows[k];
     for (const RefAnswer& a : ref) {
@@ -285,7 +313,7 @@ std::string defaultMap() {
 void help() {
   std::printf(
       "usage: cmkit_peers [--queries N] [--passes N] [--scene lt4|generated|both] [--map MAP] [--markdown]\n"
-      "                   [--threads N] [--verbose] [--list]\n"
+      "                   [--threads N] [--verbose] [--list] [--kinds K,...] [--peers P,...] [--no-reference]\n"
       "       cmkit_peers --speed-test [MAP] [--times N] [--passes N]\n"
       "\n"
       "Times cmkit against Jolt, Bullet and Embree on the same triangles and the same queries, in\n"
@@ -302,7 +330,8 @@ void help() {
       "-16,-16,0..16,16,64 and an 8-sided cylinder of the same bounds, each also turned by a fixed\n"
       "orientation (+axis): cmkit translate(), Jolt BoxShape/ConvexHullShape (convex radius 0) cast\n"
       "with CollisionDispatch::sCastShapeVsShapeLocalSpace, Bullet convexSweepTest (margins 0).\n"
-      "Times: ns per query, the fastest of --passes passes over all queries; builds in ms.\n"
+      "Times: ns per query, the fastest of --passes passes over all queries; builds in ms (the\n"
+      "fastest of --passes, at most 5).\n"
       "Ratios: cmkit time / peer time (below 1: cmkit faster).\n"
       "\n"
       "Agreement: hit%% = queries whose hit/miss matches the reference; dist%% = of the queries both\n"
@@ -321,6 +350,12 @@ void help() {
       "  --threads N   threads of the reference (not timed; default 2)\n"
       "  --verbose     the reference's time and each engine's largest distance error per kind\n"
       "  --list        also every query on which an engine disagrees (before its kind's line)\n"
+      "  --kinds K,..  only these kinds (point ray, box, box+axis, cylinder:8, cylinder:8+axis;\n"
+      "                default all), e.g. --kinds 'point ray,box+axis'\n"
+      "  --build-passes N  timed passes of each build at most (default 5)\n"
+      "  --peers P,..  only these peers (Jolt, Bullet, Embree; default all)\n"
+      "  --no-reference  times only, for profiling: no exact reference (the agreement columns\n"
+      "                are then meaningless)\n"
       "  --speed-test  the older comparison instead: the speed test's moves from lt4's centre\n"
       "                through cmkit, Bullet and Embree, and batches on 1 and 2 threads\n"
       "                (--times N moves, default %d)\n"
@@ -346,6 +381,23 @@ int main(int argc, char** argv) {
     else if (arg == "--scene" && hasValue) sceneArg = argv[++i];
     else if (arg == "--map" && hasValue) mapPath = argv[++i];
     else if (arg == "--markdown") markdown = true;
+    else if (arg == "--no-reference") gNoReference = true;
+    else if (arg == "--build-passes" && hasValue) gBuildPasses = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--peers" && hasValue) {
+      gPeers = splitList(argv[++i]);
+      for (const std::string& name : gPeers)
+        if (std::find(kEngineNames + kJolt, kEngineNames + kEngines, name) == kEngineNames + kEngines) {
+          std::fprintf(stderr, "cmkit_peers: unknown peer '%s' (--help)\n", name.c_str());
+          return 2;
+        }
+    } else if (arg == "--kinds" && hasValue) {
+      gKinds = splitList(argv[++i]);
+      for (const std::string& name : gKinds)
+        if (std::none_of(std::begin(kKinds), std::end(kKinds), [&](const Kind& k) { return name == k.name; })) {
+          std::fprintf(stderr, "cmkit_peers: unknown kind '%s' (--help)\n", name.c_str());
+          return 2;
+        }
+    }
     else if (arg == "--verbose") verbose = true;
     else if (arg == "--list") gList = verbose = true;
     else if (arg == "--speed-test") speedTest = true;
