@@ -207,8 +207,11 @@ class Builder {
     for (std::size_t j = 0; j < kLanes; ++j) {
       Box box;
       std::int32_t child = 0;
+      std::uint32_t contents = 0;
       if (j < numChildren) {
         box = boundsOf(children[j]);
+        for (std::size_t i = children[j].first; i < children[j].end; ++i)
+          contents |= model_->polygons[std::size_t(items_[i].polygon)].contents;
         child = children[j].size() <= kLanes ? ~std::int32_t(leaf(children[j]))
                                              : std::int32_t(node(children[j].first, children[j].end, depth + 1));
       }
@@ -218,6 +221,7 @@ class Builder {
         n.max[k][j] = box.max[k];
       }
       n.child[j] = child;
+      n.contents[j] = contents;
     }
     return number;
   }

@@ -17,13 +17,14 @@ namespace cmkit::detail {
 /// An inner node: the bounds of its up to kLanes children, one array per
 /// coordinate (lane j is child j). child[j] >= 0: node child[j]; < 0: leaf
 /// ~child[j]. An unused lane has inverted bounds (min > max), which no box
-/// touches.
+/// touches. (Two whole cache lines: 112 bytes at 16-byte alignment would
+/// straddle a third line every other node.)
 struct alignas(64) BvhNode {
   float min[3][kLanes];
   float max[3][kLanes];
   std::int32_t child[kLanes];
-  // (Padded to two whole cache lines: 112 bytes at 16-byte alignment would
-  // straddle a third line every other node.)
+  /// The contents of the polygons below each child, OR'ed (0: unused lane).
+  std::uint32_t contents[kLanes];
 };
 static_assert(sizeof(BvhNode) == 128);
 

@@ -36,20 +36,33 @@ constexpr float kGrowMargin = float(tol::kBoxEpsilon);
 /// along that axis out, and every box it starts in, in.
 constexpr float kTinyDirection = 1e-20f;
 
-/// What the slab test reads of the query, broadcast once.
+/// What the slab test reads of the query, broadcast once. Along each axis
+/// the move enters a box through its near face (min when the direction is
+/// positive, max when negative) and leaves through its far face: nearRow /
+/// farRow say which row of a node that is, and nearGrow / farGrow how far
+/// the trace model's bounds (and kGrowMargin) grow it, less the start. An
+/// inverted box (an unused lane) is entered after it is left: never met.
 struct PathLanes {
-  F4 lo[3];   ///< node min + lo - start: where the grown box begins, from the start
-  F4 hi[3];   ///< node max + hi - start
+  int nearRow[3], farRow[3];  ///< 0: the node's min row, 1: its max row
+  F4 nearGrow[3], farGrow[3];
   F4 inv[3];  ///< 1 / direction
   explicit PathLanes(const TraceWork& tw) {
     for (int k = 0; k < 3; ++k) {
       float d = float(tw.dir[k]);
       if (std::fabs(d) < kTinyDirection) d = std::copysign(kTinyDirection, d);
       inv[k] = F4::all(1.0f / d);
-      lo[k] = F4::all(float(-tw.size.max[k]) - kGrowMargin - float(tw.start[k]));
-      hi[k] = F4::all(float(-tw.size.min[k]) + kGrowMargin - float(tw.start[k]));
+      // The box grown by the trace model: [min - size.max - margin, max - size.min + margin].
+      const F4 lo = F4::all(float(-tw.size.max[k]) - kGrowMargin - float(tw.start[k]));
+      const F4 hi = F4::all(float(-tw.size.min[k]) + kGrowMargin - float(tw.start[k]));
+      const bool negative = d < 0;
+      nearRow[k] = negative ? 1 : 0;
+      farRow[k] = negative ? 0 : 1;
+      nearGrow[k] = negative ? hi : lo;
+      farGrow[k] = negative ? lo : hi;
     }
   }
+  /// The row `row` (0: min, 1: max) of axis k of a node.
+  static F4 rowOf(const BvhNode& n, int row, int k) { return F4::load(row == 0 ? n.min[k] : n.max[k]); }
 };
 
 /// A trace model's translation: its leaf test.
@@ -66,65 +79,81 @@ struct PointLeaves {
   }
 };
 
+/// Starts loading a child of the hierarchy (both cache lines of a node, the
+/// two of a leaf's first culls): the walk is otherwise bound by their loads.
+inline void prefetchChild(const PolygonBvh& bvh, std::int32_t child) {
+  const char* p = child >= 0 ? reinterpret_cast<const char*>(&bvh.nodes[std::size_t(child)])
+                             : reinterpret_cast<const char*>(&bvh.leaves[std::size_t(~child)]);
+  prefetch(p);
+  prefetch(p + 64);
+}
+
 template <class Leaves>
 void walkPolygonBvh(TraceWork& tw, const PolygonBvh& bvh) {
   using Entry = QueryScratch::BvhEntry;
   std::vector<Entry>& stack = tw.scratch.bvhStack;
   if (stack.size() < bvh.stackSize()) stack.resize(bvh.stackSize());
   const PathLanes path(tw);
+  const simd::U4 contentMask = simd::U4::all(tw.contentMask);
   BoundsLanes bounds(tw);
   Real boundsFraction = tw.fraction;
   std::size_t size = 0;
-  stack[size++] = Entry{0, 0.0f};
-  while (size > 0) {
-    const Entry e = stack[--size];
-    if (e.near > float(tw.fraction)) continue;  // a hit found meanwhile is nearer
-    if (tw.fraction != boundsFraction) {        // the trace bounds shrank
-      bounds.load(tw);
-      boundsFraction = tw.fraction;
-    }
-    if (e.child < 0) {
-      const std::size_t leaf = std::size_t(~e.child);
+  std::int32_t child = 0;  // the root
+  for (;;) {
+    if (child < 0) {
+      if (tw.fraction != boundsFraction) {  // the trace bounds shrank
+        bounds.load(tw);
+        boundsFraction = tw.fraction;
+      }
+      const std::size_t leaf = std::size_t(~child);
       const unsigned pass = bounds.pass(bvh.leaves[leaf]);
       count(tw.scratch, &QueryStats::polygonsMet, unsigned(std::popcount(pass)));
       if (pass && Leaves::test(tw, bvh, leaf, pass)) return;
-      continue;
+    } else {
+      const BvhNode& node = bvh.nodes[std::size_t(child)];
+      count(tw.scratch, &QueryStats::nodesVisited);
+      F4 near = F4::zero(), far = F4::all(float(tw.fraction));
+      for (int k = 0; k < 3; ++k) {
+        near = simd::max(near, (PathLanes::rowOf(node, path.nearRow[k], k) + path.nearGrow[k]) * path.inv[k]);
+        far = simd::min(far, (PathLanes::rowOf(node, path.farRow[k], k) + path.farGrow[k]) * path.inv[k]);
+      }
+      const F4 culled = (near > far) | simd::noCommonBits(simd::U4::load(node.contents), contentMask);
+      unsigned pass = ~simd::bits(culled) & 0xFu;
+      if (pass != 0) {
+        alignas(16) float nears[kLanes];
+        near.store(nears);
+        const int first = std::countr_zero(pass);
+        pass &= pass - 1;
+        if (pass == 0) {  // one child: on to it
+          child = node.child[first];
+          prefetchChild(bvh, child);
+          continue;
+        }
+        // More: all but the nearest wait, farthest first below it (sorted
+        // by insertion in place on the stack), each started loading.
+        Entry* order = stack.data() + size;
+        std::size_t n = 0;
+        for (pass |= 1u << first; pass; pass &= pass - 1) {
+          const int lane = std::countr_zero(pass);
+          const Entry e{node.child[lane], nears[lane]};
+          prefetchChild(bvh, e.child);
+          std::size_t i = n++;
+          for (; i > 0 && order[i - 1].near < e.near; --i) order[i] = order[i - 1];
+          order[i] = e;
+        }
+        size += n - 1;
+        child = stack[size].child;
+        continue;
+      }
     }
-    const BvhNode& node = bvh.nodes[std::size_t(e.child)];
-    count(tw.scratch, &QueryStats::nodesVisited);
-    F4 culled = F4::zero();
-    F4 near = F4::zero(), far = F4::all(float(tw.fraction));
-    for (int k = 0; k < 3; ++k) {
-      const F4 min = F4::load(node.min[k]), max = F4::load(node.max[k]);
-      culled = culled | (max < bounds.min[k]) | (min > bounds.max[k]);
-      const F4 t0 = (min + path.lo[k]) * path.inv[k];
-      const F4 t1 = (max + path.hi[k]) * path.inv[k];
-      near = simd::max(near, simd::min(t0, t1));
-      far = simd::min(far, simd::max(t0, t1));
-    }
-    culled = culled | (near > far);
-    unsigned pass = ~simd::bits(culled) & 0xFu;
-    if (pass == 0) continue;
-    alignas(16) float nears[kLanes];
-    near.store(nears);
-    // Pushed farthest first, so that the nearest is visited next.
-    int order[kLanes];
-    int n = 0;
-    for (; pass; pass &= pass - 1) {
-      const int lane = std::countr_zero(pass);
-      int i = n++;
-      for (; i > 0 && nears[order[i - 1]] < nears[lane]; --i) order[i] = order[i - 1];
-      order[i] = lane;
-    }
-    for (int i = 0; i < n; ++i) {
-      const std::int32_t child = node.child[order[i]];
-      // Start loading the children now (every one the walk will visit):
-      // each its two cache lines. The walk is otherwise bound by their loads.
-      const char* p = child >= 0 ? reinterpret_cast<const char*>(&bvh.nodes[std::size_t(child)])
-                                 : reinterpret_cast<const char*>(&bvh.leaves[std::size_t(~child)]);
-      prefetch(p);
-      prefetch(p + 64);
-      stack[size++] = Entry{child, nears[order[i]]};
+    // The next waiting child the move reaches before the nearest hit so far.
+    for (;;) {
+      if (size == 0) return;
+      const Entry e = stack[--size];
+      if (!(e.near > float(tw.fraction))) {
+        child = e.child;
+        break;
+      }
     }
   }
 }
