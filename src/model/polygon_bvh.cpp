@@ -155,7 +155,7 @@ class Builder {
     std::sort(items_.begin() + std::ptrdiff_t(r.first), items_.begin() + std::ptrdiff_t(r.end),
               [](const Item& a, const Item& b) { return a.polygon < b.polygon; });
     const std::size_t number = out_.leaves.size();
-    CullBlock& b = out_.leaves.emplace_back();  // (a BvhLeaf)
+    BvhLeaf& b = out_.leaves.emplace_back();
     for (std::size_t j = 0; j < kLanes; ++j) {
       const bool used = j < r.size();
       const std::int32_t polyNum = used ? items_[r.first + j].polygon : -1;
@@ -166,6 +166,7 @@ class Builder {
           b.max[k][j] = -std::numeric_limits<float>::max();
           b.normal[k][j] = 0;
         }
+        b.dist[j] = 0;
         b.contents[j] = 0;
         continue;
       }
@@ -175,6 +176,7 @@ class Builder {
         b.max[k][j] = p.bounds.max[k];
         b.normal[k][j] = p.plane.normal[k];
       }
+      b.dist[j] = p.plane.dist;
       b.contents[j] = p.contents;
     }
     return number;

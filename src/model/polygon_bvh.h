@@ -29,8 +29,11 @@ struct alignas(64) BvhNode {
 static_assert(sizeof(BvhNode) == 128);
 
 /// A leaf: its polygons' culls, on whole cache lines (the first two hold
-/// what the first cull reads: bounds and contents).
-struct alignas(64) BvhLeaf : CullBlock {};
+/// what the first cull reads: bounds and contents), and their planes'
+/// distances (with CullBlock::normal, the planes).
+struct alignas(64) BvhLeaf : CullBlock {
+  Real dist[kLanes];
+};
 static_assert(sizeof(BvhLeaf) == 192);
 
 /// The hierarchy of a model's polygons.

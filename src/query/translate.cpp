@@ -539,18 +539,42 @@ bool translateTrmThroughCullBlocks(TraceWork& tw, const QueryData& d, const CmNo
   return walkCullBlocks<TranslationCullBlocks>(tw, d, node);
 }
 
+namespace {
+
+// The lanes of a leaf whose polygon's plane the trace bounds straddle
+// (cullByPolygonPlane's Cross: Bounds::planeSide's arithmetic in each lane,
+// operation for operation); every lane for a convex model, where the plane
+// test may also end the walk (translateTrmThroughPolygon makes it).
+unsigned leafPlanesCrossed(const TraceWork& tw, const BvhLeaf& b) {
+  if (tw.model.isConvex()) return 0xFu;
+  const Vec3 c = tw.bounds.center();
+  const Vec3 reach = tw.bounds.max - c;
+  const F4 nx = F4::load(b.normal[0]), ny = F4::load(b.normal[1]), nz = F4::load(b.normal[2]);
+  const F4 d1 = nx * F4::all(c.x) + ny * F4::all(c.y) + nz * F4::all(c.z) - F4::load(b.dist);
+  const F4 d2 = simd::abs(F4::all(reach.x) * nx) + simd::abs(F4::all(reach.y) * ny) +
+                simd::abs(F4::all(reach.z) * nz);
+  const F4 epsilon = F4::all(tol::kOnEpsilon);
+  const F4 culled = (d1 - d2 > epsilon) | (d1 + d2 < simd::negate(epsilon));
+  return ~simd::bits(culled) & 0xFu;
+}
+
+}  // namespace
+
 bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
-  const CullBlock& b = bvh.leaves[leaf];
-  pass &= blockFacesPass(tw, b);
+  const BvhLeaf& b = bvh.leaves[leaf];
+  pass &= blockFacesPass(tw, b) & leafPlanesCrossed(tw, b);
   const std::int32_t* polygons = &bvh.polygons[leaf * kLanes];
   while (pass) {
     const int lane = std::countr_zero(pass);
     pass &= pass - 1;
     const std::int32_t polyNum = polygons[lane];
-    const CmPolygon& poly = tw.model.polygons()[std::size_t(polyNum)];
-    // (The bounds may have shrunk at a hit in this leaf.)
-    if (!boxesTouch(tw.bounds, poly.bounds)) continue;
-    if (translateTrmThroughPolygon(tw, polyNum, poly) || tw.quickExit) return true;
+    const Real before = tw.fraction;
+    if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)]) || tw.quickExit)
+      return true;
+    if (tw.fraction != before && pass) {  // the trace bounds shrank: the lanes left culled again
+      const BoundsLanes bounds(tw);
+      pass &= bounds.pass(b) & leafPlanesCrossed(tw, b);
+    }
   }
   return false;
 }
