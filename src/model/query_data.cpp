@@ -42,6 +42,7 @@ std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
     }
     d->bvh = buildPolygonBvh(model);
   }
+  d->pointTree = buildPointTree(model);
   return d;
 }
 
@@ -59,7 +60,7 @@ ModelMemory modelMemory(const CollisionModel& model) {
              bytes(model.nodes()) + bytes(model.polygonRefs()) + bytes(model.brushRefs());
   if (const detail::QueryData* d = detail::queryDataOf(model))
     m.queryData = bytes(d->lines) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
-                  bytes(d->bvh.polygons);
+                  bytes(d->bvh.polygons) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes);
   return m;
 }
 

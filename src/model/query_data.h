@@ -6,6 +6,7 @@
 //  - the bounds, normal and contents of every polygonRefs entry's polygon (a
 //    node's polygons are the entries firstPolygonRef ..), for a
 //    translation's culls;
+//  - the BSP tree in 8 bytes a node for point contents (point_tree.h);
 //  - the polygons' own hierarchy (polygon_bvh.h), which the translations
 //    walk instead of the BSP tree.
 // Entry i is lane i % kLanes of block i / kLanes: the arrays hold about 24
@@ -21,6 +22,7 @@
 
 #include "cmkit/model.h"
 
+#include "model/point_tree.h"
 #include "model/polygon_bvh.h"
 #include "model/query_blocks.h"
 
@@ -33,6 +35,8 @@ struct QueryData {
   std::vector<CullBlock> culls;
   /// The polygons' hierarchy (kCullBlocks builds; else empty).
   PolygonBvh bvh;
+  /// The BSP tree as point contents walk it.
+  PointTree pointTree;
 };
 
 /// The query data of arrays whose numbers are in range (a sealed model's).

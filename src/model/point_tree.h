@@ -1,0 +1,49 @@
+// Internal: the BSP tree as point contents walk it, made once with the
+// model (query_data.h): 8 bytes a node, a node's two children side by side,
+// the pairs in depth-first order (a walk down a subtree stays near its
+// root's line), so that a walk from the root to a point's leaf reads a few
+// cache lines instead of a node's 36 bytes each, and picks a child by
+// arithmetic instead of a branch whose way is unpredictable.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cmkit/model.h"
+
+namespace cmkit::detail {
+
+/// A node: its split (plane distance, axis) and children, or a leaf.
+struct PointNode {
+  Real dist;  ///< the split plane's coordinate (0 in a leaf)
+  /// Bits 0-1: the split axis (kLeafAxis: a leaf); bit 2: the node lists
+  /// brushes (PointTree::brushes); bits 3-31: the front child's number (the
+  /// back child's is the next).
+  std::uint32_t word;
+
+  static constexpr std::uint32_t kLeafAxis = 3;
+  static constexpr std::uint32_t kHasBrushes = 4;
+  std::uint32_t axis() const { return word & 3u; }
+  bool hasBrushes() const { return (word & kHasBrushes) != 0; }
+  std::uint32_t front() const { return word >> 3; }
+};
+
+/// The brush list of a node (CmNode's, into the model's brushRefs).
+struct PointBrushes {
+  std::uint32_t firstBrushRef;
+  std::uint32_t numBrushRefs;
+};
+
+struct PointTree {
+  /// Node 0 is the root (none for a model without nodes).
+  std::vector<PointNode> nodes;
+  /// Per node: its brushes (read only where PointNode::hasBrushes).
+  std::vector<PointBrushes> brushes;
+  bool empty() const { return nodes.empty(); }
+};
+
+/// The point tree of a model's BSP tree (numbers in range, children below
+/// 2^29; a tree with more nodes gets none: the walk then reads the model's).
+PointTree buildPointTree(const ModelArrays& m);
+
+}  // namespace cmkit::detail
