@@ -110,18 +110,20 @@ std::uint32_t pointContentsThroughTree(const CollisionModel& model, const PointT
 
 }  // namespace
 
-std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
-                                  std::uint32_t mask) {
-  // The point, the origin and a turned model's axis were checked by the
-  // caller's guard (query_guards.cpp): they are not checked again.
-  const bool rotated = isRotated(placement.axis);
+/// Models with at most this many nodes are walked from their own nodes: a
+/// small tree is in the cache either way, and fetching the point tree cost
+/// more than it saved (point contents of the small reference maps take
+/// 10-60 ns).
+constexpr std::size_t kPointTreeMinNodes = 256;
+
+/// pointContentsMasked for a point already in the model's frame.
+std::uint32_t pointContentsInModel(const CollisionModel& model, const Vec3& p, std::uint32_t mask) {
   const std::span<const CmNode> nodes = model.nodes();
   const std::span<const CmBrush> brushes = model.brushes();
   if (nodes.empty()) return 0;
-  Vec3 p = point - placement.origin;
-  if (rotated) p = placement.axis * p;  // world -> model frame
-  if (const QueryData* d = queryDataOf(model); d && !d->pointTree.empty())
-    return pointContentsThroughTree(model, d->pointTree, p, mask);
+  if (nodes.size() > kPointTreeMinNodes)
+    if (const QueryData* d = queryDataOf(model); d && !d->pointTree.empty())
+      return pointContentsThroughTree(model, d->pointTree, p, mask);
   const Real coord[3] = {p.x, p.y, p.z};  // indexed by split axis below
   const bool prefetchBrushes = brushes.size() > kPointContentsCachedBrushes;
 
@@ -131,8 +133,8 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   // The nodes with brushes are collected on the way down (up to kPath at a
   // time) and their brushes tested from the leaf up: the deepest, smallest
   // brushes first, and a brush that could add no flag to those found is not
-  // tested (the OR does not depend on the order). (A model without query
-  // data; the point tree's walk above does the same.)
+  // tested (the OR does not depend on the order). (A small model, or one
+  // without query data; the point tree's walk above does the same.)
   const CmNode* withBrushes[kPath];
   std::uint32_t contents = 0;
   std::int32_t n = 0;
@@ -162,6 +164,15 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   return contents;
 }
 
+std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point, const Placement& placement,
+                                  std::uint32_t mask) {
+  // The point, the origin and a turned model's axis were checked by the
+  // caller's guard (query_guards.cpp): they are not checked again.
+  Vec3 p = point - placement.origin;
+  if (isRotated(placement.axis)) p = placement.axis * p;  // world -> model frame
+  return pointContentsInModel(model, p, mask);
+}
+
 }  // namespace cmkit::detail
 
 namespace cmkit {
@@ -181,9 +192,10 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
   if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement.axis)) {
     PointContentsQuery checked = query;
     r.status = guardPointContents(checked);
-    if (r.status != QueryStatus::Ok) return r;
+    if (r.status == QueryStatus::Ok) r.contents = pointContentsMasked(model, query.point, placement, ~std::uint32_t(0));
+    return r;
   }
-  r.contents = pointContentsMasked(model, query.point, placement, ~std::uint32_t(0));
+  r.contents = pointContentsInModel(model, query.point - placement.origin, ~std::uint32_t(0));
   return r;
 }
 
