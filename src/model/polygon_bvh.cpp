@@ -214,8 +214,9 @@ class Builder {
         box = boundsOf(children[j]);
         for (std::size_t i = children[j].first; i < children[j].end; ++i)
           contents |= model_->polygons[std::size_t(items_[i].polygon)].contents;
-        child = children[j].size() <= kLanes ? ~std::int32_t(leaf(children[j]))
-                                             : std::int32_t(node(children[j].first, children[j].end, depth + 1));
+        child = children[j].size() <= kLanes
+                    ? ~std::int32_t(leaf(children[j]))
+                    : std::int32_t(node(children[j].first, children[j].end, depth + 1));
       }
       BvhNode& n = out_.nodes[number];  // (node() may have moved the array)
       for (std::size_t k = 0; k < 3; ++k) {

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 #include "query/cull_lanes.h"
 #include "query/trace_work.h"
@@ -39,11 +41,11 @@ constexpr float kTinyDirection = 1e-20f;
 /// What the slab test reads of the query, broadcast once. Along each axis
 /// the move enters a box through its near face (min when the direction is
 /// positive, max when negative) and leaves through its far face: nearRow /
-/// farRow say which row of a node that is, and nearGrow / farGrow how far
+/// farRow are the byte offsets of those rows in a node, and nearGrow / farGrow how far
 /// the trace model's bounds (and kGrowMargin) grow it, less the start. An
 /// inverted box (an unused lane) is entered after it is left: never met.
 struct PathLanes {
-  int nearRow[3], farRow[3];  ///< 0: the node's min row, 1: its max row
+  std::size_t nearRow[3], farRow[3];  ///< byte offsets of the rows in a node
   F4 nearGrow[3], farGrow[3];
   F4 inv[3];  ///< 1 / direction
   explicit PathLanes(const TraceWork& tw) {
@@ -55,14 +57,19 @@ struct PathLanes {
       const F4 lo = F4::all(float(-tw.size.max[k]) - kGrowMargin - float(tw.start[k]));
       const F4 hi = F4::all(float(-tw.size.min[k]) + kGrowMargin - float(tw.start[k]));
       const bool negative = d < 0;
-      nearRow[k] = negative ? 1 : 0;
-      farRow[k] = negative ? 0 : 1;
+      const std::size_t minRow = offsetof(BvhNode, min) + std::size_t(k) * sizeof(BvhNode::min[0]);
+      const std::size_t maxRow = offsetof(BvhNode, max) + std::size_t(k) * sizeof(BvhNode::max[0]);
+      nearRow[k] = negative ? maxRow : minRow;
+      farRow[k] = negative ? minRow : maxRow;
       nearGrow[k] = negative ? hi : lo;
       farGrow[k] = negative ? lo : hi;
     }
   }
-  /// The row `row` (0: min, 1: max) of axis k of a node.
-  static F4 rowOf(const BvhNode& n, int row, int k) { return F4::load(row == 0 ? n.min[k] : n.max[k]); }
+  /// The row at byte offset `row` of a node (by address, not a branch per
+  /// axis and node).
+  static F4 rowOf(const BvhNode& n, std::size_t row) {
+    return F4::load(reinterpret_cast<const float*>(reinterpret_cast<const char*>(&n) + row));
+  }
 };
 
 /// A trace model's translation: its leaf test.
@@ -82,8 +89,16 @@ struct PointLeaves {
 /// Starts loading a child of the hierarchy (both cache lines of a node, the
 /// two of a leaf's first culls): the walk is otherwise bound by their loads.
 inline void prefetchChild(const PolygonBvh& bvh, std::int32_t child) {
-  const char* p = child >= 0 ? reinterpret_cast<const char*>(&bvh.nodes[std::size_t(child)])
-                             : reinterpret_cast<const char*>(&bvh.leaves[std::size_t(~child)]);
+  // (The address chosen by arithmetic: a branch on whether a child is a
+  // leaf is mispredicted often.)
+  // (In integers: the address of the kind the child is not is out of range,
+  // and only the other one is used.)
+  const std::uintptr_t nodeAt = reinterpret_cast<std::uintptr_t>(bvh.nodes.data()) +
+                                std::uintptr_t(std::uint32_t(child)) * sizeof(BvhNode);
+  const std::uintptr_t leafAt = reinterpret_cast<std::uintptr_t>(bvh.leaves.data()) +
+                                std::uintptr_t(std::uint32_t(~child)) * sizeof(BvhLeaf);
+  const std::uintptr_t leafMask = std::uintptr_t(0) - std::uintptr_t(child < 0);
+  const char* p = reinterpret_cast<const char*>((nodeAt & ~leafMask) | (leafAt & leafMask));
   prefetch(p);
   prefetch(p + 64);
 }
@@ -114,8 +129,8 @@ void walkPolygonBvh(TraceWork& tw, const PolygonBvh& bvh) {
       count(tw.scratch, &QueryStats::nodesVisited);
       F4 near = F4::zero(), far = F4::all(float(tw.fraction));
       for (int k = 0; k < 3; ++k) {
-        near = simd::max(near, (PathLanes::rowOf(node, path.nearRow[k], k) + path.nearGrow[k]) * path.inv[k]);
-        far = simd::min(far, (PathLanes::rowOf(node, path.farRow[k], k) + path.farGrow[k]) * path.inv[k]);
+        near = simd::max(near, (PathLanes::rowOf(node, path.nearRow[k]) + path.nearGrow[k]) * path.inv[k]);
+        far = simd::min(far, (PathLanes::rowOf(node, path.farRow[k]) + path.farGrow[k]) * path.inv[k]);
       }
       const F4 culled = (near > far) | simd::noCommonBits(simd::U4::load(node.contents), contentMask);
       unsigned pass = ~simd::bits(culled) & 0xFu;

@@ -192,7 +192,8 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
   if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement.axis)) {
     PointContentsQuery checked = query;
     r.status = guardPointContents(checked);
-    if (r.status == QueryStatus::Ok) r.contents = pointContentsMasked(model, query.point, placement, ~std::uint32_t(0));
+    if (r.status == QueryStatus::Ok)
+      r.contents = pointContentsMasked(model, query.point, placement, ~std::uint32_t(0));
     return r;
   }
   r.contents = pointContentsInModel(model, query.point - placement.origin, ~std::uint32_t(0));

@@ -551,8 +551,8 @@ unsigned leafPlanesCrossed(const TraceWork& tw, const BvhLeaf& b) {
   const Vec3 reach = tw.bounds.max - c;
   const F4 nx = F4::load(b.normal[0]), ny = F4::load(b.normal[1]), nz = F4::load(b.normal[2]);
   const F4 d1 = nx * F4::all(c.x) + ny * F4::all(c.y) + nz * F4::all(c.z) - F4::load(b.dist);
-  const F4 d2 = simd::abs(F4::all(reach.x) * nx) + simd::abs(F4::all(reach.y) * ny) +
-                simd::abs(F4::all(reach.z) * nz);
+  const F4 d2 =
+      simd::abs(F4::all(reach.x) * nx) + simd::abs(F4::all(reach.y) * ny) + simd::abs(F4::all(reach.z) * nz);
   const F4 epsilon = F4::all(tol::kOnEpsilon);
   const F4 culled = (d1 - d2 > epsilon) | (d1 + d2 < simd::negate(epsilon));
   return ~simd::bits(culled) & 0xFu;
