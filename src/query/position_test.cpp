@@ -3,6 +3,7 @@
 #include <cmath>
 #include <span>
 
+#include "query/cull_lanes.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
@@ -190,6 +191,36 @@ bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons) {
       return cull == PlaneCull::Stop;
     return trmCrossesPolygon(tw, polyNum, poly);
   });
+}
+
+#ifdef CMKIT_QUERY_LANES
+namespace {
+
+/// What a position test adds to walkCullBlocks: the plane test and the
+/// polygon test (a position test's bounds never change).
+struct PositionCullBlocks {
+  static constexpr bool kShrinks = false;
+  static unsigned blockPass(const TraceWork&, const CullBlock&) { return 0xFu; }
+  static bool test(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+    if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
+      return cull == PlaneCull::Stop;
+    return trmCrossesPolygon(tw, polyNum, poly);
+  }
+};
+
+}  // namespace
+#endif
+
+bool testTrmInNodePolygons(TraceWork& tw, const CmNode& node) {
+#ifdef CMKIT_QUERY_LANES
+  // The contents and bounds culls four polygons at a time from the node's
+  // cull blocks. Only the polygons past them are marked: a position test's
+  // bounds do not change, so a polygon culled here is culled at every node
+  // listing it, and the polygons tested, and their order, are those of
+  // testTrmInPolygons.
+  if (tw.queryData) return walkCullBlocks<PositionCullBlocks>(tw, *tw.queryData, node);
+#endif
+  return testTrmInPolygons(tw, tw.model.polygonsAt(node));
 }
 
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,

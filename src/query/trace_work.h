@@ -334,6 +334,9 @@ bool rotateTrmThroughNode(TraceWork& tw, const CmNode& node);
 /// (stuck, tw.c set) at the first; items met before in the query are skipped.
 bool testTrmVertsInBrushes(TraceWork& tw, std::span<const std::int32_t> brushes);
 bool testTrmInPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
+/// testTrmInPolygons of a node's polygons, from the query data's cull blocks
+/// where the model has them.
+bool testTrmInNodePolygons(TraceWork& tw, const CmNode& node);
 
 /// A box against a plane: the distance of its centre (`centre`) and the
 /// half extent of the box along the plane's normal (`extent`).

@@ -36,7 +36,7 @@ struct PositionItems {
   static void test(TraceWork& tw, const CmNode& node) {
     if (tw.fraction == 0) return;  // already stuck
     if (!testTrmVertsInBrushes(tw, tw.model.brushesAt(node)))
-      testTrmInPolygons(tw, tw.model.polygonsAt(node));
+      testTrmInNodePolygons(tw, node);
   }
   static constexpr bool kStopWhenStuck = true;
 };
