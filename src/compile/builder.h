@@ -128,6 +128,37 @@ class RefList {
   int head_;
 };
 
+/// Lists of ints by int key in one pool (no allocation per key): add()
+/// prepends, forEach() visits a key's items newest first.
+class PooledLists {
+ public:
+  void clear() {
+    head_.clear();
+    pool_.clear();
+  }
+  void add(int key, int item) {
+    const auto k = static_cast<std::size_t>(key);
+    if (head_.size() <= k) head_.resize(k + 1, kNone);
+    pool_.push_back({item, head_[k]});
+    head_[k] = static_cast<int>(pool_.size()) - 1;
+  }
+  template <class Visit>
+  void forEach(int key, Visit&& visit) const {
+    const auto k = static_cast<std::size_t>(key);
+    if (head_.size() <= k) return;
+    for (int i = head_[k]; i != kNone; i = pool_[static_cast<std::size_t>(i)].next)
+      visit(pool_[static_cast<std::size_t>(i)].item);
+  }
+
+ private:
+  struct Entry {
+    int item;
+    int next;
+  };
+  std::vector<int> head_;
+  std::vector<Entry> pool_;
+};
+
 /// Counters the original prints (PrintModelInfo).
 struct BuildCounters {
   int numPolygonRefs = 0;
@@ -230,8 +261,12 @@ class ModelBuilder {
   // ---- merge.cpp
   /// Coplanar polygons that share an edge, merged into one convex polygon.
   void mergePolygons();
+  /// The merge index below, for the polygons and tree as they are.
+  void prepareMergeIndex();
   void mergeTreePolygons(int node);
-  bool mergePolygonWithTreePolygons(int node, int polygon);
+  bool mergePolygonWithTreePolygons(int polygon);
+  /// True when walkTouching(0, bounds, ...) visits the node.
+  bool walkReaches(int node, const Bounds& bounds) const;
   int tryMergePolygons(int p1, int p2);
   void replacePolygons(int node, int p1, int p2, int newp);
 
@@ -349,6 +384,16 @@ class ModelBuilder {
   int& hashNext(int vertexNum) { return vertexHashNext_[static_cast<std::size_t>(vertexNum)]; }
   std::unordered_map<std::uint64_t, int> edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
+
+  // merge index (merge.cpp): only polygons sharing an edge can merge, so a
+  // polygon looks up those instead of testing every polygon its bounds touch
+  PooledLists edgeUsers_;          ///< per edge: the polygons made with it (freed ones too)
+  PooledLists polygonNodes_;       ///< per live polygon: the nodes whose lists hold it
+  std::vector<int> walkOrder_;     ///< per node: its place in walkTouching's order
+  std::vector<int> mergeMark_;     ///< per polygon: the mergeStamp_ of a candidate
+  int mergeStamp_ = 0;
+  std::vector<int> mergeNodes_;    ///< scratch: the nodes to search, in walk order
+  std::vector<int> linkedNodes_;   ///< scratch of replacePolygons: where newp went
 
   // winding list of windingOutsideBrushes
   struct WindingList {
