@@ -246,16 +246,24 @@ class ModelBuilder {
       return detail::insideAllChildren(*this, n, b);
     }
   };
-  bool insideAllChildren(int node, const Bounds& bounds) const;
   enum class ItemKind { Polygon, Brush };
-  /// Links a polygon or brush into every node below `node` its bounds reach
-  /// by the tree-filter rule (model/tree_filter.h); `ref` != kNone moves that
-  /// existing reference (to one of the nodes) instead of making a new one.
-  void filterIntoTree(ItemKind kind, int node, int ref, int item);
-  bool findSplitter(int node, const Bounds& bounds, int& planeType, Real& planeDist) const;
-  void createAxialBSPTree(int node, const Bounds& bounds);
-  /// The items of `node` that are no longer inside all its children go down the tree.
-  void pushItemsDown(int node);
+  /// Links a new polygon or brush into every node below `node` its bounds
+  /// reach by the tree-filter rule (model/tree_filter.h).
+  void filterIntoTree(ItemKind kind, int node, int item);
+
+  // ---- axial_tree.cpp
+  /// The axial BSP tree (the original's R_CreateAxialBSPTree) below the
+  /// root, while it is the only node, over the items linked into it.
+  void createAxialBSPTree(const Bounds& bounds);
+  struct GrowingLists;
+  void readLists(GrowingLists& lists) const;
+  void writeLists(const GrowingLists& lists);
+  bool findSplitter(const GrowingLists& lists, int node, const Bounds& bounds, int& planeType,
+                    Real& planeDist) const;
+  void splitNode(GrowingLists& lists, int node, const Bounds& bounds);
+  /// The items of `node` (`split` or one of its ancestors) that `split`'s
+  /// new plane leaves no longer inside all children of `node`, down the tree.
+  void pushItemsDown(GrowingLists& lists, int node, int split);
   Bounds nodeBounds() const;
 
   // ---- merge.cpp

@@ -194,7 +194,7 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
   p.plane = plane;
   p.bounds = w.bounds();
   polygons_.push_back(std::move(p));
-  filterIntoTree(ItemKind::Polygon, 0, kNone, static_cast<int>(polygons_.size()) - 1);
+  filterIntoTree(ItemKind::Polygon, 0, static_cast<int>(polygons_.size()) - 1);
 }
 
 void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum) {

@@ -55,7 +55,7 @@ void ModelBuilder::convertMeshSurfaces() {
   }
   // The axial BSP tree over the polygons (the original builds it for every
   // render model, after the polygons).
-  createAxialBSPTree(0, nodeBounds());
+  createAxialBSPTree(nodeBounds());
 }
 
 }  // namespace detail

@@ -1,0 +1,219 @@
+// The growth of a model's axial BSP tree (the original's CM_FindSplitter,
+// R_CreateAxialBSPTree and CM_R_InsideAllChildren), on arrays.
+//
+// The original keeps each node's items in its linked list and, after every
+// split, tests every item of the split node and of all its ancestors with the
+// full "inside all children" recursion over their subtrees, following list
+// links all over memory. Here each node's items are an array of (bounds,
+// item), cheap to scan, and the recursion is replaced by what it amounts to:
+// every item of an interior node is inside all its children (the tree-filter
+// rule puts it there only then, and every split re-checks the ancestors), so
+// after a split an item of the split node or of an ancestor is still inside
+// all children exactly when it straddles the new plane, and one that does not
+// goes down the path to the split node, reaching every child off the path
+// (it straddles all the planes there) and then the side of the new plane it
+// lies on. The lists end as the original's do: same items, same order.
+#include <algorithm>
+#include <cmath>
+
+#include "compile/builder.h"
+#include "util/assert.h"
+
+namespace cmkit::detail {
+
+/// Per node, its polygons and brushes with their bounds in reverse list
+/// order (the head last: prepending to a list is push_back).
+struct ModelBuilder::GrowingLists {
+  struct Item {
+    Bounds bounds;
+    int item = kNone;
+  };
+  using Lists = std::vector<std::vector<Item>>;
+  Lists polygons;
+  Lists brushes;
+  std::vector<Item> moved;  ///< scratch of pushItemsDown
+  std::vector<int> path;    ///< scratch of pushItemsDown
+  Lists& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
+};
+
+namespace {
+
+/// The tree-filter rule's "not entirely on one side" of an axial plane (an
+/// item that straddles stays above it); false for bounds beyond or touching.
+bool straddles(const Bounds& b, int axis, Real dist) { return !(b.min[axis] >= dist) && !(b.max[axis] <= dist); }
+
+}  // namespace
+
+void ModelBuilder::createAxialBSPTree(const Bounds& bounds) {
+  CMKIT_ASSERT(nodes_.size() == 1);
+  GrowingLists lists;
+  readLists(lists);
+  splitNode(lists, 0, bounds);
+  writeLists(lists);
+}
+
+void ModelBuilder::readLists(GrowingLists& lists) const {
+  lists.polygons.assign(nodes_.size(), {});
+  lists.brushes.assign(nodes_.size(), {});
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
+    auto& polygons = lists.polygons[static_cast<std::size_t>(n)];
+    for (const int p : polygonsAt(n)) polygons.push_back({polygon(p).bounds, p});
+    std::reverse(polygons.begin(), polygons.end());
+    auto& brushes = lists.brushes[static_cast<std::size_t>(n)];
+    for (const int b : brushesAt(n)) brushes.push_back({brush(b).bounds, b});
+    std::reverse(brushes.begin(), brushes.end());
+  }
+}
+
+void ModelBuilder::writeLists(const GrowingLists& lists) {
+  // The references are made anew: only the lists' order matters.
+  polygonRefs_.clear();
+  brushRefs_.clear();
+  freePolygonRef_ = kNone;
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
+    BNode& here = node(n);
+    here.polygons = kNone;
+    for (const auto& it : lists.polygons[static_cast<std::size_t>(n)]) {
+      polygonRefs_.push_back({it.item, here.polygons});
+      here.polygons = static_cast<int>(polygonRefs_.size()) - 1;
+    }
+    here.brushes = kNone;
+    for (const auto& it : lists.brushes[static_cast<std::size_t>(n)]) {
+      brushRefs_.push_back({it.item, here.brushes});
+      here.brushes = static_cast<int>(brushRefs_.size()) - 1;
+    }
+  }
+}
+
+bool ModelBuilder::findSplitter(const GrowingLists& lists, int nodeNum, const Bounds& bounds, int& planeType,
+                                Real& planeDist) const {
+  Real size[3];
+  int axis[3];
+  for (int i = 0; i < 3; ++i) {
+    size[i] = bounds.max[i] - bounds.min[i];
+    axis[i] = i;
+  }
+  // Largest axis first (the original's restarting bubble sort).
+  for (int i = 0; i < 2; ++i) {
+    if (size[i] < size[i + 1]) {
+      std::swap(size[i], size[i + 1]);
+      std::swap(axis[i], axis[i + 1]);
+      i = -1;
+    }
+  }
+  bool forceSplit = false;
+  if (size[0] < tol::kMinNodeSize) {
+    const std::size_t polyCount = lists.polygons[static_cast<std::size_t>(nodeNum)].size();
+    if (polyCount > static_cast<std::size_t>(tol::kMaxNodePolygons)) forceSplit = true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int type = axis[i];
+    Real bestt = size[i];
+    if (!forceSplit && bestt < tol::kMinNodeSize) break;
+    auto consider = [&](const Bounds& b) {
+      for (int j = 0; j < 2; ++j) {
+        const Real dist = b[j][type];
+        if (dist >= bounds.max[type] || dist <= bounds.min[type]) continue;
+        // the most centred splitter (dhewm3: not truncated to an integer)
+        const Real t = std::fabs((bounds.max[type] - dist) - (dist - bounds.min[type]));
+        if (t < bestt) {
+          bestt = t;
+          planeType = type;
+          planeDist = dist;
+        }
+      }
+    };
+    // candidates from the brushes and polygons of this node and its
+    // ancestors, each list from its head (the end of its array)
+    for (int n = nodeNum; n != kNone; n = node(n).parent) {
+      const auto& items = lists.brushes[static_cast<std::size_t>(n)];
+      for (auto it = items.rbegin(); it != items.rend(); ++it) consider(it->bounds);
+    }
+    for (int n = nodeNum; n != kNone; n = node(n).parent) {
+      const auto& items = lists.polygons[static_cast<std::size_t>(n)];
+      for (auto it = items.rbegin(); it != items.rend(); ++it) consider(it->bounds);
+    }
+    if (bestt < size[i]) {
+      if (forceSplit) return true;
+      // not too close to the node bounds
+      if (bounds.max[type] - planeDist > tol::kSplitterMinDistance &&
+          planeDist - bounds.min[type] > tol::kSplitterMinDistance) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bounds) {
+  int planeType = kNone;
+  Real planeDist = 0;
+  if (!findSplitter(lists, nodeNum, bounds, planeType, planeDist)) {
+    node(nodeNum).planeType = kNone;
+    return;
+  }
+  const int frontNode = allocNode();
+  node(frontNode).parent = nodeNum;
+  const int backNode = allocNode();
+  node(backNode).parent = nodeNum;
+  lists.polygons.resize(nodes_.size());
+  lists.brushes.resize(nodes_.size());
+  counters_.numNodes += 2;
+  Bounds frontBounds = bounds;
+  frontBounds.min[planeType] = planeDist;
+  Bounds backBounds = bounds;
+  backBounds.max[planeType] = planeDist;
+  BNode& split = node(nodeNum);
+  split.planeType = planeType;
+  split.planeDist = planeDist;
+  split.children[0] = frontNode;
+  split.children[1] = backNode;
+  // The new split can leave items of this node and of every ancestor no
+  // longer inside all children.
+  for (int n = nodeNum; n != kNone; n = node(n).parent) pushItemsDown(lists, n, nodeNum);
+  splitNode(lists, frontNode, frontBounds);
+  splitNode(lists, backNode, backBounds);
+}
+
+void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum) {
+  const BNode& split = node(splitNum);
+  const int axis = split.planeType;
+  const Real dist = split.planeDist;
+  // The nodes below nodeNum down to the split node, bottom up.
+  lists.path.clear();
+  for (int n = splitNum; n != nodeNum; n = node(n).parent) lists.path.push_back(n);
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    GrowingLists::Lists& all = lists.of(kind);
+    auto& here = all[static_cast<std::size_t>(nodeNum)];
+    lists.moved.clear();
+    std::size_t kept = 0;
+    for (const GrowingLists::Item& it : here) {
+      const bool inside = straddles(it.bounds, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, it.bounds));
+      if (inside) {
+        here[kept++] = it;
+      } else {
+        lists.moved.push_back(it);
+      }
+    }
+    here.resize(kept);
+    // In list order (the original filters each as it meets it): through each
+    // node above the split, the child off the path, then the side of the split.
+    for (auto it = lists.moved.rbegin(); it != lists.moved.rend(); ++it) {
+      int n = nodeNum;
+      for (auto below = lists.path.rbegin(); below != lists.path.rend(); ++below) {
+        const BNode& at = node(n);
+        const int offPath = at.children[0] == *below ? at.children[1] : at.children[0];
+        all[static_cast<std::size_t>(offPath)].push_back(*it);
+        n = *below;
+      }
+      const int side = it->bounds.min[axis] >= dist ? split.children[0] : split.children[1];
+      all[static_cast<std::size_t>(side)].push_back(*it);
+      // the reference moves to one node; the others are new
+      (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
+          static_cast<int>(lists.path.size());
+    }
+  }
+}
+
+}  // namespace cmkit::detail
