@@ -31,8 +31,8 @@ struct ModelBuilder::GrowingLists {
   using Lists = std::vector<std::vector<Item>>;
   Lists polygons;
   Lists brushes;
-  std::vector<Item> moved;  ///< scratch of pushItemsDown
-  std::vector<int> path;    ///< scratch of pushItemsDown
+  std::vector<int> path;    ///< pushItemsDown's path from the split node up
+  std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
   Lists& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
 };
 
@@ -85,7 +85,7 @@ void ModelBuilder::writeLists(const GrowingLists& lists) {
   }
 }
 
-bool ModelBuilder::findSplitter(const GrowingLists& lists, int nodeNum, const Bounds& bounds, int& planeType,
+bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& bounds, int& planeType,
                                 Real& planeDist) const {
   Real size[3];
   int axis[3];
@@ -108,32 +108,38 @@ bool ModelBuilder::findSplitter(const GrowingLists& lists, int nodeNum, const Bo
   }
   for (int i = 0; i < 3; ++i) {
     const int type = axis[i];
-    Real bestt = size[i];
-    if (!forceSplit && bestt < tol::kMinNodeSize) break;
-    auto consider = [&](const Bounds& b) {
-      for (int j = 0; j < 2; ++j) {
-        const Real dist = b[j][type];
-        if (dist >= bounds.max[type] || dist <= bounds.min[type]) continue;
-        // the most centred splitter (dhewm3: not truncated to an integer)
-        const Real t = std::fabs((bounds.max[type] - dist) - (dist - bounds.min[type]));
-        if (t < bestt) {
-          bestt = t;
-          planeType = type;
-          planeDist = dist;
+    if (!forceSplit && size[i] < tol::kMinNodeSize) break;
+    if (i == 0) {
+      // candidates from the brushes, then the polygons, of this node and its ancestors
+      lists.sources.clear();
+      for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
+        for (int n = nodeNum; n != kNone; n = node(n).parent) {
+          const auto& items = (*all)[static_cast<std::size_t>(n)];
+          if (!items.empty()) lists.sources.push_back(&items);
         }
       }
-    };
-    // candidates from the brushes and polygons of this node and its
-    // ancestors, each list from its head (the end of its array)
-    for (int n = nodeNum; n != kNone; n = node(n).parent) {
-      const auto& items = lists.brushes[static_cast<std::size_t>(n)];
-      for (auto it = items.rbegin(); it != items.rend(); ++it) consider(it->bounds);
     }
-    for (int n = nodeNum; n != kNone; n = node(n).parent) {
-      const auto& items = lists.polygons[static_cast<std::size_t>(n)];
-      for (auto it = items.rbegin(); it != items.rend(); ++it) consider(it->bounds);
+    // The most centred splitter (dhewm3: not truncated to an integer): the
+    // first bounds plane strictly inside the node with the least t, each
+    // list from its head (the end of its array). Without branches: which
+    // candidate wins is unpredictable.
+    const Real lo = bounds.min[type];
+    const Real hi = bounds.max[type];
+    Real bestt = size[i];
+    Real bestDist = 0;
+    for (const std::vector<GrowingLists::Item>* items : lists.sources) {
+      for (auto it = items->rbegin(); it != items->rend(); ++it) {
+        for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
+          const Real t = std::fabs((hi - dist) - (dist - lo));
+          const bool better = dist < hi && dist > lo && t < bestt;
+          bestt = better ? t : bestt;
+          bestDist = better ? dist : bestDist;
+        }
+      }
     }
     if (bestt < size[i]) {
+      planeType = type;
+      planeDist = bestDist;
       if (forceSplit) return true;
       // not too close to the node bounds
       if (bounds.max[type] - planeDist > tol::kSplitterMinDistance &&
@@ -170,7 +176,11 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   split.children[1] = backNode;
   // The new split can leave items of this node and of every ancestor no
   // longer inside all children.
-  for (int n = nodeNum; n != kNone; n = node(n).parent) pushItemsDown(lists, n, nodeNum);
+  lists.path.clear();
+  for (int n = nodeNum; n != kNone; n = node(n).parent) {
+    pushItemsDown(lists, n, nodeNum);
+    lists.path.push_back(n);
+  }
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
 }
@@ -179,40 +189,38 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
   const BNode& split = node(splitNum);
   const int axis = split.planeType;
   const Real dist = split.planeDist;
-  // The nodes below nodeNum down to the split node, bottom up.
-  lists.path.clear();
-  for (int n = splitNum; n != nodeNum; n = node(n).parent) lists.path.push_back(n);
+  // lists.path: the nodes below nodeNum down to the split node, bottom up.
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Lists& all = lists.of(kind);
     auto& here = all[static_cast<std::size_t>(nodeNum)];
-    lists.moved.clear();
-    std::size_t kept = 0;
-    for (const GrowingLists::Item& it : here) {
+    if (here.empty()) continue;
+    // In list order, from the end of the array (the original filters each
+    // item as it meets it); the items that stay keep their order.
+    std::size_t kept = here.size();
+    for (std::size_t i = here.size(); i-- > 0;) {
+      const GrowingLists::Item it = here[i];
       const bool inside = straddles(it.bounds, axis, dist);
       CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, it.bounds));
       if (inside) {
-        here[kept++] = it;
-      } else {
-        lists.moved.push_back(it);
+        here[--kept] = it;
+        continue;
       }
-    }
-    here.resize(kept);
-    // In list order (the original filters each as it meets it): through each
-    // node above the split, the child off the path, then the side of the split.
-    for (auto it = lists.moved.rbegin(); it != lists.moved.rend(); ++it) {
+      // Through each node above the split, the child off the path, then the
+      // side of the split it lies on.
       int n = nodeNum;
       for (auto below = lists.path.rbegin(); below != lists.path.rend(); ++below) {
         const BNode& at = node(n);
         const int offPath = at.children[0] == *below ? at.children[1] : at.children[0];
-        all[static_cast<std::size_t>(offPath)].push_back(*it);
+        all[static_cast<std::size_t>(offPath)].push_back(it);
         n = *below;
       }
-      const int side = it->bounds.min[axis] >= dist ? split.children[0] : split.children[1];
-      all[static_cast<std::size_t>(side)].push_back(*it);
+      const int side = it.bounds.min[axis] >= dist ? split.children[0] : split.children[1];
+      all[static_cast<std::size_t>(side)].push_back(it);
       // the reference moves to one node; the others are new
       (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
           static_cast<int>(lists.path.size());
     }
+    here.erase(here.begin(), here.begin() + static_cast<std::ptrdiff_t>(kept));
   }
 }
 

@@ -258,7 +258,7 @@ class ModelBuilder {
   struct GrowingLists;
   void readLists(GrowingLists& lists) const;
   void writeLists(const GrowingLists& lists);
-  bool findSplitter(const GrowingLists& lists, int node, const Bounds& bounds, int& planeType,
+  bool findSplitter(GrowingLists& lists, int node, const Bounds& bounds, int& planeType,
                     Real& planeDist) const;
   void splitNode(GrowingLists& lists, int node, const Bounds& bounds);
   /// The items of `node` (`split` or one of its ancestors) that `split`'s
