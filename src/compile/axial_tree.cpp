@@ -33,7 +33,24 @@ struct ModelBuilder::GrowingLists {
   Lists brushes;
   std::vector<int> path;    ///< pushItemsDown's path from the split node up
   std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
+  // Per node, compact for the walks up the tree: its parent, and whether
+  // it may hold items (set when it gets one, updated when it loses some).
+  std::vector<int> parent;
+  std::vector<char> filled;
   Lists& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
+  void add(Lists& all, int node, const Item& it) {
+    all[static_cast<std::size_t>(node)].push_back(it);
+    filled[static_cast<std::size_t>(node)] = 1;
+  }
+  /// Room for the nodes of the builder's tree.
+  void grow(const std::vector<BNode>& nodes) {
+    const std::size_t known = parent.size();
+    polygons.resize(nodes.size());
+    brushes.resize(nodes.size());
+    filled.resize(nodes.size(), 0);
+    parent.resize(nodes.size(), kNone);
+    for (std::size_t n = known; n < nodes.size(); ++n) parent[n] = nodes[n].parent;
+  }
 };
 
 namespace {
@@ -53,8 +70,7 @@ void ModelBuilder::createAxialBSPTree(const Bounds& bounds) {
 }
 
 void ModelBuilder::readLists(GrowingLists& lists) const {
-  lists.polygons.assign(nodes_.size(), {});
-  lists.brushes.assign(nodes_.size(), {});
+  lists.grow(nodes_);
   for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
     auto& polygons = lists.polygons[static_cast<std::size_t>(n)];
     for (const int p : polygonsAt(n)) polygons.push_back({polygon(p).bounds, p});
@@ -62,6 +78,7 @@ void ModelBuilder::readLists(GrowingLists& lists) const {
     auto& brushes = lists.brushes[static_cast<std::size_t>(n)];
     for (const int b : brushesAt(n)) brushes.push_back({brush(b).bounds, b});
     std::reverse(brushes.begin(), brushes.end());
+    lists.filled[static_cast<std::size_t>(n)] = !polygons.empty() || !brushes.empty();
   }
 }
 
@@ -113,7 +130,8 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
       // candidates from the brushes, then the polygons, of this node and its ancestors
       lists.sources.clear();
       for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
-        for (int n = nodeNum; n != kNone; n = node(n).parent) {
+        for (int n = nodeNum; n != kNone; n = lists.parent[static_cast<std::size_t>(n)]) {
+          if (!lists.filled[static_cast<std::size_t>(n)]) continue;
           const auto& items = (*all)[static_cast<std::size_t>(n)];
           if (!items.empty()) lists.sources.push_back(&items);
         }
@@ -131,7 +149,7 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
       for (auto it = items->rbegin(); it != items->rend(); ++it) {
         for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
           const Real t = std::fabs((hi - dist) - (dist - lo));
-          const bool better = dist < hi && dist > lo && t < bestt;
+          const bool better = (dist < hi) & (dist > lo) & (t < bestt);
           bestt = better ? t : bestt;
           bestDist = better ? dist : bestDist;
         }
@@ -162,8 +180,7 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   node(frontNode).parent = nodeNum;
   const int backNode = allocNode();
   node(backNode).parent = nodeNum;
-  lists.polygons.resize(nodes_.size());
-  lists.brushes.resize(nodes_.size());
+  lists.grow(nodes_);
   counters_.numNodes += 2;
   Bounds frontBounds = bounds;
   frontBounds.min[planeType] = planeDist;
@@ -192,6 +209,7 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
   // lists.path: the nodes below nodeNum down to the split node, bottom up.
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Lists& all = lists.of(kind);
+    if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
     auto& here = all[static_cast<std::size_t>(nodeNum)];
     if (here.empty()) continue;
     // In list order, from the end of the array (the original filters each
@@ -211,17 +229,19 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       for (auto below = lists.path.rbegin(); below != lists.path.rend(); ++below) {
         const BNode& at = node(n);
         const int offPath = at.children[0] == *below ? at.children[1] : at.children[0];
-        all[static_cast<std::size_t>(offPath)].push_back(it);
+        lists.add(all, offPath, it);
         n = *below;
       }
       const int side = it.bounds.min[axis] >= dist ? split.children[0] : split.children[1];
-      all[static_cast<std::size_t>(side)].push_back(it);
+      lists.add(all, side, it);
       // the reference moves to one node; the others are new
       (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
           static_cast<int>(lists.path.size());
     }
     here.erase(here.begin(), here.begin() + static_cast<std::ptrdiff_t>(kept));
   }
+  lists.filled[static_cast<std::size_t>(nodeNum)] =
+      !lists.polygons[static_cast<std::size_t>(nodeNum)].empty() || !lists.brushes[static_cast<std::size_t>(nodeNum)].empty();
 }
 
 }  // namespace cmkit::detail
