@@ -193,13 +193,61 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   split.children[1] = backNode;
   // The new split can leave items of this node and of every ancestor no
   // longer inside all children.
-  lists.path.clear();
-  for (int n = nodeNum; n != kNone; n = node(n).parent) {
+  splitItems(lists, nodeNum);
+  lists.path.assign(1, nodeNum);
+  for (int n = node(nodeNum).parent; n != kNone; n = node(n).parent) {
     pushItemsDown(lists, n, nodeNum);
     lists.path.push_back(n);
   }
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
+}
+
+void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
+  const BNode& split = node(splitNum);
+  const int axis = split.planeType;
+  const Real dist = split.planeDist;
+  const auto front = static_cast<std::size_t>(split.children[0]);
+  const auto back = static_cast<std::size_t>(split.children[1]);
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    GrowingLists::Lists& all = lists.of(kind);
+    std::vector<GrowingLists::Item> items = std::move(all[static_cast<std::size_t>(splitNum)]);
+    if (items.empty()) continue;
+    std::size_t numStay = 0;
+    std::size_t numBack = 0;
+    for (const GrowingLists::Item& it : items) {
+      const bool inside = straddles(it.bounds, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
+      numStay += inside ? 1 : 0;
+      numBack += !inside && !(it.bounds.min[axis] >= dist) ? 1 : 0;
+    }
+    std::vector<GrowingLists::Item> stay;
+    std::vector<GrowingLists::Item> backItems;
+    stay.reserve(numStay);
+    backItems.reserve(numBack);
+    std::size_t numFront = 0;
+    for (const GrowingLists::Item& it : items) {
+      if (straddles(it.bounds, axis, dist)) {
+        stay.push_back(it);
+      } else if (it.bounds.min[axis] >= dist) {
+        items[numFront++] = it;
+      } else {
+        backItems.push_back(it);
+      }
+    }
+    // Each side prepends its items as the list is walked from its head (the
+    // end of the array): in reverse array order.
+    items.resize(numFront);
+    std::reverse(items.begin(), items.end());
+    std::reverse(backItems.begin(), backItems.end());
+    lists.filled[front] = lists.filled[front] || !items.empty();
+    lists.filled[back] = lists.filled[back] || !backItems.empty();
+    all[front] = std::move(items);
+    all[back] = std::move(backItems);
+    all[static_cast<std::size_t>(splitNum)] = std::move(stay);
+  }
+  lists.filled[static_cast<std::size_t>(splitNum)] = !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
+                                                     !lists.brushes[static_cast<std::size_t>(splitNum)].empty();
 }
 
 void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum) {

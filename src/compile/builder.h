@@ -261,7 +261,10 @@ class ModelBuilder {
   bool findSplitter(GrowingLists& lists, int node, const Bounds& bounds, int& planeType,
                     Real& planeDist) const;
   void splitNode(GrowingLists& lists, int node, const Bounds& bounds);
-  /// The items of `node` (`split` or one of its ancestors) that `split`'s
+  /// The items of a node just split: those straddling its plane stay, the
+  /// others go to the child on their side.
+  void splitItems(GrowingLists& lists, int split);
+  /// The items of `node` (an ancestor of `split`) that `split`'s
   /// new plane leaves no longer inside all children of `node`, down the tree.
   void pushItemsDown(GrowingLists& lists, int node, int split);
   Bounds nodeBounds() const;
