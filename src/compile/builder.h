@@ -22,6 +22,7 @@
 #include "cmkit/materials.h"
 #include "cmkit/mesh.h"
 #include "cmkit/model.h"
+#include "compile/int_hash.h"
 #include "geometry/winding.h"
 #include "model/material_cache.h"
 #include "model/tree_filter.h"
@@ -386,14 +387,18 @@ class ModelBuilder {
   int checkCount_ = 0;
   std::vector<std::int32_t> filterStack_;  ///< scratch of filterIntoTree
 
-  // vertex and edge hashes
+  // vertex and edge hashes (polygons.cpp)
   static constexpr int kVertexHashSize = 4096;
   Vec3 hashMin_;
-  std::vector<int> vertexHashHead_;
-  std::vector<int> vertexHashNext_;
-  int& hashHead(int key) { return vertexHashHead_[static_cast<std::size_t>(key)]; }
-  int& hashNext(int vertexNum) { return vertexHashNext_[static_cast<std::size_t>(vertexNum)]; }
-  std::unordered_map<std::uint64_t, int> edgeHashHead_;  ///< directed (v0, v1) -> newest edge
+  /// Per vertex, the original's hash key (which of its kVertexHashSize
+  /// chains it is in); kNone for vertices made before the last clearHash.
+  std::vector<int> vertexHashKey_;
+  /// The vertices by cell of a fine grid (polygons.cpp), each cell's newest
+  /// first, through weldGridNext_: finds the few vertices near a point.
+  IntHashMap weldGridHead_;
+  std::vector<int> weldGridNext_;
+  std::vector<int> weldCandidates_;  ///< scratch of getVertex
+  IntHashMap edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
 
   // merge index (merge.cpp): only polygons sharing an edge can merge, so a
