@@ -390,14 +390,10 @@ class ModelBuilder {
   // vertex and edge hashes (polygons.cpp)
   static constexpr int kVertexHashSize = 4096;
   Vec3 hashMin_;
-  /// Per vertex, the original's hash key (which of its kVertexHashSize
-  /// chains it is in); kNone for vertices made before the last clearHash.
-  std::vector<int> vertexHashKey_;
-  /// The vertices by cell of a fine grid (polygons.cpp), each cell's newest
-  /// first, through weldGridNext_: finds the few vertices near a point.
-  IntHashMap weldGridHead_;
-  std::vector<int> weldGridNext_;
-  std::vector<int> weldCandidates_;  ///< scratch of getVertex
+  std::vector<int> vertexHashHead_;
+  std::vector<int> vertexHashNext_;
+  int& hashHead(int key) { return vertexHashHead_[static_cast<std::size_t>(key)]; }
+  int& hashNext(int vertexNum) { return vertexHashNext_[static_cast<std::size_t>(vertexNum)]; }
   IntHashMap edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
 

@@ -28,38 +28,6 @@ int combineCells(const int k[3], int hashSize) {
   return static_cast<int>(key & static_cast<std::uint32_t>(hashSize - 1));
 }
 
-// The weld grid: where getVertex looks for the vertices it may weld to. The
-// original searches its hash chains; which vertex it finds depends only on
-// the vertices within the weld distance and their hash keys, so any index
-// that yields all of those gives the same vertex.
-
-/// Cells of 4 units: a few vertices each in maps and render models.
-constexpr double kWeldGridCellSize = 4.0;
-/// Cell borders at 4k + 0.25: a quarter unit from every integer and half
-/// integer coordinate, so vertices on the usual grids are not near a border
-/// (where their search spans two cells).
-constexpr double kWeldGridOffset = 0.25;
-/// How far from a point getVertex looks: every vertex that may match lies
-/// closer (a match differs by less than kVertexEpsilon after one correctly
-/// rounded subtraction, so by less than kVertexEpsilon * (1 + 2^-23) exactly).
-constexpr double kWeldSearchMargin = 0.125;
-static_assert(kWeldSearchMargin > static_cast<double>(tol::kVertexEpsilon) * 1.001);
-/// Cell coordinates are clamped here (huge coordinates share cells; the
-/// search tests the vertices themselves, so sharing only costs time).
-constexpr double kWeldGridLimit = 1e15;
-
-long long weldGridCell(double c) {
-  const double cell = std::floor((c - kWeldGridOffset) / kWeldGridCellSize);
-  return static_cast<long long>(std::fmax(-kWeldGridLimit, std::fmin(kWeldGridLimit, cell)));
-}
-
-std::uint64_t weldGridKey(long long x, long long y, long long z) {
-  auto mix = [](std::uint64_t h, long long c) {
-    return (h ^ static_cast<std::uint64_t>(c)) * 0x100000001b3ull;  // FNV-1a style
-  };
-  return mix(mix(mix(0xcbf29ce484222325ull, x), y), z);
-}
-
 std::uint64_t edgeKey(int v0, int v1) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v0)) << 32) | static_cast<std::uint32_t>(v1);
 }
@@ -77,9 +45,8 @@ void ModelBuilder::prepareVertexHash() {
 
 void ModelBuilder::clearHash(const Bounds& bounds) {
   hashMin_ = bounds.min;
-  vertexHashKey_.assign(vertices_.size(), kNone);
-  weldGridHead_.clear();
-  weldGridNext_.assign(vertices_.size(), kNone);
+  vertexHashHead_.assign(kVertexHashSize, kNone);
+  vertexHashNext_.clear();
   edgeHashHead_.clear();
   edgeHashNext_.clear();
 }
@@ -107,44 +74,20 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
     return std::fabs(vert[2] - p[2]) < tol::kVertexEpsilon &&
            std::fabs(vert[0] - p[0]) < tol::kVertexEpsilon && std::fabs(vert[1] - p[1]) < tol::kVertexEpsilon;
   };
-  // The vertices that match (none for a point that is not finite: a match
-  // needs finite differences).
-  const bool finite = std::isfinite(vert.x) && std::isfinite(vert.y) && std::isfinite(vert.z);
-  weldCandidates_.clear();
-  if (finite) {
-    long long first[3];
-    long long last[3];
-    for (int a = 0; a < 3; ++a) {
-      first[a] = weldGridCell(static_cast<double>(vert[a]) - kWeldSearchMargin);
-      last[a] = weldGridCell(static_cast<double>(vert[a]) + kWeldSearchMargin);
-    }
-    for (long long x = first[0]; x <= last[0]; ++x) {
-      for (long long y = first[1]; y <= last[1]; ++y) {
-        for (long long z = first[2]; z <= last[2]; ++z) {
-          for (int vn = weldGridHead_.find(weldGridKey(x, y, z)); vn != kNone;
-               vn = weldGridNext_[static_cast<std::size_t>(vn)]) {
-            if (matches(vn)) weldCandidates_.push_back(vn);
-          }
-        }
-      }
-    }
-  }
-  // The original's chain search: the newest match with that hash key (its
-  // chains run newest first).
+  // Newest first within a cell, as the original's hash chains.
   auto searchCell = [&](int key) {
-    int newest = kNone;
-    for (const int vn : weldCandidates_) {
-      if (vertexHashKey_[static_cast<std::size_t>(vn)] == key && vn > newest) newest = vn;
+    for (int vn = hashHead(key); vn != kNone; vn = hashNext(vn)) {
+      if (matches(vn)) return vn;
     }
-    return newest;
+    return kNone;
   };
   const int midKey = combineCells(kMid, kVertexHashSize);
-  int found = weldCandidates_.empty() ? kNone : searchCell(midKey);
-  if (found == kNone && differing == 1 && !weldCandidates_.empty()) {
+  int found = searchCell(midKey);
+  if (found == kNone && differing == 1) {
     int other[3];
     for (int a = 0; a < 3; ++a) other[a] = kMid[a] == kLo[a] ? kHi[a] : kLo[a];
     found = searchCell(combineCells(other, kVertexHashSize));
-  } else if (found == kNone && differing > 1 && !weldCandidates_.empty()) {
+  } else if (found == kNone && differing > 1) {
     // The original searches all vertices in order here; any vertex within
     // the weld distance lies in one of these cells, so the lowest-numbered
     // match among them is the same vertex, found without a linear scan.
@@ -158,10 +101,9 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
       for (int s = 0; s < numKeys; ++s) seen = seen || keys[s] == key;
       if (!seen) keys[numKeys++] = key;
     }
-    for (const int vn : weldCandidates_) {
-      const int key = vertexHashKey_[static_cast<std::size_t>(vn)];
-      for (int s = 0; s < numKeys; ++s) {
-        if (keys[s] == key && (found == kNone || vn < found)) found = vn;
+    for (int s = 0; s < numKeys; ++s) {
+      for (int vn = hashHead(keys[s]); vn != kNone; vn = hashNext(vn)) {
+        if ((found == kNone || vn < found) && matches(vn)) found = vn;
       }
     }
   }
@@ -171,15 +113,8 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   }
   vertexNum = static_cast<int>(vertices_.size());
   vertices_.push_back(vert);
-  vertexHashKey_.push_back(midKey);
-  weldGridNext_.push_back(kNone);
-  if (finite) {
-    int& head = weldGridHead_.at(weldGridKey(weldGridCell(static_cast<double>(vert.x)),
-                                             weldGridCell(static_cast<double>(vert.y)),
-                                             weldGridCell(static_cast<double>(vert.z))));
-    weldGridNext_.back() = head;
-    head = vertexNum;
-  }
+  vertexHashNext_.push_back(hashHead(midKey));
+  hashHead(midKey) = vertexNum;
   return false;
 }
 
