@@ -22,6 +22,7 @@
 #include "cmkit/materials.h"
 #include "cmkit/mesh.h"
 #include "cmkit/model.h"
+#include "compile/int_hash.h"
 #include "geometry/winding.h"
 #include "model/material_cache.h"
 #include "model/tree_filter.h"
@@ -128,6 +129,37 @@ class RefList {
   int head_;
 };
 
+/// Lists of ints by int key in one pool (no allocation per key): add()
+/// prepends, forEach() visits a key's items newest first.
+class PooledLists {
+ public:
+  void clear() {
+    head_.clear();
+    pool_.clear();
+  }
+  void add(int key, int item) {
+    const auto k = static_cast<std::size_t>(key);
+    if (head_.size() <= k) head_.resize(k + 1, kNone);
+    pool_.push_back({item, head_[k]});
+    head_[k] = static_cast<int>(pool_.size()) - 1;
+  }
+  template <class Visit>
+  void forEach(int key, Visit&& visit) const {
+    const auto k = static_cast<std::size_t>(key);
+    if (head_.size() <= k) return;
+    for (int i = head_[k]; i != kNone; i = pool_[static_cast<std::size_t>(i)].next)
+      visit(pool_[static_cast<std::size_t>(i)].item);
+  }
+
+ private:
+  struct Entry {
+    int item;
+    int next;
+  };
+  std::vector<int> head_;
+  std::vector<Entry> pool_;
+};
+
 /// Counters the original prints (PrintModelInfo).
 struct BuildCounters {
   int numPolygonRefs = 0;
@@ -215,23 +247,38 @@ class ModelBuilder {
       return detail::insideAllChildren(*this, n, b);
     }
   };
-  bool insideAllChildren(int node, const Bounds& bounds) const;
   enum class ItemKind { Polygon, Brush };
-  /// Links a polygon or brush into every node below `node` its bounds reach
-  /// by the tree-filter rule (model/tree_filter.h); `ref` != kNone moves that
-  /// existing reference (to one of the nodes) instead of making a new one.
-  void filterIntoTree(ItemKind kind, int node, int ref, int item);
-  bool findSplitter(int node, const Bounds& bounds, int& planeType, Real& planeDist) const;
-  void createAxialBSPTree(int node, const Bounds& bounds);
-  /// The items of `node` that are no longer inside all its children go down the tree.
-  void pushItemsDown(int node);
+  /// Links a new polygon or brush into every node below `node` its bounds
+  /// reach by the tree-filter rule (model/tree_filter.h).
+  void filterIntoTree(ItemKind kind, int node, int item);
+
+  // ---- axial_tree.cpp
+  /// The axial BSP tree (the original's R_CreateAxialBSPTree) below the
+  /// root, while it is the only node, over the items linked into it.
+  void createAxialBSPTree(const Bounds& bounds);
+  struct GrowingLists;
+  void readLists(GrowingLists& lists) const;
+  void writeLists(const GrowingLists& lists);
+  bool findSplitter(GrowingLists& lists, int node, const Bounds& bounds, int& planeType,
+                    Real& planeDist) const;
+  void splitNode(GrowingLists& lists, int node, const Bounds& bounds);
+  /// The items of a node just split: those straddling its plane stay, the
+  /// others go to the child on their side.
+  void splitItems(GrowingLists& lists, int split);
+  /// The items of `node` (an ancestor of `split`) that `split`'s
+  /// new plane leaves no longer inside all children of `node`, down the tree.
+  void pushItemsDown(GrowingLists& lists, int node, int split);
   Bounds nodeBounds() const;
 
   // ---- merge.cpp
   /// Coplanar polygons that share an edge, merged into one convex polygon.
   void mergePolygons();
+  /// The merge index below, for the polygons and tree as they are.
+  void prepareMergeIndex();
   void mergeTreePolygons(int node);
-  bool mergePolygonWithTreePolygons(int node, int polygon);
+  bool mergePolygonWithTreePolygons(int polygon);
+  /// True when walkTouching(0, bounds, ...) visits the node.
+  bool walkReaches(int node, const Bounds& bounds) const;
   int tryMergePolygons(int p1, int p2);
   void replacePolygons(int node, int p1, int p2, int newp);
 
@@ -340,15 +387,25 @@ class ModelBuilder {
   int checkCount_ = 0;
   std::vector<std::int32_t> filterStack_;  ///< scratch of filterIntoTree
 
-  // vertex and edge hashes
+  // vertex and edge hashes (polygons.cpp)
   static constexpr int kVertexHashSize = 4096;
   Vec3 hashMin_;
   std::vector<int> vertexHashHead_;
   std::vector<int> vertexHashNext_;
   int& hashHead(int key) { return vertexHashHead_[static_cast<std::size_t>(key)]; }
   int& hashNext(int vertexNum) { return vertexHashNext_[static_cast<std::size_t>(vertexNum)]; }
-  std::unordered_map<std::uint64_t, int> edgeHashHead_;  ///< directed (v0, v1) -> newest edge
+  IntHashMap edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
+
+  // merge index (merge.cpp): only polygons sharing an edge can merge, so a
+  // polygon looks up those instead of testing every polygon its bounds touch
+  PooledLists edgeUsers_;          ///< per edge: the polygons made with it (freed ones too)
+  PooledLists polygonNodes_;       ///< per live polygon: the nodes whose lists hold it
+  std::vector<int> walkOrder_;     ///< per node: its place in walkTouching's order
+  std::vector<int> mergeMark_;     ///< per polygon: the mergeStamp_ of a candidate
+  int mergeStamp_ = 0;
+  std::vector<int> mergeNodes_;    ///< scratch: the nodes to search, in walk order
+  std::vector<int> linkedNodes_;   ///< scratch of replacePolygons: where newp went
 
   // winding list of windingOutsideBrushes
   struct WindingList {

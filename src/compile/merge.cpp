@@ -1,6 +1,7 @@
 // Merging coplanar polygons that share an edge into one convex polygon (the
 // original's MergeTreePolygons, MergePolygonWithTreePolygons,
 // TryMergePolygons and ReplacePolygons).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -18,11 +19,52 @@ void normalizeUnguarded(Vec3& v) {
   }
   v *= compatInvSqrt(sq);
 }
+
+/// The first tests of tryMergePolygons: same material, same plane, bounds
+/// that meet.
+bool mayMerge(const BPolygon& p1, const BPolygon& p2) {
+  if (p1.material != p2.material) return false;
+  if (std::fabs(p1.plane.dist - p2.plane.dist) > tol::kNormalEpsilon) return false;
+  for (int i = 0; i < 3; ++i) {
+    if (std::fabs(p1.plane.normal[i] - p2.plane.normal[i]) > tol::kNormalEpsilon) return false;
+  }
+  return p2.bounds.intersects(p1.bounds);
+}
+
 }  // namespace
 
 void ModelBuilder::mergePolygons() {
   ++checkCount_;
+  prepareMergeIndex();
   mergeTreePolygons(0);
+  edgeUsers_.clear();
+  polygonNodes_.clear();
+}
+
+void ModelBuilder::prepareMergeIndex() {
+  edgeUsers_.clear();
+  polygonNodes_.clear();
+  for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
+    if (polygon(p).freed) continue;
+    for (const int e : polygon(p).edges) edgeUsers_.add(std::abs(e), p);
+  }
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
+    for (const int p : polygonsAt(n)) polygonNodes_.add(p, n);
+  }
+  // walkTouching's order: each node before those below it, the back subtree
+  // before the front one (the tree does not change while merging).
+  walkOrder_.assign(nodes_.size(), 0);
+  std::vector<int> stack{0};
+  for (int next = 0; !stack.empty();) {
+    const int n = stack.back();
+    stack.pop_back();
+    walkOrder_[static_cast<std::size_t>(n)] = next++;
+    if (node(n).isLeaf()) continue;
+    stack.push_back(node(n).children[0]);
+    stack.push_back(node(n).children[1]);
+  }
+  mergeMark_.assign(polygons_.size(), 0);
+  mergeStamp_ = 0;
 }
 
 void ModelBuilder::mergeTreePolygons(int nodeNum) {
@@ -33,7 +75,7 @@ void ModelBuilder::mergeTreePolygons(int nodeNum) {
       for (const int p : polygonsAt(nodeNum)) {
         if (polygon(p).checkcount == checkCount_) continue;
         polygon(p).checkcount = checkCount_;
-        if (mergePolygonWithTreePolygons(0, p)) {
+        if (mergePolygonWithTreePolygons(p)) {
           merged = true;
           break;  // the list changed: start it again
         }
@@ -47,36 +89,71 @@ void ModelBuilder::mergeTreePolygons(int nodeNum) {
   }
 }
 
-bool ModelBuilder::mergePolygonWithTreePolygons(int nodeNum, int polygonNum) {
-  const Bounds bounds = polygon(polygonNum).bounds;
-  const bool merged = !walkTouching(nodeNum, bounds, [&](int n) {
+bool ModelBuilder::walkReaches(int nodeNum, const Bounds& bounds) const {
+  for (int below = nodeNum, up = node(nodeNum).parent; up != kNone; below = up, up = node(up).parent) {
+    const BNode& split = node(up);
+    const bool beyondFront = bounds.min[split.planeType] > split.planeDist;  // the walk goes front only
+    const bool beyondBack = bounds.max[split.planeType] < split.planeDist;   // back only (if not front only)
+    const bool reached = below == split.children[0] ? beyondFront || !beyondBack : !beyondFront;
+    if (!reached) return false;
+  }
+  return true;
+}
+
+bool ModelBuilder::mergePolygonWithTreePolygons(int polygonNum) {
+  // The original tries the polygon with every polygon in the nodes its bounds
+  // touch (walkTouching from the root, each node's list in order) and merges
+  // with the first that tryMergePolygons accepts. tryMergePolygons returns
+  // early, with no effect, for a polygon that shares no edge with it or
+  // fails mayMerge; so only the nodes holding other candidates are searched,
+  // in the walk's order: the same pairs reach tryMergePolygons' effects in
+  // the same order.
+  const int stamp = ++mergeStamp_;
+  mergeNodes_.clear();
+  const BPolygon& poly = polygon(polygonNum);
+  const Bounds bounds = poly.bounds;
+  for (const int e : poly.edges) {
+    edgeUsers_.forEach(std::abs(e), [&](int q) {
+      int& mark = mergeMark_[static_cast<std::size_t>(q)];
+      if (q == polygonNum || mark == stamp || polygon(q).freed || !mayMerge(poly, polygon(q))) return;
+      mark = stamp;
+      polygonNodes_.forEach(q, [&](int n) {
+        if (walkReaches(n, bounds)) mergeNodes_.push_back(n);
+      });
+    });
+  }
+  if (mergeNodes_.empty()) return false;
+  std::sort(mergeNodes_.begin(), mergeNodes_.end(), [&](int a, int b) {
+    return walkOrder_[static_cast<std::size_t>(a)] < walkOrder_[static_cast<std::size_t>(b)];
+  });
+  mergeNodes_.erase(std::unique(mergeNodes_.begin(), mergeNodes_.end()), mergeNodes_.end());
+  for (const int n : mergeNodes_) {
     for (const int p : polygonsAt(n)) {
-      if (p == polygonNum) continue;
+      if (p == polygonNum || mergeMark_[static_cast<std::size_t>(p)] != stamp) continue;
       const int newp = tryMergePolygons(polygonNum, p);
       if (newp == kNone) continue;
       counters_.numMergedPolys++;
+      linkedNodes_.clear();
       replacePolygons(0, polygonNum, p, newp);
       for (const int old : {polygonNum, p}) {
         for (const int e : polygon(old).edges) edge(e).numUsers--;
         polygon(old).freed = true;
         polygon(old).edges.clear();
       }
-      return false;  // the lists changed: stop
+      // the new polygon in the merge index
+      for (const int e : polygon(newp).edges) edgeUsers_.add(std::abs(e), newp);
+      for (const int linked : linkedNodes_) polygonNodes_.add(newp, linked);
+      mergeMark_.resize(polygons_.size(), 0);
+      return true;
     }
-    return true;
-  });
-  return merged;
+  }
+  return false;
 }
 
 int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
   const BPolygon& p1 = polygon(p1Num);
   const BPolygon& p2 = polygon(p2Num);
-  if (p1.material != p2.material) return kNone;
-  if (std::fabs(p1.plane.dist - p2.plane.dist) > tol::kNormalEpsilon) return kNone;
-  for (int i = 0; i < 3; ++i) {
-    if (std::fabs(p1.plane.normal[i] - p2.plane.normal[i]) > tol::kNormalEpsilon) return kNone;
-  }
-  if (!p2.bounds.intersects(p1.bounds)) return kNone;
+  if (!mayMerge(p1, p2)) return kNone;
   const int n1 = static_cast<int>(p1.edges.size());
   const int n2 = static_cast<int>(p2.edges.size());
   auto e1 = [&](int i) { return p1.edges[static_cast<std::size_t>(i)]; };
@@ -201,6 +278,7 @@ void ModelBuilder::replacePolygons(int nodeNum, int p1, int p2, int newp) {
         } else {
           polygonRef(r).item = newp;
           linked = true;
+          linkedNodes_.push_back(nodeNum);
           last = r;
         }
       } else {

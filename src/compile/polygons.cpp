@@ -132,14 +132,12 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
   }
   if (found) {
     // Share an edge only with one polygon that uses it the other way.
-    const auto it = edgeHashHead_.find(edgeKey(v2num, v1num));
-    if (it != edgeHashHead_.end()) {
-      for (int e = it->second; e != kNone; e = edgeHashNext_[static_cast<std::size_t>(e)]) {
-        if (edge(e).numUsers != 1) continue;
-        edge(e).numUsers++;
-        edgeNum = -e;
-        return true;
-      }
+    for (int e = edgeHashHead_.find(edgeKey(v2num, v1num)); e != kNone;
+         e = edgeHashNext_[static_cast<std::size_t>(e)]) {
+      if (edge(e).numUsers != 1) continue;
+      edge(e).numUsers++;
+      edgeNum = -e;
+      return true;
     }
   }
   BEdge newEdge;
@@ -148,9 +146,9 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
   newEdge.numUsers = 1;
   const int e = static_cast<int>(edges_.size());
   edges_.push_back(newEdge);
-  auto [it, inserted] = edgeHashHead_.try_emplace(edgeKey(v1num, v2num), e);
-  edgeHashNext_.push_back(inserted ? kNone : it->second);
-  it->second = e;
+  int& head = edgeHashHead_.at(edgeKey(v1num, v2num));
+  edgeHashNext_.push_back(head);  // kNone (IntHashMap::kEmpty) for the first
+  head = e;
   edgeNum = e;
   return false;
 }
@@ -194,7 +192,7 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
   p.plane = plane;
   p.bounds = w.bounds();
   polygons_.push_back(std::move(p));
-  filterIntoTree(ItemKind::Polygon, 0, kNone, static_cast<int>(polygons_.size()) - 1);
+  filterIntoTree(ItemKind::Polygon, 0, static_cast<int>(polygons_.size()) - 1);
 }
 
 void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum) {

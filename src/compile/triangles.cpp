@@ -24,6 +24,9 @@ void ModelBuilder::convertMeshSurfaces() {
   for (const Vec3& p : mesh.positions) bounds.addPoint(p);
   if (mesh.positions.empty()) bounds = Bounds{Vec3{}, Vec3{}};
   clearHash(bounds);
+  std::size_t numIndices = 0;
+  for (const MeshSurface& s : mesh.surfaces) numIndices += s.indices.size();
+  edgeHashHead_.reserve(numIndices);  // each index starts an edge (the table grows for two-sided ones)
   int zeroNormals = 0;
   for (const MeshSurface& s : mesh.surfaces) {
     const int material = materials_.find(s.material);
@@ -55,7 +58,7 @@ void ModelBuilder::convertMeshSurfaces() {
   }
   // The axial BSP tree over the polygons (the original builds it for every
   // render model, after the polygons).
-  createAxialBSPTree(0, nodeBounds());
+  createAxialBSPTree(nodeBounds());
 }
 
 }  // namespace detail

@@ -1,0 +1,295 @@
+// The growth of a model's axial BSP tree (the original's CM_FindSplitter,
+// R_CreateAxialBSPTree and CM_R_InsideAllChildren), on arrays.
+//
+// The original keeps each node's items in its linked list and, after every
+// split, tests every item of the split node and of all its ancestors with the
+// full "inside all children" recursion over their subtrees, following list
+// links all over memory. Here each node's items are an array of (bounds,
+// item), cheap to scan, and the recursion is replaced by what it amounts to:
+// every item of an interior node is inside all its children (the tree-filter
+// rule puts it there only then, and every split re-checks the ancestors), so
+// after a split an item of the split node or of an ancestor is still inside
+// all children exactly when it straddles the new plane, and one that does not
+// goes down the path to the split node, reaching every child off the path
+// (it straddles all the planes there) and then the side of the new plane it
+// lies on. The lists end as the original's do: same items, same order.
+#include <algorithm>
+#include <cmath>
+
+#include "compile/builder.h"
+#include "util/assert.h"
+
+namespace cmkit::detail {
+
+/// Per node, its polygons and brushes with their bounds in reverse list
+/// order (the head last: prepending to a list is push_back).
+struct ModelBuilder::GrowingLists {
+  struct Item {
+    Bounds bounds;
+    int item = kNone;
+  };
+  using Lists = std::vector<std::vector<Item>>;
+  Lists polygons;
+  Lists brushes;
+  std::vector<int> path;    ///< pushItemsDown's path from the split node up
+  std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
+  // Per node, compact for the walks up the tree: its parent, and whether
+  // it may hold items (set when it gets one, updated when it loses some).
+  std::vector<int> parent;
+  std::vector<char> filled;
+  Lists& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
+  void add(Lists& all, int node, const Item& it) {
+    all[static_cast<std::size_t>(node)].push_back(it);
+    filled[static_cast<std::size_t>(node)] = 1;
+  }
+  /// Room for the nodes of the builder's tree.
+  void grow(const std::vector<BNode>& nodes) {
+    const std::size_t known = parent.size();
+    polygons.resize(nodes.size());
+    brushes.resize(nodes.size());
+    filled.resize(nodes.size(), 0);
+    parent.resize(nodes.size(), kNone);
+    for (std::size_t n = known; n < nodes.size(); ++n) parent[n] = nodes[n].parent;
+  }
+};
+
+namespace {
+
+/// The tree-filter rule's "not entirely on one side" of an axial plane (an
+/// item that straddles stays above it); false for bounds beyond or touching.
+bool straddles(const Bounds& b, int axis, Real dist) { return !(b.min[axis] >= dist) && !(b.max[axis] <= dist); }
+
+}  // namespace
+
+void ModelBuilder::createAxialBSPTree(const Bounds& bounds) {
+  CMKIT_ASSERT(nodes_.size() == 1);
+  GrowingLists lists;
+  readLists(lists);
+  splitNode(lists, 0, bounds);
+  writeLists(lists);
+}
+
+void ModelBuilder::readLists(GrowingLists& lists) const {
+  lists.grow(nodes_);
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
+    auto& polygons = lists.polygons[static_cast<std::size_t>(n)];
+    for (const int p : polygonsAt(n)) polygons.push_back({polygon(p).bounds, p});
+    std::reverse(polygons.begin(), polygons.end());
+    auto& brushes = lists.brushes[static_cast<std::size_t>(n)];
+    for (const int b : brushesAt(n)) brushes.push_back({brush(b).bounds, b});
+    std::reverse(brushes.begin(), brushes.end());
+    lists.filled[static_cast<std::size_t>(n)] = !polygons.empty() || !brushes.empty();
+  }
+}
+
+void ModelBuilder::writeLists(const GrowingLists& lists) {
+  // The references are made anew: only the lists' order matters.
+  polygonRefs_.clear();
+  brushRefs_.clear();
+  freePolygonRef_ = kNone;
+  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
+    BNode& here = node(n);
+    here.polygons = kNone;
+    for (const auto& it : lists.polygons[static_cast<std::size_t>(n)]) {
+      polygonRefs_.push_back({it.item, here.polygons});
+      here.polygons = static_cast<int>(polygonRefs_.size()) - 1;
+    }
+    here.brushes = kNone;
+    for (const auto& it : lists.brushes[static_cast<std::size_t>(n)]) {
+      brushRefs_.push_back({it.item, here.brushes});
+      here.brushes = static_cast<int>(brushRefs_.size()) - 1;
+    }
+  }
+}
+
+bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& bounds, int& planeType,
+                                Real& planeDist) const {
+  Real size[3];
+  int axis[3];
+  for (int i = 0; i < 3; ++i) {
+    size[i] = bounds.max[i] - bounds.min[i];
+    axis[i] = i;
+  }
+  // Largest axis first (the original's restarting bubble sort).
+  for (int i = 0; i < 2; ++i) {
+    if (size[i] < size[i + 1]) {
+      std::swap(size[i], size[i + 1]);
+      std::swap(axis[i], axis[i + 1]);
+      i = -1;
+    }
+  }
+  bool forceSplit = false;
+  if (size[0] < tol::kMinNodeSize) {
+    const std::size_t polyCount = lists.polygons[static_cast<std::size_t>(nodeNum)].size();
+    if (polyCount > static_cast<std::size_t>(tol::kMaxNodePolygons)) forceSplit = true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int type = axis[i];
+    if (!forceSplit && size[i] < tol::kMinNodeSize) break;
+    if (i == 0) {
+      // candidates from the brushes, then the polygons, of this node and its ancestors
+      lists.sources.clear();
+      for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
+        for (int n = nodeNum; n != kNone; n = lists.parent[static_cast<std::size_t>(n)]) {
+          if (!lists.filled[static_cast<std::size_t>(n)]) continue;
+          const auto& items = (*all)[static_cast<std::size_t>(n)];
+          if (!items.empty()) lists.sources.push_back(&items);
+        }
+      }
+    }
+    // The most centred splitter (dhewm3: not truncated to an integer): the
+    // first bounds plane strictly inside the node with the least t, each
+    // list from its head (the end of its array). Without branches: which
+    // candidate wins is unpredictable.
+    const Real lo = bounds.min[type];
+    const Real hi = bounds.max[type];
+    Real bestt = size[i];
+    Real bestDist = 0;
+    for (const std::vector<GrowingLists::Item>* items : lists.sources) {
+      for (auto it = items->rbegin(); it != items->rend(); ++it) {
+        for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
+          const Real t = std::fabs((hi - dist) - (dist - lo));
+          const bool better = (dist < hi) & (dist > lo) & (t < bestt);
+          bestt = better ? t : bestt;
+          bestDist = better ? dist : bestDist;
+        }
+      }
+    }
+    if (bestt < size[i]) {
+      planeType = type;
+      planeDist = bestDist;
+      if (forceSplit) return true;
+      // not too close to the node bounds
+      if (bounds.max[type] - planeDist > tol::kSplitterMinDistance &&
+          planeDist - bounds.min[type] > tol::kSplitterMinDistance) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bounds) {
+  int planeType = kNone;
+  Real planeDist = 0;
+  if (!findSplitter(lists, nodeNum, bounds, planeType, planeDist)) {
+    node(nodeNum).planeType = kNone;
+    return;
+  }
+  const int frontNode = allocNode();
+  node(frontNode).parent = nodeNum;
+  const int backNode = allocNode();
+  node(backNode).parent = nodeNum;
+  lists.grow(nodes_);
+  counters_.numNodes += 2;
+  Bounds frontBounds = bounds;
+  frontBounds.min[planeType] = planeDist;
+  Bounds backBounds = bounds;
+  backBounds.max[planeType] = planeDist;
+  BNode& split = node(nodeNum);
+  split.planeType = planeType;
+  split.planeDist = planeDist;
+  split.children[0] = frontNode;
+  split.children[1] = backNode;
+  // The new split can leave items of this node and of every ancestor no
+  // longer inside all children.
+  splitItems(lists, nodeNum);
+  lists.path.assign(1, nodeNum);
+  for (int n = node(nodeNum).parent; n != kNone; n = node(n).parent) {
+    pushItemsDown(lists, n, nodeNum);
+    lists.path.push_back(n);
+  }
+  splitNode(lists, frontNode, frontBounds);
+  splitNode(lists, backNode, backBounds);
+}
+
+void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
+  const BNode& split = node(splitNum);
+  const int axis = split.planeType;
+  const Real dist = split.planeDist;
+  const auto front = static_cast<std::size_t>(split.children[0]);
+  const auto back = static_cast<std::size_t>(split.children[1]);
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    GrowingLists::Lists& all = lists.of(kind);
+    std::vector<GrowingLists::Item> items = std::move(all[static_cast<std::size_t>(splitNum)]);
+    if (items.empty()) continue;
+    std::size_t numStay = 0;
+    std::size_t numBack = 0;
+    for (const GrowingLists::Item& it : items) {
+      const bool inside = straddles(it.bounds, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
+      numStay += inside ? 1 : 0;
+      numBack += !inside && !(it.bounds.min[axis] >= dist) ? 1 : 0;
+    }
+    std::vector<GrowingLists::Item> stay;
+    std::vector<GrowingLists::Item> backItems;
+    stay.reserve(numStay);
+    backItems.reserve(numBack);
+    std::size_t numFront = 0;
+    for (const GrowingLists::Item& it : items) {
+      if (straddles(it.bounds, axis, dist)) {
+        stay.push_back(it);
+      } else if (it.bounds.min[axis] >= dist) {
+        items[numFront++] = it;
+      } else {
+        backItems.push_back(it);
+      }
+    }
+    // Each side prepends its items as the list is walked from its head (the
+    // end of the array): in reverse array order.
+    items.resize(numFront);
+    std::reverse(items.begin(), items.end());
+    std::reverse(backItems.begin(), backItems.end());
+    lists.filled[front] = lists.filled[front] || !items.empty();
+    lists.filled[back] = lists.filled[back] || !backItems.empty();
+    all[front] = std::move(items);
+    all[back] = std::move(backItems);
+    all[static_cast<std::size_t>(splitNum)] = std::move(stay);
+  }
+  lists.filled[static_cast<std::size_t>(splitNum)] = !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
+                                                     !lists.brushes[static_cast<std::size_t>(splitNum)].empty();
+}
+
+void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum) {
+  const BNode& split = node(splitNum);
+  const int axis = split.planeType;
+  const Real dist = split.planeDist;
+  // lists.path: the nodes below nodeNum down to the split node, bottom up.
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    GrowingLists::Lists& all = lists.of(kind);
+    if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
+    auto& here = all[static_cast<std::size_t>(nodeNum)];
+    if (here.empty()) continue;
+    // In list order, from the end of the array (the original filters each
+    // item as it meets it); the items that stay keep their order.
+    std::size_t kept = here.size();
+    for (std::size_t i = here.size(); i-- > 0;) {
+      const GrowingLists::Item it = here[i];
+      const bool inside = straddles(it.bounds, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, it.bounds));
+      if (inside) {
+        here[--kept] = it;
+        continue;
+      }
+      // Through each node above the split, the child off the path, then the
+      // side of the split it lies on.
+      int n = nodeNum;
+      for (auto below = lists.path.rbegin(); below != lists.path.rend(); ++below) {
+        const BNode& at = node(n);
+        const int offPath = at.children[0] == *below ? at.children[1] : at.children[0];
+        lists.add(all, offPath, it);
+        n = *below;
+      }
+      const int side = it.bounds.min[axis] >= dist ? split.children[0] : split.children[1];
+      lists.add(all, side, it);
+      // the reference moves to one node; the others are new
+      (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
+          static_cast<int>(lists.path.size());
+    }
+    here.erase(here.begin(), here.begin() + static_cast<std::ptrdiff_t>(kept));
+  }
+  lists.filled[static_cast<std::size_t>(nodeNum)] =
+      !lists.polygons[static_cast<std::size_t>(nodeNum)].empty() || !lists.brushes[static_cast<std::size_t>(nodeNum)].empty();
+}
+
+}  // namespace cmkit::detail
