@@ -45,10 +45,15 @@ struct Box {
   }
 };
 
+/// A polygon while the hierarchy is made (32 bytes: the builder's passes
+/// over a large model's items are bound by memory).
 struct Item {
   Box box;
-  std::array<float, 3> centre;
+  std::uint32_t contents;
   std::int32_t polygon;
+  /// The centre of the box along axis k.
+  float centre(std::size_t k) const { return (box.min[k] + box.max[k]) * 0.5f; }
+  std::array<float, 3> centre() const { return {centre(0), centre(1), centre(2)}; }
 };
 
 class Builder {
@@ -61,9 +66,9 @@ class Builder {
       for (int k = 0; k < 3; ++k) {
         item.box.min[k] = float(p.bounds.min[k]);
         item.box.max[k] = float(p.bounds.max[k]);
-        item.centre[k] = (item.box.min[k] + item.box.max[k]) * 0.5f;
       }
       item.polygon = std::int32_t(i);
+      item.contents = p.contents;
       items_.push_back(item);
     }
     model_ = &m;
@@ -82,16 +87,21 @@ class Builder {
     std::size_t size() const { return end - first; }
   };
 
-  Box boundsOf(Range r) const {
+  /// The bounds of r's items, and their contents OR'ed.
+  Box boundsOf(Range r, std::uint32_t& contents) const {
     Box b;
-    for (std::size_t i = r.first; i < r.end; ++i) b.add(items_[i].box);
+    contents = 0;
+    for (std::size_t i = r.first; i < r.end; ++i) {
+      b.add(items_[i].box);
+      contents |= items_[i].contents;
+    }
     return b;
   }
 
   /// Splits r in two non-empty ranges (r.size() > 1).
   std::size_t split(Range r, std::size_t depth) {
     Box centres;
-    for (std::size_t i = r.first; i < r.end; ++i) centres.add(items_[i].centre);
+    for (std::size_t i = r.first; i < r.end; ++i) centres.add(items_[i].centre());
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (centres.max[k] - centres.min[k] > centres.max[axis] - centres.min[axis]) axis = k;
@@ -99,7 +109,7 @@ class Builder {
     if (extent > 0 && depth < kMaxCostDepth) {
       const float scale = float(kBins) / extent;
       auto binOf = [&](const Item& it) {
-        return std::min(kBins - 1, int((it.centre[std::size_t(axis)] - lo) * scale));
+        return std::min(kBins - 1, int((it.centre(std::size_t(axis)) - lo) * scale));
       };
       std::array<Box, kBins> bins;
       std::array<std::size_t, kBins> counts{};
@@ -132,9 +142,9 @@ class Builder {
         }
       }
       if (best >= 0) {
-        const auto mid = std::stable_partition(items_.begin() + std::ptrdiff_t(r.first),
-                                               items_.begin() + std::ptrdiff_t(r.end),
-                                               [&](const Item& it) { return binOf(it) <= best; });
+        const auto mid =
+            std::partition(items_.begin() + std::ptrdiff_t(r.first), items_.begin() + std::ptrdiff_t(r.end),
+                           [&](const Item& it) { return binOf(it) <= best; });
         return std::size_t(mid - items_.begin());
       }
     }
@@ -142,7 +152,7 @@ class Builder {
     const std::size_t mid = r.first + r.size() / 2;
     std::nth_element(items_.begin() + std::ptrdiff_t(r.first), items_.begin() + std::ptrdiff_t(mid),
                      items_.begin() + std::ptrdiff_t(r.end), [&](const Item& a, const Item& b) {
-                       const float ca = a.centre[std::size_t(axis)], cb = b.centre[std::size_t(axis)];
+                       const float ca = a.centre(std::size_t(axis)), cb = b.centre(std::size_t(axis));
                        return ca < cb || (ca == cb && a.polygon < b.polygon);
                      });
     return mid;
@@ -211,9 +221,7 @@ class Builder {
       std::int32_t child = 0;
       std::uint32_t contents = 0;
       if (j < numChildren) {
-        box = boundsOf(children[j]);
-        for (std::size_t i = children[j].first; i < children[j].end; ++i)
-          contents |= model_->polygons[std::size_t(items_[i].polygon)].contents;
+        box = boundsOf(children[j], contents);
         child = children[j].size() <= kLanes
                     ? ~std::int32_t(leaf(children[j]))
                     : std::int32_t(node(children[j].first, children[j].end, depth + 1));
