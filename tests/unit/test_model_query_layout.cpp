@@ -1,0 +1,182 @@
+// cmkit's own query layout of a model (src/model/polygon_bvh.h,
+// point_tree.h): the polygon hierarchy holds every polygon once, with boxes
+// and contents that contain what is below them; the point tree is the BSP
+// tree node for node. (That the queries answer alike with and without it:
+// QueryData.PreparedAndBareModelsAnswerAlike* in test_query_properties.cpp.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include "cmkit/query.h"
+#include "model/model_access.h"
+#include "model/query_data.h"
+#include "model_fixtures.h"
+#include "test_support.h"
+
+namespace cmkit {
+namespace {
+
+using detail::BvhLeaf;
+using detail::BvhNode;
+using detail::kLanes;
+using detail::PointNode;
+using detail::PointTree;
+using detail::PolygonBvh;
+
+/// The bundled lt4's world model (11 489 polygons).
+ModelPtr lt4World() {
+  const auto models = test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map");
+  return models.empty() ? nullptr : models.front();
+}
+
+/// Whether box [min, max] of lane j of a node or leaf contains bounds b.
+template <class Block>
+bool laneContains(const Block& block, std::size_t j, const Bounds& b) {
+  for (int k = 0; k < 3; ++k)
+    if (block.min[k][j] > b.min[k] || block.max[k][j] < b.max[k]) return false;
+  return true;
+}
+
+/// Checks the subtree of `child` against its box and contents in the parent
+/// (lane j of `parent`); adds its polygons to `seen`; returns its inner depth.
+std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::int32_t child,
+                         const BvhNode* parent, std::size_t lane, std::vector<int>& seen) {
+  std::uint32_t contents = 0;
+  if (child < 0) {
+    const std::size_t leaf = std::size_t(~child);
+    EXPECT_LT(leaf, bvh.leaves.size());
+    const BvhLeaf& b = bvh.leaves[leaf];
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      const std::int32_t polyNum = bvh.polygons[leaf * kLanes + j];
+      if (polyNum < 0) {
+        EXPECT_EQ(b.contents[j], 0u) << "an unused lane has no contents";
+        EXPECT_GT(b.min[0][j], b.max[0][j]) << "an unused lane's box is inverted";
+        continue;
+      }
+      const CmPolygon& p = m.polygons()[std::size_t(polyNum)];
+      ++seen[std::size_t(polyNum)];
+      contents |= p.contents;
+      EXPECT_EQ(b.contents[j], p.contents);
+      EXPECT_EQ(b.dist[j], p.plane.dist);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(b.min[k][j], p.bounds.min[k]);
+        EXPECT_EQ(b.max[k][j], p.bounds.max[k]);
+        EXPECT_EQ(b.normal[k][j], p.plane.normal[k]);
+      }
+      if (parent) {
+        EXPECT_TRUE(laneContains(*parent, lane, p.bounds)) << "polygon " << polyNum;
+      }
+    }
+    if (parent) {
+      EXPECT_EQ(parent->contents[lane], contents);
+    }
+    return 0;
+  }
+  EXPECT_LT(std::size_t(child), bvh.nodes.size());
+  const BvhNode& n = bvh.nodes[std::size_t(child)];
+  std::size_t depth = 0;
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    if (n.contents[j] == 0 && n.min[0][j] > n.max[0][j]) continue;  // unused
+    contents |= n.contents[j];
+    if (parent) {
+      Bounds box;
+      for (int k = 0; k < 3; ++k) {
+        box.min[k] = n.min[k][j];
+        box.max[k] = n.max[k][j];
+      }
+      EXPECT_TRUE(laneContains(*parent, lane, box));
+    }
+    depth = std::max(depth, checkSubtree(m, bvh, n.child[j], &n, j, seen));
+  }
+  if (parent) {
+    EXPECT_EQ(parent->contents[lane], contents);
+  }
+  return depth + 1;
+}
+
+TEST(PolygonBvh, HoldsEveryPolygonOnceInBoxesThatContainIt) {
+  const ModelPtr world = lt4World();
+  ASSERT_TRUE(world);
+  ASSERT_GT(world->polygons().size(), detail::kBvhMinPolygons);
+  const detail::QueryData* d = detail::queryDataOf(*world);
+  ASSERT_NE(d, nullptr);
+  const PolygonBvh& bvh = d->bvh;
+  ASSERT_FALSE(bvh.empty());
+  EXPECT_EQ(bvh.polygons.size(), bvh.leaves.size() * kLanes);
+  std::vector<int> seen(world->polygons().size(), 0);
+  const std::size_t depth = checkSubtree(*world, bvh, 0, nullptr, 0, seen);
+  for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "polygon " << i;
+  EXPECT_EQ(depth, bvh.depth) << "the walks' stacks are sized by the depth";
+  // A leaf per about three polygons at least (kLanes a leaf at most).
+  EXPECT_GE(bvh.leaves.size() * kLanes, world->polygons().size());
+  EXPECT_LE(bvh.leaves.size() * 2, world->polygons().size());
+}
+
+TEST(PolygonBvh, SmallModelsHaveNone) {
+  test::ModelMaker maker;
+  maker.addBox({{-10, -10, -10}, {10, 10, 10}});
+  const CollisionModel box = maker.build();
+  ASSERT_LE(box.polygons().size(), detail::kBvhMinPolygons);
+  const detail::QueryData* d = detail::queryDataOf(box);
+  ASSERT_NE(d, nullptr);
+  EXPECT_TRUE(d->bvh.empty());
+  EXPECT_TRUE(detail::buildPolygonBvh(ModelArrays{}).empty());
+}
+
+/// Walks the model's node `nodeNum` and the point tree's place `place`
+/// together, checking each pair.
+void checkPointNode(const CollisionModel& m, const PointTree& t, std::int32_t nodeNum, std::uint32_t place,
+                    std::size_t& visited) {
+  ASSERT_LT(place, t.nodes.size());
+  ++visited;
+  const CmNode& n = m.nodes()[std::size_t(nodeNum)];
+  const PointNode& p = t.nodes[place];
+  EXPECT_EQ(p.hasBrushes(), n.numBrushRefs != 0);
+  EXPECT_EQ(t.brushes[place].firstBrushRef, n.firstBrushRef);
+  EXPECT_EQ(t.brushes[place].numBrushRefs, n.numBrushRefs);
+  if (n.isLeaf()) {
+    EXPECT_EQ(p.axis(), PointNode::kLeafAxis);
+    return;
+  }
+  EXPECT_EQ(p.axis(), std::uint32_t(n.planeType));
+  EXPECT_EQ(p.dist, n.planeDist);
+  checkPointNode(m, t, n.children[0], p.front(), visited);
+  checkPointNode(m, t, n.children[1], p.front() + 1, visited);
+}
+
+TEST(PointTree, IsTheBspTreeNodeForNode) {
+  const ModelPtr world = lt4World();
+  ASSERT_TRUE(world);
+  const detail::QueryData* d = detail::queryDataOf(*world);
+  ASSERT_NE(d, nullptr);
+  const PointTree& t = d->pointTree;
+  ASSERT_FALSE(t.empty());
+  std::size_t visited = 0;
+  checkPointNode(*world, t, 0, 0, visited);
+  EXPECT_EQ(visited, world->nodes().size());
+  EXPECT_EQ(t.nodes.size(), world->nodes().size());
+}
+
+TEST(PointTree, PointContentsThroughItAreThoseThroughTheModelsNodes) {
+  const ModelPtr world = lt4World();
+  ASSERT_TRUE(world);
+  ASSERT_GT(world->nodes().size(), 256u);  // (smaller models are walked from their own nodes)
+  const CollisionModel bare = detail::ModelAccess::withoutQueryData(*world);
+  std::mt19937 rng(7);
+  const Bounds b = world->bounds();
+  std::uniform_real_distribution<float> x(b.min.x, b.max.x), y(b.min.y, b.max.y), z(b.min.z, b.max.z);
+  QueryWork work;
+  int inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const PointContentsQuery q{{x(rng), y(rng), z(rng)}, {}};
+    const std::uint32_t a = pointContents(*world, q, work).contents;
+    ASSERT_EQ(a, pointContents(bare, q, work).contents) << q.point.x << " " << q.point.y << " " << q.point.z;
+    inside += a != 0;
+  }
+  EXPECT_GT(inside, 1000) << "too few points inside brushes: the test would test little";
+}
+
+}  // namespace
+}  // namespace cmkit
