@@ -38,7 +38,8 @@ bool CmkitEngine::buildModel(const Scene& scene) {
   cmkit::TriangleMesh mesh;
   mesh.positions.reserve(scene.numVertices());
   for (std::size_t i = 0; i < scene.numVertices(); ++i)
-    mesh.positions.push_back({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
+    mesh.positions.push_back(
+        {scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
   mesh.surfaces.push_back({kMaterial, scene.indices});
   auto built = cmkit::buildCollisionModelFromTriangles(mesh, "peers", s_->materials);
   if (!built) {
@@ -60,7 +61,8 @@ bool CmkitEngine::prepare(const char* trmSpec, const float (&axis)[9], ShapeSpec
     return false;
   }
   s_->trm = *trm;
-  s_->axis = cmkit::Mat3{{axis[0], axis[1], axis[2]}, {axis[3], axis[4], axis[5]}, {axis[6], axis[7], axis[8]}};
+  s_->axis =
+      cmkit::Mat3{{axis[0], axis[1], axis[2]}, {axis[3], axis[4], axis[5]}, {axis[6], axis[7], axis[8]}};
   spec.point = trm->isPoint();
   spec.box = trm->shape() == cmkit::TrmShape::Box;
   const cmkit::Bounds& b = trm->bounds();
@@ -72,7 +74,8 @@ bool CmkitEngine::prepare(const char* trmSpec, const float (&axis)[9], ShapeSpec
   for (const cmkit::Vec3& v : trm->vertices()) spec.hull.insert(spec.hull.end(), {v.x, v.y, v.z});
   for (int i = 0; i < 9; ++i) spec.axis[i] = axis[i];
   spec.edgeNormalMax = 1;
-  for (int e = 1; e <= trm->numEdges(); ++e) spec.edgeNormalMax = std::max(spec.edgeNormalMax, float(trm->edge(e).normal.length()));
+  for (int e = 1; e <= trm->numEdges(); ++e)
+    spec.edgeNormalMax = std::max(spec.edgeNormalMax, float(trm->edge(e).normal.length()));
   return true;
 }
 

@@ -29,7 +29,9 @@ struct Builder {
     scene.positions.insert(scene.positions.end(), {float(p.x), float(p.y), float(p.z)});
     return std::uint32_t(scene.numVertices() - 1);
   }
-  void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) { scene.indices.insert(scene.indices.end(), {a, b, c}); }
+  void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    scene.indices.insert(scene.indices.end(), {a, b, c});
+  }
   /// A quad a b c d counter-clockwise seen from the front.
   void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
     triangle(a, b, c);
@@ -101,7 +103,9 @@ Scene generatedScene() {
     const double x = rng.uniform(-0.4, 0.4) * kExtent, y = rng.uniform(-0.4, 0.4) * kExtent;
     const double yaw = rng.uniform(0, 2 * std::numbers::pi), z = terrainHeight(x, y) - 8;
     const double c = std::cos(yaw), s = std::sin(yaw);
-    const auto at = [&](double u, double v, double h) { return b.vertex({x + u * c - v * s, y + u * s + v * c, z + h}); };
+    const auto at = [&](double u, double v, double h) {
+      return b.vertex({x + u * c - v * s, y + u * s + v * c, z + h});
+    };
     const std::uint32_t a0 = at(0, -64, 0), a1 = at(0, 64, 0), b0 = at(256, -64, 0), b1 = at(256, 64, 0);
     const std::uint32_t t0 = at(256, -64, 96), t1 = at(256, 64, 96);
     b.quad(a0, a1, b1, b0);  // bottom

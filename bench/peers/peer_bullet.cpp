@@ -27,7 +27,8 @@ class BulletPeer final : public Peer {
       return btVector3(scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]);
     };
     for (std::size_t t = 0; t < scene.numTriangles(); ++t)
-      mesh_->addTriangle(at(scene.indices[3 * t]), at(scene.indices[3 * t + 1]), at(scene.indices[3 * t + 2]));
+      mesh_->addTriangle(at(scene.indices[3 * t]), at(scene.indices[3 * t + 1]),
+                         at(scene.indices[3 * t + 2]));
     shape_ = std::make_unique<btBvhTriangleMeshShape>(mesh_.get(), true);
     shape_->setMargin(0);
     object_ = std::make_unique<btCollisionObject>();

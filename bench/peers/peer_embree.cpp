@@ -28,11 +28,12 @@ class EmbreePeer final : public Peer {
     if (scene_) rtcReleaseScene(scene_);
     scene_ = rtcNewScene(device_);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                 3 * sizeof(float), scene.numVertices()));
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), scene.numVertices()));
     std::copy(scene.positions.begin(), scene.positions.end(), vertices);
-    auto* tris = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                     3 * sizeof(std::uint32_t), scene.numTriangles()));
+    auto* tris = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(std::uint32_t), scene.numTriangles()));
     std::copy(scene.indices.begin(), scene.indices.end(), tris);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene_, geometry);

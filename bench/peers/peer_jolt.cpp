@@ -18,10 +18,10 @@
 #include <Jolt/Physics/Collision/CollisionCollectorImpl.h>
 #include <Jolt/Physics/Collision/CollisionDispatch.h>
 #include <Jolt/Physics/Collision/RayCast.h>
-#include <Jolt/Physics/Collision/ShapeCast.h>
 #include <Jolt/Physics/Collision/Shape/BoxShape.h>
 #include <Jolt/Physics/Collision/Shape/ConvexHullShape.h>
 #include <Jolt/Physics/Collision/Shape/MeshShape.h>
+#include <Jolt/Physics/Collision/ShapeCast.h>
 #include <Jolt/Physics/Collision/ShapeFilter.h>
 #include <Jolt/RegisterTypes.h>
 
@@ -55,11 +55,13 @@ class JoltPeer final : public Peer {
     JPH::VertexList vertices;
     vertices.reserve(scene.numVertices());
     for (std::size_t i = 0; i < scene.numVertices(); ++i)
-      vertices.push_back(JPH::Float3(scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]));
+      vertices.push_back(
+          JPH::Float3(scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]));
     JPH::IndexedTriangleList triangles;
     triangles.reserve(scene.numTriangles());
     for (std::size_t t = 0; t < scene.numTriangles(); ++t)
-      triangles.push_back(JPH::IndexedTriangle(scene.indices[3 * t], scene.indices[3 * t + 1], scene.indices[3 * t + 2]));
+      triangles.push_back(
+          JPH::IndexedTriangle(scene.indices[3 * t], scene.indices[3 * t + 1], scene.indices[3 * t + 2]));
     JPH::MeshShapeSettings settings(std::move(vertices), std::move(triangles));
     JPH::ShapeSettings::ShapeResult result = settings.Create();
     if (result.HasError()) {
@@ -76,14 +78,15 @@ class JoltPeer final : public Peer {
     if (s.point) return;
     // Jolt's rotation: columns = the shape's axes (cmkit's rows).
     const float* a = s.axis;
-    rotation_ = JPH::Mat44(JPH::Vec4(a[0], a[1], a[2], 0), JPH::Vec4(a[3], a[4], a[5], 0), JPH::Vec4(a[6], a[7], a[8], 0),
-                           JPH::Vec4(0, 0, 0, 1));
+    rotation_ = JPH::Mat44(JPH::Vec4(a[0], a[1], a[2], 0), JPH::Vec4(a[3], a[4], a[5], 0),
+                           JPH::Vec4(a[6], a[7], a[8], 0), JPH::Vec4(0, 0, 0, 1));
     if (s.box) {
       shape_ = new JPH::BoxShape(JPH::Vec3(s.halfExtents[0], s.halfExtents[1], s.halfExtents[2]), 0.0f);
       offset_ = rotation_.Multiply3x3(JPH::Vec3(s.centre[0], s.centre[1], s.centre[2]));
     } else {
       JPH::Array<JPH::Vec3> points;
-      for (std::size_t i = 0; i + 2 < s.hull.size(); i += 3) points.push_back(JPH::Vec3(s.hull[i], s.hull[i + 1], s.hull[i + 2]));
+      for (std::size_t i = 0; i + 2 < s.hull.size(); i += 3)
+        points.push_back(JPH::Vec3(s.hull[i], s.hull[i + 1], s.hull[i + 2]));
       JPH::ConvexHullShapeSettings hull(points, 0.0f);
       JPH::ShapeSettings::ShapeResult result = hull.Create();
       if (result.HasError()) {
@@ -106,7 +109,8 @@ class JoltPeer final : public Peer {
       const JPH::Vec3 start(q.start[0], q.start[1], q.start[2]), end(q.end[0], q.end[1], q.end[2]);
       JPH::Mat44 transform = rotation_;
       transform.SetTranslation(start + offset_);
-      const JPH::ShapeCast cast = JPH::ShapeCast::sFromWorldTransform(shape_, JPH::Vec3::sOne(), transform, end - start);
+      const JPH::ShapeCast cast =
+          JPH::ShapeCast::sFromWorldTransform(shape_, JPH::Vec3::sOne(), transform, end - start);
       JPH::ClosestHitCollisionCollector<JPH::CastShapeCollector> collector;
       JPH::CollisionDispatch::sCastShapeVsShapeLocalSpace(cast, settings_, mesh_, JPH::Vec3::sOne(), filter,
                                                           JPH::Mat44::sIdentity(), ids, ids, collector);
@@ -120,7 +124,8 @@ class JoltPeer final : public Peer {
       const Query& q = queries[i];
       const JPH::Vec3 start(q.start[0], q.start[1], q.start[2]), end(q.end[0], q.end[1], q.end[2]);
       JPH::RayCastResult hit;
-      fractions[i] = mesh_ && mesh_->CastRay(JPH::RayCast{start, end - start}, ids, hit) ? hit.mFraction : kMiss;
+      fractions[i] =
+          mesh_ && mesh_->CastRay(JPH::RayCast{start, end - start}, ids, hit) ? hit.mFraction : kMiss;
     }
   }
 

@@ -80,8 +80,9 @@ std::vector<Query> makeQueries(const Scene& scene, std::size_t n) {
 void fixedAxis(float (&axis)[9]) {
   const double a = 37 * 3.14159265358979323846 / 180, l = std::sqrt(14.0);
   const double x = 1 / l, y = 2 / l, z = 3 / l, c = std::cos(a), s = std::sin(a), t = 1 - c;
-  const double m[9] = {t * x * x + c,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                       t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+  const double m[9] = {t * x * x + c,     t * x * y - s * z, t * x * z + s * y,
+                       t * x * y + s * z, t * y * y + c,     t * y * z - s * x,
+                       t * x * z - s * y, t * y * z + s * x, t * z * z + c};
   for (int i = 0; i < 9; ++i) axis[i] = float(m[i]);
 }
 
@@ -120,24 +121,29 @@ Agreement agreement(const std::vector<RefAnswer>& ref, std::span<const Query> qs
     const RefAnswer& r = ref[i];
     if (r.startOverlap) continue;
     double len = 0;
-    for (int k = 0; k < 3; ++k) len += double(qs[i].end[k] - qs[i].start[k]) * double(qs[i].end[k] - qs[i].start[k]);
+    for (int k = 0; k < 3; ++k)
+      len += double(qs[i].end[k] - qs[i].start[k]) * double(qs[i].end[k] - qs[i].start[k]);
     len = std::sqrt(len);
     const bool hit = f[i] <= 1;
     // The exact contact, or cmkit's bracket (reference.h).
     const bool mustHit = cmkitModel ? r.cmkitMustHit : r.hit, mayHit = cmkitModel ? r.cmkitMayHit : r.hit;
-    const double earliest = cmkitModel ? r.cmkitEarliest : r.dist, latest = cmkitModel ? r.cmkitLatest : r.dist;
-    if (hit ? mayHit : !mustHit) ++a.hitAgree;
+    const double earliest = cmkitModel ? r.cmkitEarliest : r.dist,
+                 latest = cmkitModel ? r.cmkitLatest : r.dist;
+    if (hit ? mayHit : !mustHit)
+      ++a.hitAgree;
     else if (gList)
-      std::printf("  disagrees: query %zu length %.3f answered %s, expected %s\n", i, len, hit ? "hit" : "miss",
-                  mustHit ? "hit" : "miss");
+      std::printf("  disagrees: query %zu length %.3f answered %s, expected %s\n", i, len,
+                  hit ? "hit" : "miss", mustHit ? "hit" : "miss");
     if (!hit || !mayHit) continue;
     ++a.bothHit;
     const double d = double(f[i]) * len;
     const double err = d < earliest ? earliest - d : d > latest ? d - latest : 0;
     a.worst = std::max(a.worst, err);
-    if (err <= tolerance) ++a.distAgree;
+    if (err <= tolerance)
+      ++a.distAgree;
     else if (gList)
-      std::printf("  disagrees: query %zu length %.3f exact %.4f expected %.4f..%.4f answered %.4f\n", i, len, r.dist, earliest, latest, d);
+      std::printf("  disagrees: query %zu length %.3f exact %.4f expected %.4f..%.4f answered %.4f\n", i, len,
+                  r.dist, earliest, latest, d);
   }
   return a;
 }
@@ -174,19 +180,22 @@ void printReport(const SceneReport& r, bool markdown) {
   auto rule = [&](const std::vector<int>& widths) {
     if (!markdown) return;
     std::string s = "|";
-    for (std::size_t i = 0; i < widths.size(); ++i) s += (i == 0 ? ":" : "") + std::string(std::size_t(widths[i] + 1), '-') + (i == 0 ? "|" : ":|");
+    for (std::size_t i = 0; i < widths.size(); ++i)
+      s += (i == 0 ? ":" : "") + std::string(std::size_t(widths[i] + 1), '-') + (i == 0 ? "|" : ":|");
     std::printf("%s\n", s.c_str());
   };
   std::printf("\n%s%s\n\n", markdown ? "#### " : "", r.title.c_str());
   const std::vector<int> w = {22, 9, 9, 9, 9, 10, 12, 12};
-  line({"ns/query (fastest pass)", "cmkit", "Jolt", "Bullet", "Embree", "cmkit/Jolt", "cmkit/Bullet", "cmkit/Embree"}, w);
+  line({"ns/query (fastest pass)", "cmkit", "Jolt", "Bullet", "Embree", "cmkit/Jolt", "cmkit/Bullet",
+        "cmkit/Embree"},
+       w);
   rule(w);
   auto ratio = [](double a, double b) { return a > 0 && b > 0 ? cell(a / b, "%.2f") : std::string("-"); };
   for (int k = 0; k < kNumKinds; ++k) {
     const Row& row = r.rows[k];
-    line({kKinds[k].name, cell(row.ns[kCmkit], "%.0f"), cell(row.ns[kJolt], "%.0f"), cell(row.ns[kBullet], "%.0f"),
-          cell(row.ns[kEmbree], "%.0f"), ratio(row.ns[kCmkit], row.ns[kJolt]), ratio(row.ns[kCmkit], row.ns[kBullet]),
-          ratio(row.ns[kCmkit], row.ns[kEmbree])},
+    line({kKinds[k].name, cell(row.ns[kCmkit], "%.0f"), cell(row.ns[kJolt], "%.0f"),
+          cell(row.ns[kBullet], "%.0f"), cell(row.ns[kEmbree], "%.0f"), ratio(row.ns[kCmkit], row.ns[kJolt]),
+          ratio(row.ns[kCmkit], row.ns[kBullet]), ratio(row.ns[kCmkit], row.ns[kEmbree])},
          w);
   }
   const double* b = r.buildMs;
@@ -211,7 +220,9 @@ void printReport(const SceneReport& r, bool markdown) {
     std::vector<std::string> c = {kKinds[k].name, std::to_string(row.excluded), std::to_string(row.refHits)};
     for (int e = 0; e < kEngines; ++e) {
       if (!r.present[e]) continue;
-      c.push_back(row.ns[e] < 0 ? "-" : pct(row.agree[e].hitAgree, row.considered) + " / " + pct(row.agree[e].distAgree, row.agree[e].bothHit));
+      c.push_back(row.ns[e] < 0 ? "-"
+                                : pct(row.agree[e].hitAgree, row.considered) + " / " +
+                                      pct(row.agree[e].distAgree, row.agree[e].bothHit));
     }
     line(c, w2);
   }
@@ -241,13 +252,15 @@ bool wanted(const Kind& kind) {
 
 SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads, bool verbose) {
   SceneReport r;
-  std::printf("%s: %zu triangles, %zu vertices; %zu queries (starts uniform in the bounds, directions uniform, "
-              "lengths log-uniform in [%g, %g]); fastest of %d passes\n",
-              scene.name.c_str(), scene.numTriangles(), scene.numVertices(), n, kMinLength, kMaxLength, passes);
+  std::printf(
+      "%s: %zu triangles, %zu vertices; %zu queries (starts uniform in the bounds, directions uniform, "
+      "lengths log-uniform in [%g, %g]); fastest of %d passes\n",
+      scene.name.c_str(), scene.numTriangles(), scene.numVertices(), n, kMinLength, kMaxLength, passes);
   std::fflush(stdout);
   std::unique_ptr<Peer> peers[kEngines] = {nullptr, makeJoltPeer(), makeBulletPeer(), makeEmbreePeer()};
   for (int e = kJolt; e < kEngines; ++e)
-    if (!gPeers.empty() && std::find(gPeers.begin(), gPeers.end(), kEngineNames[e]) == gPeers.end()) peers[e].reset();
+    if (!gPeers.empty() && std::find(gPeers.begin(), gPeers.end(), kEngineNames[e]) == gPeers.end())
+      peers[e].reset();
   CmkitEngine cmkit;
   bool ok = true;
   // (Builds: the fastest of at most kBuildPasses, whatever --passes says: they take long.)
@@ -274,7 +287,8 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
     if (!cmkit.prepare(kind.trm, kind.turned ? axis : identity, spec)) continue;
     const auto t0 = Clock::now();
     // (--no-reference: every query counted as a reference miss; the agreement columns then mean nothing.)
-    const std::vector<RefAnswer> ref = gNoReference ? std::vector<RefAnswer>(n) : exactReference(refScene, spec, qs, threads);
+    const std::vector<RefAnswer> ref =
+        gNoReference ? std::vector<RefAnswer>(n) : exactReference(refScene, spec, qs, threads);
     const double refSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     Row& row = r.rows[k];
     for (const RefAnswer& a : ref) {
@@ -282,12 +296,14 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
       row.refHits += !a.startOverlap && a.hit;
     }
     row.considered = int(n) - row.excluded;
-    row.ns[kCmkit] = fastest(passes, n, [&] { spec.point ? cmkit.rays(qs, f.data()) : cmkit.sweep(qs, f.data()); });
+    row.ns[kCmkit] =
+        fastest(passes, n, [&] { spec.point ? cmkit.rays(qs, f.data()) : cmkit.sweep(qs, f.data()); });
     row.agree[kCmkit] = agreement(ref, qs, f, !spec.point, spec.point ? kPeerTolerance : kCmkitTolerance);
     for (int e = kJolt; e < kEngines; ++e) {
       if (!peers[e] || (!spec.point && !peers[e]->hasSweeps())) continue;
       peers[e]->prepare(spec);
-      row.ns[e] = fastest(passes, n, [&] { spec.point ? peers[e]->rays(qs, f.data()) : peers[e]->sweep(qs, f.data()); });
+      row.ns[e] = fastest(passes, n,
+                          [&] { spec.point ? peers[e]->rays(qs, f.data()) : peers[e]->sweep(qs, f.data()); });
       row.agree[e] = agreement(ref, qs, f, false, kPeerTolerance);
     }
     if (verbose) {
@@ -298,14 +314,16 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
       std::fflush(stdout);
     }
   }
-  r.title = scene.name + ", " + std::to_string(scene.numTriangles()) + " triangles, " + std::to_string(n) + " queries";
+  r.title = scene.name + ", " + std::to_string(scene.numTriangles()) + " triangles, " + std::to_string(n) +
+            " queries";
   return r;
 }
 
 std::string defaultMap() {
   namespace fs = std::filesystem;
   const fs::path source(CMKIT_SOURCE_DIR);
-  for (const fs::path& p : {source / ".." / "shared" / "maps" / "lt4" / "lt4.map", source / "data" / "maps" / "lt4" / "lt4.map"})
+  for (const fs::path& p :
+       {source / ".." / "shared" / "maps" / "lt4" / "lt4.map", source / "data" / "maps" / "lt4" / "lt4.map"})
     if (fs::exists(p)) return p.lexically_normal().string();
   return {};
 }
@@ -313,7 +331,8 @@ std::string defaultMap() {
 void help() {
   std::printf(
       "usage: cmkit_peers [--queries N] [--passes N] [--scene lt4|generated|both] [--map MAP] [--markdown]\n"
-      "                   [--threads N] [--verbose] [--list] [--kinds K,...] [--peers P,...] [--no-reference]\n"
+      "                   [--threads N] [--verbose] [--list] [--kinds K,...] [--peers P,...] "
+      "[--no-reference]\n"
       "       cmkit_peers --speed-test [MAP] [--times N] [--passes N]\n"
       "\n"
       "Times cmkit against Jolt, Bullet and Embree on the same triangles and the same queries, in\n"
@@ -374,15 +393,24 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool hasValue = i + 1 < argc;
-    if (arg == "--queries" && hasValue) queries = std::max(1, std::atoi(argv[++i]));
-    else if (arg == "--passes" && hasValue) passes = std::max(1, std::atoi(argv[++i]));
-    else if (arg == "--times" && hasValue) times = std::max(1, std::atoi(argv[++i]));
-    else if (arg == "--threads" && hasValue) threads = std::max(1, std::atoi(argv[++i]));
-    else if (arg == "--scene" && hasValue) sceneArg = argv[++i];
-    else if (arg == "--map" && hasValue) mapPath = argv[++i];
-    else if (arg == "--markdown") markdown = true;
-    else if (arg == "--no-reference") gNoReference = true;
-    else if (arg == "--build-passes" && hasValue) gBuildPasses = std::max(1, std::atoi(argv[++i]));
+    if (arg == "--queries" && hasValue)
+      queries = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--passes" && hasValue)
+      passes = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--times" && hasValue)
+      times = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--threads" && hasValue)
+      threads = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--scene" && hasValue)
+      sceneArg = argv[++i];
+    else if (arg == "--map" && hasValue)
+      mapPath = argv[++i];
+    else if (arg == "--markdown")
+      markdown = true;
+    else if (arg == "--no-reference")
+      gNoReference = true;
+    else if (arg == "--build-passes" && hasValue)
+      gBuildPasses = std::max(1, std::atoi(argv[++i]));
     else if (arg == "--peers" && hasValue) {
       gPeers = splitList(argv[++i]);
       for (const std::string& name : gPeers)
@@ -393,18 +421,22 @@ int main(int argc, char** argv) {
     } else if (arg == "--kinds" && hasValue) {
       gKinds = splitList(argv[++i]);
       for (const std::string& name : gKinds)
-        if (std::none_of(std::begin(kKinds), std::end(kKinds), [&](const Kind& k) { return name == k.name; })) {
+        if (std::none_of(std::begin(kKinds), std::end(kKinds),
+                         [&](const Kind& k) { return name == k.name; })) {
           std::fprintf(stderr, "cmkit_peers: unknown kind '%s' (--help)\n", name.c_str());
           return 2;
         }
-    }
-    else if (arg == "--verbose") verbose = true;
-    else if (arg == "--list") gList = verbose = true;
-    else if (arg == "--speed-test") speedTest = true;
+    } else if (arg == "--verbose")
+      verbose = true;
+    else if (arg == "--list")
+      gList = verbose = true;
+    else if (arg == "--speed-test")
+      speedTest = true;
     else if (arg == "-h" || arg == "--help") {
       help();
       return 0;
-    } else if (speedTest && arg[0] != '-') mapPath = arg;
+    } else if (speedTest && arg[0] != '-')
+      mapPath = arg;
     else {
       std::fprintf(stderr, "cmkit_peers: unknown argument '%s' (--help)\n", arg.c_str());
       return 2;
@@ -423,7 +455,8 @@ int main(int argc, char** argv) {
     return runSpeedTestSection(mapPath, times, passes);
   }
   if (!joltCompiledIn()) std::printf("Jolt: not compared (run bench/peers/build_jolt.sh)\n");
-  if (!embreeCompiledIn()) std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
+  if (!embreeCompiledIn())
+    std::printf("Embree: not compared (cmkit_peers was built without libembree-dev)\n");
   std::vector<SceneReport> reports;
   if (sceneArg != "generated") {
     if (mapPath.empty()) {
@@ -434,7 +467,8 @@ int main(int argc, char** argv) {
     if (lt4.indices.empty()) return 2;
     reports.push_back(runScene(lt4, std::size_t(queries), passes, threads, verbose));
   }
-  if (sceneArg != "lt4") reports.push_back(runScene(generatedScene(), std::size_t(queries), passes, threads, verbose));
+  if (sceneArg != "lt4")
+    reports.push_back(runScene(generatedScene(), std::size_t(queries), passes, threads, verbose));
   for (const SceneReport& r : reports) printReport(r, markdown);
   return 0;
 }

@@ -38,7 +38,9 @@ struct D3 {
 };
 D3 operator-(const D3& a, const D3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(const D3& a, const D3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+D3 cross(const D3& a, const D3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 
 /// The moving polytope: vertices turned (offsets from the moving origin),
 /// face normals and edge directions (parallel ones once).
@@ -65,7 +67,8 @@ Polytope polytope(const ShapeSpec& s) {
   a = axis;
   for (std::size_t i = 0; i + 2 < s.hull.size(); i += 3) {
     const double x = s.hull[i], y = s.hull[i + 1], z = s.hull[i + 2];
-    p.vertices.push_back({x * a[0] + y * a[3] + z * a[6], x * a[1] + y * a[4] + z * a[7], x * a[2] + y * a[5] + z * a[8]});
+    p.vertices.push_back(
+        {x * a[0] + y * a[3] + z * a[6], x * a[1] + y * a[4] + z * a[7], x * a[2] + y * a[5] + z * a[8]});
   }
   p.lo = p.hi = p.vertices.front();
   for (const D3& v : p.vertices) {
@@ -96,7 +99,8 @@ Polytope polytope(const ShapeSpec& s) {
           for (std::size_t m = 0; m < n; ++m)
             if (std::abs(dot(nrm, p.vertices[m] - p.vertices[i]) / len) <= 1e-6) on.push_back(m);
           for (std::size_t u = 0; u < on.size(); ++u)
-            for (std::size_t w = u + 1; w < on.size(); ++w) addDirection(p.edges, p.vertices[on[w]] - p.vertices[on[u]]);
+            for (std::size_t w = u + 1; w < on.size(); ++w)
+              addDirection(p.edges, p.vertices[on[w]] - p.vertices[on[u]]);
         }
       }
   return p;
@@ -115,8 +119,8 @@ struct Contact {
 /// The polytope moving by `move` from `start` against triangle (a, b, c), for
 /// t in [0, 1], each axis's overlap widened by faceMargin (face normals) or
 /// edgeMargin (edge pairs).
-Contact sweepTriangle(const Polytope& p, const D3& start, const D3& move, const D3 (&tri)[3], double faceMargin,
-                      double edgeMargin) {
+Contact sweepTriangle(const Polytope& p, const D3& start, const D3& move, const D3 (&tri)[3],
+                      double faceMargin, double edgeMargin) {
   Contact c;
   double enter = -std::numeric_limits<double>::infinity(), exit = std::numeric_limits<double>::infinity();
   D3 enterAxis{0, 0, 1};
@@ -259,8 +263,8 @@ RefScene::RefScene(const Scene& scene) {
   }
 }
 
-std::vector<RefAnswer> exactReference(const RefScene& scene, const ShapeSpec& shape, std::span<const Query> queries,
-                                      int threads) {
+std::vector<RefAnswer> exactReference(const RefScene& scene, const ShapeSpec& shape,
+                                      std::span<const Query> queries, int threads) {
   std::vector<RefAnswer> out(queries.size());
   Polytope p;
   if (!shape.point) p = polytope(shape);

@@ -44,7 +44,7 @@ struct RefAnswer {
 /// The scene's triangles in double, with their bounds for culling.
 struct RefScene {
   explicit RefScene(const Scene& scene);
-  std::vector<double> v;                      // 9 per triangle: a, b, c
+  std::vector<double> v;                                  // 9 per triangle: a, b, c
   std::vector<float> minX, minY, minZ, maxX, maxY, maxZ;  // per triangle
 };
 

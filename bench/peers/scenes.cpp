@@ -38,13 +38,15 @@ Scene loadMapScene(const std::string& mapPath) {
   // world model's polygons are one-sided; as a mesh every engine gets them
   // two-sided).
   constexpr std::uint32_t kMask = cmkit::contents::kSolid | cmkit::contents::kPlayerClip;
-  for (const cmkit::Vec3& v : world.vertices()) scene.positions.insert(scene.positions.end(), {v.x, v.y, v.z});
+  for (const cmkit::Vec3& v : world.vertices())
+    scene.positions.insert(scene.positions.end(), {v.x, v.y, v.z});
   std::vector<std::uint32_t> v;
   for (const cmkit::CmPolygon& p : world.polygons()) {
     if ((p.contents & kMask) == 0) continue;
     v.clear();
     for (std::int32_t e : world.edgesOf(p)) v.push_back(std::uint32_t(world.edgeStart(e)));
-    for (std::size_t k = 1; k + 1 < v.size(); ++k) scene.indices.insert(scene.indices.end(), {v[0], v[k], v[k + 1]});
+    for (std::size_t k = 1; k + 1 < v.size(); ++k)
+      scene.indices.insert(scene.indices.end(), {v[0], v[k], v[k + 1]});
   }
   scene.name = mapPath.substr(mapPath.find_last_of('/') + 1) + " world model (" +
                std::to_string(world.polygons().size()) + " polygons)";

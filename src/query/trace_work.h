@@ -112,8 +112,8 @@ struct QueryScratch {
     float near;
   };
   std::vector<BvhEntry> bvhStack;  ///< the hierarchy walk's children still to visit
-  TrmFeatures trm;                      ///< the trace model of the current query
-  QueryStats stats;                     ///< work counters (count(), CMKIT_QUERY_STATS builds)
+  TrmFeatures trm;                 ///< the trace model of the current query
+  QueryStats stats;                ///< work counters (count(), CMKIT_QUERY_STATS builds)
   /// A rotation part's per-feature data (rotate_work.h), made on the first
   /// rotation: about 3 KB that a rotation part would otherwise construct.
   std::unique_ptr<RotationWork> rotation;

@@ -35,8 +35,7 @@ struct PositionItems {
   static bool has(const CmNode& node) { return node.numPolygonRefs != 0 || node.numBrushRefs != 0; }
   static void test(TraceWork& tw, const CmNode& node) {
     if (tw.fraction == 0) return;  // already stuck
-    if (!testTrmVertsInBrushes(tw, tw.model.brushesAt(node)))
-      testTrmInNodePolygons(tw, node);
+    if (!testTrmVertsInBrushes(tw, tw.model.brushesAt(node))) testTrmInNodePolygons(tw, node);
   }
   static constexpr bool kStopWhenStuck = true;
 };

@@ -36,8 +36,9 @@ constexpr const char* kClip = "textures/golden/clip";
 
 MaterialTable goldenMaterials() {
   MaterialTable materials;
-  materials.addMtrText(std::string(kSolid) + " { }\n" + kTwoSided + " { twosided }\n" + kClip + " { playerclip }\n",
-                       "golden.mtr");
+  materials.addMtrText(
+      std::string(kSolid) + " { }\n" + kTwoSided + " { twosided }\n" + kClip + " { playerclip }\n",
+      "golden.mtr");
   return materials;
 }
 
@@ -54,15 +55,17 @@ TriangleMesh goldenMesh(std::uint64_t seed, int gridSize, int numBoxes) {
     const double r = rng.uniform(0, 1);
     if (r < 0.6) return 0.0;
     if (r < 0.9) return rng.uniform(-0.09, 0.09);  // welded
-    return rng.uniform(-0.12, 0.12);                // sometimes not
+    return rng.uniform(-0.12, 0.12);               // sometimes not
   };
   auto corner = [&](int x, int y) {
-    mesh.positions.push_back({Real(x * 32 + jitter()), Real(y * 32 + jitter()), Real(height(x, y) + jitter())});
+    mesh.positions.push_back(
+        {Real(x * 32 + jitter()), Real(y * 32 + jitter()), Real(height(x, y) + jitter())});
     return std::uint32_t(mesh.positions.size() - 1);
   };
   for (int y = 0; y < gridSize; ++y) {
     for (int x = 0; x < gridSize; ++x) {
-      const std::uint32_t a = corner(x, y), b = corner(x + 1, y), c = corner(x + 1, y + 1), d = corner(x, y + 1);
+      const std::uint32_t a = corner(x, y), b = corner(x + 1, y), c = corner(x + 1, y + 1),
+                          d = corner(x, y + 1);
       terrain.insert(terrain.end(), {a, b, c, a, c, d});
     }
   }
@@ -71,9 +74,10 @@ TriangleMesh goldenMesh(std::uint64_t seed, int gridSize, int numBoxes) {
     const double z = rng.uniform(0, 64), s = rng.uniform(4, 40);
     const auto base = std::uint32_t(mesh.positions.size());
     for (int k = 0; k < 8; ++k)
-      mesh.positions.push_back({Real(x + (k & 1 ? s : 0)), Real(y + (k & 2 ? s : 0)), Real(z + (k & 4 ? s : 0))});
-    for (const std::uint32_t k : {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0,
-                                  6, 2, 1, 3, 7, 1, 7, 5})
+      mesh.positions.push_back(
+          {Real(x + (k & 1 ? s : 0)), Real(y + (k & 2 ? s : 0)), Real(z + (k & 4 ? s : 0))});
+    for (const std::uint32_t k : {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                  2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5})
       boxes.push_back(base + k);
   }
   mesh.surfaces.push_back({kSolid, terrain});

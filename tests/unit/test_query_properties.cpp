@@ -249,7 +249,8 @@ std::string resultField(const std::string& line, const std::string& name) {
   const std::string key = name + "=";
   std::size_t at = 0;
   while ((at = line.find(key, at)) != std::string::npos) {
-    if (at == 0 || line[at - 1] == ' ') return line.substr(at + key.size(), line.find(' ', at) - at - key.size());
+    if (at == 0 || line[at - 1] == ' ')
+      return line.substr(at + key.size(), line.find(' ', at) - at - key.size());
     at += key.size();
   }
   return {};
