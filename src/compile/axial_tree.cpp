@@ -31,7 +31,7 @@ struct ModelBuilder::GrowingLists {
   using Lists = std::vector<std::vector<Item>>;
   Lists polygons;
   Lists brushes;
-  std::vector<int> path;    ///< pushItemsDown's path from the split node up
+  std::vector<int> path;                          ///< pushItemsDown's path from the split node up
   std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
   // Per node, compact for the walks up the tree: its parent, and whether
   // it may hold items (set when it gets one, updated when it loses some).
@@ -57,7 +57,9 @@ namespace {
 
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
-bool straddles(const Bounds& b, int axis, Real dist) { return !(b.min[axis] >= dist) && !(b.max[axis] <= dist); }
+bool straddles(const Bounds& b, int axis, Real dist) {
+  return !(b.min[axis] >= dist) && !(b.max[axis] <= dist);
+}
 
 }  // namespace
 
@@ -246,8 +248,9 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
     all[back] = std::move(backItems);
     all[static_cast<std::size_t>(splitNum)] = std::move(stay);
   }
-  lists.filled[static_cast<std::size_t>(splitNum)] = !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
-                                                     !lists.brushes[static_cast<std::size_t>(splitNum)].empty();
+  lists.filled[static_cast<std::size_t>(splitNum)] =
+      !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
+      !lists.brushes[static_cast<std::size_t>(splitNum)].empty();
 }
 
 void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum) {
@@ -289,7 +292,8 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
     here.erase(here.begin(), here.begin() + static_cast<std::ptrdiff_t>(kept));
   }
   lists.filled[static_cast<std::size_t>(nodeNum)] =
-      !lists.polygons[static_cast<std::size_t>(nodeNum)].empty() || !lists.brushes[static_cast<std::size_t>(nodeNum)].empty();
+      !lists.polygons[static_cast<std::size_t>(nodeNum)].empty() ||
+      !lists.brushes[static_cast<std::size_t>(nodeNum)].empty();
 }
 
 }  // namespace cmkit::detail

@@ -399,13 +399,13 @@ class ModelBuilder {
 
   // merge index (merge.cpp): only polygons sharing an edge can merge, so a
   // polygon looks up those instead of testing every polygon its bounds touch
-  PooledLists edgeUsers_;          ///< per edge: the polygons made with it (freed ones too)
-  PooledLists polygonNodes_;       ///< per live polygon: the nodes whose lists hold it
-  std::vector<int> walkOrder_;     ///< per node: its place in walkTouching's order
-  std::vector<int> mergeMark_;     ///< per polygon: the mergeStamp_ of a candidate
+  PooledLists edgeUsers_;       ///< per edge: the polygons made with it (freed ones too)
+  PooledLists polygonNodes_;    ///< per live polygon: the nodes whose lists hold it
+  std::vector<int> walkOrder_;  ///< per node: its place in walkTouching's order
+  std::vector<int> mergeMark_;  ///< per polygon: the mergeStamp_ of a candidate
   int mergeStamp_ = 0;
-  std::vector<int> mergeNodes_;    ///< scratch: the nodes to search, in walk order
-  std::vector<int> linkedNodes_;   ///< scratch of replacePolygons: where newp went
+  std::vector<int> mergeNodes_;   ///< scratch: the nodes to search, in walk order
+  std::vector<int> linkedNodes_;  ///< scratch of replacePolygons: where newp went
 
   // winding list of windingOutsideBrushes
   struct WindingList {
