@@ -34,7 +34,9 @@ static_assert(sizeof(BvhNode) == 128);
 struct alignas(64) BvhLeaf : CullBlock {
   Real dist[kLanes];
 };
-static_assert(sizeof(BvhLeaf) == 192);
+// (Only the float builds that make the hierarchy: a double build's blocks
+// are twice as large, and it walks the BSP tree.)
+static_assert(sizeof(Real) != sizeof(float) || sizeof(BvhLeaf) == 192);
 
 /// The hierarchy of a model's polygons.
 struct PolygonBvh {
