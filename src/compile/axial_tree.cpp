@@ -21,16 +21,13 @@
 
 namespace cmkit::detail {
 
-/// A polygon or brush of a node's list with its bounds.
-struct AxialItem {
-  Bounds bounds;
-  int item = kNone;
-};
-
 /// Per node, its polygons and brushes with their bounds in reverse list
 /// order (the head last: prepending to a list is push_back).
 struct ModelBuilder::GrowingLists {
-  using Item = AxialItem;
+  struct Item {
+    Bounds bounds;
+    int item = kNone;
+  };
   using Lists = std::vector<std::vector<Item>>;
   Lists polygons;
   Lists brushes;
@@ -60,58 +57,6 @@ namespace {
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
 bool straddles(const Bounds& b, int axis, Real dist) { return !(b.min[axis] >= dist) && !(b.max[axis] <= dist); }
-
-using ItemLists = std::vector<const std::vector<AxialItem>*>;
-
-/// How far a splitter candidate `dist` is from the middle of [lo, hi] (twice
-/// that, as the original measures it).
-Real splitterT(Real dist, Real lo, Real hi) { return std::fabs((hi - dist) - (dist - lo)); }
-
-/// The least splitterT below `limit` of the items' bounds planes strictly
-/// inside (lo, hi) along `axis`; `limit` when there is none. The least of
-/// the same numbers in any order: four running minima side by side (one
-/// would wait on the one before at every candidate).
-Real leastSplitterT(const ItemLists& sources, int axis, Real lo, Real hi, Real limit) {
-  Real best[4] = {limit, limit, limit, limit};
-  auto consider = [&](Real& b, Real dist) {
-    const Real t = splitterT(dist, lo, hi);
-    b = (dist < hi) & (dist > lo) & (t < b) ? t : b;
-  };
-  for (const std::vector<AxialItem>* items : sources) {
-    const AxialItem* it = items->data();
-    const std::size_t n = items->size();
-    std::size_t k = 0;
-    for (; k + 2 <= n; k += 2) {
-      consider(best[0], it[k].bounds.min[axis]);
-      consider(best[1], it[k].bounds.max[axis]);
-      consider(best[2], it[k + 1].bounds.min[axis]);
-      consider(best[3], it[k + 1].bounds.max[axis]);
-    }
-    if (k < n) {
-      consider(best[0], it[k].bounds.min[axis]);
-      consider(best[1], it[k].bounds.max[axis]);
-    }
-  }
-  Real least = best[0];
-  for (int j = 1; j < 4; ++j) least = best[j] < least ? best[j] : least;
-  return least;
-}
-
-/// The first bounds plane with splitterT `t` strictly inside (lo, hi), in
-/// the original's order: the lists one after the other, each from its head
-/// (the end of its array), an item's min before its max. (The first that
-/// reaches the least t is the one the original's running minimum keeps.)
-Real firstSplitterWithT(const ItemLists& sources, int axis, Real lo, Real hi, Real t) {
-  for (const std::vector<AxialItem>* items : sources) {
-    for (auto it = items->rbegin(); it != items->rend(); ++it) {
-      for (const Real dist : {it->bounds.min[axis], it->bounds.max[axis]}) {
-        if (dist < hi && dist > lo && splitterT(dist, lo, hi) == t) return dist;
-      }
-    }
-  }
-  CMKIT_ASSERT(false);  // leastSplitterT found it
-  return 0;
-}
 
 }  // namespace
 
@@ -195,12 +140,23 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
     }
     // The most centred splitter (dhewm3: not truncated to an integer): the
     // first bounds plane strictly inside the node with the least t, each
-    // list from its head (the end of its array).
+    // list from its head (the end of its array). Without branches: which
+    // candidate wins is unpredictable.
     const Real lo = bounds.min[type];
     const Real hi = bounds.max[type];
-    const Real bestt = leastSplitterT(lists.sources, type, lo, hi, size[i]);
+    Real bestt = size[i];
+    Real bestDist = 0;
+    for (const std::vector<GrowingLists::Item>* items : lists.sources) {
+      for (auto it = items->rbegin(); it != items->rend(); ++it) {
+        for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
+          const Real t = std::fabs((hi - dist) - (dist - lo));
+          const bool better = (dist < hi) & (dist > lo) & (t < bestt);
+          bestt = better ? t : bestt;
+          bestDist = better ? dist : bestDist;
+        }
+      }
+    }
     if (bestt < size[i]) {
-      const Real bestDist = firstSplitterWithT(lists.sources, type, lo, hi, bestt);
       planeType = type;
       planeDist = bestDist;
       if (forceSplit) return true;
