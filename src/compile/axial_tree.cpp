@@ -15,6 +15,7 @@
 // lies on. The lists end as the original's do: same items, same order.
 #include <algorithm>
 #include <cmath>
+#include <ranges>
 
 #include "compile/builder.h"
 #include "util/assert.h"
@@ -263,6 +264,28 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
     if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
     auto& here = all[static_cast<std::size_t>(nodeNum)];
     if (here.empty()) continue;
+    // Room first: every item that leaves goes to each node off the path
+    // and to one side of the split.
+    std::size_t numLeaving = 0;
+    std::size_t numFront = 0;
+    for (const GrowingLists::Item& it : here) {
+      const bool leaves = !straddles(it.bounds, axis, dist);
+      numLeaving += leaves ? 1 : 0;
+      numFront += leaves && it.bounds.min[axis] >= dist ? 1 : 0;
+    }
+    if (numLeaving == 0) continue;
+    auto reserveMore = [&](int n, std::size_t count) {
+      auto& items = all[static_cast<std::size_t>(n)];
+      // (geometric growth: a node may get items from several ancestors)
+      if (items.size() + count > items.capacity()) items.reserve(std::max(items.size() + count, 2 * items.capacity()));
+    };
+    for (int n = nodeNum; const int below : std::ranges::reverse_view(lists.path)) {
+      const BNode& at = node(n);
+      reserveMore(at.children[0] == below ? at.children[1] : at.children[0], numLeaving);
+      n = below;
+    }
+    reserveMore(split.children[0], numFront);
+    reserveMore(split.children[1], numLeaving - numFront);
     // In list order, from the end of the array (the original filters each
     // item as it meets it); the items that stay keep their order.
     std::size_t kept = here.size();
