@@ -31,7 +31,7 @@ void ModelBuilder::convertMeshSurfaces() {
   // edges: the arrays then never move while they fill.
   const std::size_t numTriangles = numIndices / 3;
   vertices_.reserve(mesh.positions.size());
-  vertexHashNext_.reserve(mesh.positions.size());
+  vertexHashNodes_.reserve(mesh.positions.size());
   edges_.reserve(numIndices + 1);  // a new edge per index at most (the reversed side shares them), and the dummy
   edgeHashNext_.reserve(numIndices + 1);
   polygons_.reserve(2 * numTriangles);
