@@ -15,6 +15,7 @@
 // lies on. The lists end as the original's do: same items, same order.
 #include <algorithm>
 #include <cmath>
+#include <ranges>
 
 #include "compile/builder.h"
 #include "util/assert.h"
@@ -31,11 +32,13 @@ struct ModelBuilder::GrowingLists {
   using Lists = std::vector<std::vector<Item>>;
   Lists polygons;
   Lists brushes;
-  std::vector<int> path;                          ///< pushItemsDown's path from the split node up
+  std::vector<int> path;  ///< pushItemsDown's path from the split node up
+  /// The nodes above the one splitNode is at, from the root down (the tree
+  /// grows depth first: they are splitNode's callers).
+  std::vector<int> ancestors;
   std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
-  // Per node, compact for the walks up the tree: its parent, and whether
-  // it may hold items (set when it gets one, updated when it loses some).
-  std::vector<int> parent;
+  /// Per node, compact for the walks up the tree: whether it may hold
+  /// items (set when it gets one, updated when it loses some).
   std::vector<char> filled;
   Lists& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
   void add(Lists& all, int node, const Item& it) {
@@ -44,12 +47,9 @@ struct ModelBuilder::GrowingLists {
   }
   /// Room for the nodes of the builder's tree.
   void grow(const std::vector<BNode>& nodes) {
-    const std::size_t known = parent.size();
     polygons.resize(nodes.size());
     brushes.resize(nodes.size());
     filled.resize(nodes.size(), 0);
-    parent.resize(nodes.size(), kNone);
-    for (std::size_t n = known; n < nodes.size(); ++n) parent[n] = nodes[n].parent;
   }
 };
 
@@ -132,11 +132,13 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
       // candidates from the brushes, then the polygons, of this node and its ancestors
       lists.sources.clear();
       for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
-        for (int n = nodeNum; n != kNone; n = lists.parent[static_cast<std::size_t>(n)]) {
-          if (!lists.filled[static_cast<std::size_t>(n)]) continue;
+        auto addSource = [&](int n) {
+          if (!lists.filled[static_cast<std::size_t>(n)]) return;
           const auto& items = (*all)[static_cast<std::size_t>(n)];
           if (!items.empty()) lists.sources.push_back(&items);
-        }
+        };
+        addSource(nodeNum);
+        for (auto n = lists.ancestors.rbegin(); n != lists.ancestors.rend(); ++n) addSource(*n);
       }
     }
     // The most centred splitter (dhewm3: not truncated to an integer): the
@@ -197,12 +199,14 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   // longer inside all children.
   splitItems(lists, nodeNum);
   lists.path.assign(1, nodeNum);
-  for (int n = node(nodeNum).parent; n != kNone; n = node(n).parent) {
-    pushItemsDown(lists, n, nodeNum);
-    lists.path.push_back(n);
+  for (auto n = lists.ancestors.rbegin(); n != lists.ancestors.rend(); ++n) {
+    pushItemsDown(lists, *n, nodeNum);
+    lists.path.push_back(*n);
   }
+  lists.ancestors.push_back(nodeNum);
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
+  lists.ancestors.pop_back();
 }
 
 void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
@@ -263,6 +267,29 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
     if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
     auto& here = all[static_cast<std::size_t>(nodeNum)];
     if (here.empty()) continue;
+    // Room first: every item that leaves goes to each node off the path
+    // and to one side of the split.
+    std::size_t numLeaving = 0;
+    std::size_t numFront = 0;
+    for (const GrowingLists::Item& it : here) {
+      const bool leaves = !straddles(it.bounds, axis, dist);
+      numLeaving += leaves ? 1 : 0;
+      numFront += leaves && it.bounds.min[axis] >= dist ? 1 : 0;
+    }
+    if (numLeaving == 0) continue;
+    auto reserveMore = [&](int n, std::size_t count) {
+      auto& items = all[static_cast<std::size_t>(n)];
+      // (geometric growth: a node may get items from several ancestors)
+      if (items.size() + count > items.capacity())
+        items.reserve(std::max(items.size() + count, 2 * items.capacity()));
+    };
+    for (int n = nodeNum; const int below : std::ranges::reverse_view(lists.path)) {
+      const BNode& at = node(n);
+      reserveMore(at.children[0] == below ? at.children[1] : at.children[0], numLeaving);
+      n = below;
+    }
+    reserveMore(split.children[0], numFront);
+    reserveMore(split.children[1], numLeaving - numFront);
     // In list order, from the end of the array (the original filters each
     // item as it meets it); the items that stay keep their order.
     std::size_t kept = here.size();

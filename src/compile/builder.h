@@ -391,9 +391,18 @@ class ModelBuilder {
   static constexpr int kVertexHashSize = 4096;
   Vec3 hashMin_;
   std::vector<int> vertexHashHead_;
-  std::vector<int> vertexHashNext_;
+  /// Per vertex, what a search of its chain reads, side by side (one cache
+  /// line per vertex met instead of two): its position (vertices never move)
+  /// and the next older vertex of its chain.
+  struct VertexHashNode {
+    Vec3 position;
+    int next = kNone;
+  };
+  std::vector<VertexHashNode> vertexHashNodes_;
   int& hashHead(int key) { return vertexHashHead_[static_cast<std::size_t>(key)]; }
-  int& hashNext(int vertexNum) { return vertexHashNext_[static_cast<std::size_t>(vertexNum)]; }
+  const VertexHashNode& hashNode(int vertexNum) const {
+    return vertexHashNodes_[static_cast<std::size_t>(vertexNum)];
+  }
   IntHashMap edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
 

@@ -14,6 +14,8 @@ ModelBuilder::Remap ModelBuilder::compactVerticesAndEdges(ModelArrays& model) co
   // Vertices: those referenced by any edge slot, including the dummy edge 0
   // and edges without users (they are compacted only afterwards).
   remap.vertices.assign(vertices_.size(), 0);
+  model.vertices.reserve(vertices_.size());
+  model.edges.reserve(edges_.size());
   std::vector<char> used(vertices_.size(), 0);
   for (const BEdge& e : edges_) {
     used[static_cast<std::size_t>(e.v[0])] = 1;
@@ -110,6 +112,14 @@ void ModelBuilder::flattenTree(ModelArrays& model, const Remap& remap) const {
     int parent;
     int childSlot;
   };
+  model.nodes.reserve(nodes_.size());
+  model.polygons.reserve(polygons_.size());
+  model.polygonRefs.reserve(polygonRefs_.size());
+  model.brushes.reserve(brushes_.size());
+  model.brushRefs.reserve(brushRefs_.size());
+  std::size_t numPolygonEdges = 0;
+  for (const BPolygon& p : polygons_) numPolygonEdges += p.freed ? 0 : p.edges.size();
+  model.polygonEdges.reserve(numPolygonEdges);
   std::vector<Pending> stack;
   stack.push_back({0, kNone, kNone});
   while (!stack.empty()) {

@@ -46,7 +46,7 @@ void ModelBuilder::prepareVertexHash() {
 void ModelBuilder::clearHash(const Bounds& bounds) {
   hashMin_ = bounds.min;
   vertexHashHead_.assign(kVertexHashSize, kNone);
-  vertexHashNext_.clear();
+  vertexHashNodes_.clear();
   edgeHashHead_.clear();
   edgeHashNext_.clear();
 }
@@ -59,30 +59,33 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   }
   const double lo = tol::kVertexHashOffset - tol::kVertexHashSpread;
   const double hi = tol::kVertexHashOffset + tol::kVertexHashSpread;
-  int kLo[3];
-  int kHi[3];
   int kMid[3];
-  int differing = 0;
-  for (int a = 0; a < 3; ++a) {
-    kLo[a] = axisCell(vert[a], hashMin_[a], lo);
-    kHi[a] = axisCell(vert[a], hashMin_[a], hi);
-    kMid[a] = axisCell(vert[a], hashMin_[a], tol::kVertexHashOffset);
-    if (kLo[a] != kHi[a]) ++differing;
-  }
+  for (int a = 0; a < 3; ++a) kMid[a] = axisCell(vert[a], hashMin_[a], tol::kVertexHashOffset);
   auto matches = [&](int vn) {
-    const Vec3& p = vertex(vn);
+    const Vec3& p = hashNode(vn).position;
     return std::fabs(vert[2] - p[2]) < tol::kVertexEpsilon &&
            std::fabs(vert[0] - p[0]) < tol::kVertexEpsilon && std::fabs(vert[1] - p[1]) < tol::kVertexEpsilon;
   };
   // Newest first within a cell, as the original's hash chains.
   auto searchCell = [&](int key) {
-    for (int vn = hashHead(key); vn != kNone; vn = hashNext(vn)) {
+    for (int vn = hashHead(key); vn != kNone; vn = hashNode(vn).next) {
       if (matches(vn)) return vn;
     }
     return kNone;
   };
   const int midKey = combineCells(kMid, kVertexHashSize);
   int found = searchCell(midKey);
+  // The cells a weld reaches across, only when the vertex's own has no match.
+  int kLo[3] = {};
+  int kHi[3] = {};
+  int differing = 0;
+  if (found == kNone) {
+    for (int a = 0; a < 3; ++a) {
+      kLo[a] = axisCell(vert[a], hashMin_[a], lo);
+      kHi[a] = axisCell(vert[a], hashMin_[a], hi);
+      if (kLo[a] != kHi[a]) ++differing;
+    }
+  }
   if (found == kNone && differing == 1) {
     int other[3];
     for (int a = 0; a < 3; ++a) other[a] = kMid[a] == kLo[a] ? kHi[a] : kLo[a];
@@ -102,7 +105,7 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
       if (!seen) keys[numKeys++] = key;
     }
     for (int s = 0; s < numKeys; ++s) {
-      for (int vn = hashHead(keys[s]); vn != kNone; vn = hashNext(vn)) {
+      for (int vn = hashHead(keys[s]); vn != kNone; vn = hashNode(vn).next) {
         if ((found == kNone || vn < found) && matches(vn)) found = vn;
       }
     }
@@ -113,7 +116,7 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   }
   vertexNum = static_cast<int>(vertices_.size());
   vertices_.push_back(vert);
-  vertexHashNext_.push_back(hashHead(midKey));
+  vertexHashNodes_.push_back({vert, hashHead(midKey)});
   hashHead(midKey) = vertexNum;
   return false;
 }

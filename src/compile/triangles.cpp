@@ -27,6 +27,16 @@ void ModelBuilder::convertMeshSurfaces() {
   std::size_t numIndices = 0;
   for (const MeshSurface& s : mesh.surfaces) numIndices += s.indices.size();
   edgeHashHead_.reserve(numIndices);  // each index starts an edge (the table grows for two-sided ones)
+  // Room for every triangle on both sides (two-sided materials) and its
+  // edges: the arrays then never move while they fill.
+  const std::size_t numTriangles = numIndices / 3;
+  vertices_.reserve(mesh.positions.size());
+  vertexHashNodes_.reserve(mesh.positions.size());
+  edges_.reserve(numIndices +
+                 1);  // a new edge per index at most (the reversed side shares them), and the dummy
+  edgeHashNext_.reserve(numIndices + 1);
+  polygons_.reserve(2 * numTriangles);
+  polygonRefs_.reserve(2 * numTriangles);
   int zeroNormals = 0;
   for (const MeshSurface& s : mesh.surfaces) {
     const int material = materials_.find(s.material);
