@@ -283,10 +283,14 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       if (items.size() + count > items.capacity())
         items.reserve(std::max(items.size() + count, 2 * items.capacity()));
     };
-    for (int n = nodeNum; const int below : std::ranges::reverse_view(lists.path)) {
-      const BNode& at = node(n);
+    // (By index from the end, not std::ranges::reverse_view: clang with GCC
+    // 12's library cannot compile that view.)
+    int above = nodeNum;
+    for (std::size_t k = lists.path.size(); k-- > 0;) {
+      const int below = lists.path[k];
+      const BNode& at = node(above);
       reserveMore(at.children[0] == below ? at.children[1] : at.children[0], numLeaving);
-      n = below;
+      above = below;
     }
     reserveMore(split.children[0], numFront);
     reserveMore(split.children[1], numLeaving - numFront);
