@@ -315,6 +315,17 @@ bool translateTrmThroughPolygons(TraceWork& tw, std::span<const std::int32_t> po
 bool translateTrmThroughNode(TraceWork& tw, const CmNode& node);
 /// The same for a point trace and a list of polygons (a node's).
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
+/// The tests of one polygon past a translation's culls (translate.cpp): the
+/// plane test, then the trace-model vertices, edges and the model vertices
+/// against it; true when the trace model is blocked completely.
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly);
+/// A point trace (no edges, no polygons) through a polygon. The edge sides
+/// are not cached: a point meets few polygons, and computing a side costs
+/// less than reading a cache entry of a large model.
+void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly);
+/// A nearer hit shrinks a translation's trace bounds (not when collecting
+/// contacts).
+void shrinkTraceBounds(TraceWork& tw);
 /// The lanes `pass` of leaf `leaf` of the polygons' hierarchy (those whose
 /// contents and bounds passed), culled further and tested in lane order, by
 /// a trace model's or a point's translation. True when the trace model is
