@@ -60,7 +60,7 @@ struct Item {
 
 class Builder {
  public:
-  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out) {
+  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out), model_(m) {
     items_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
       const CmPolygon& p = m.polygons[i];
@@ -73,7 +73,6 @@ class Builder {
       item.contents = p.contents;
       items_.push_back(item);
     }
-    model_ = &m;
   }
 
   void build() {
@@ -192,7 +191,7 @@ class Builder {
         b.contents[j] = 0;
         continue;
       }
-      const CmPolygon& p = model_->polygons[std::size_t(polyNum)];
+      const CmPolygon& p = model_.polygons[std::size_t(polyNum)];
       for (int k = 0; k < 3; ++k) {
         b.min[k][j] = p.bounds.min[k];
         b.max[k][j] = p.bounds.max[k];
@@ -250,7 +249,7 @@ class Builder {
   }
 
   PolygonBvh& out_;
-  const ModelArrays* model_ = nullptr;
+  const ModelArrays& model_;
   std::vector<Item> items_;
 };
 
