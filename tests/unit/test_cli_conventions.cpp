@@ -121,6 +121,29 @@ TEST_F(CliConventions, StandardInputAndSniffedFormats) {
   EXPECT_NE(both.find("cannot both be standard input"), std::string::npos) << both;
 }
 
+TEST_F(CliConventions, CompileReadsAMapFromStandardInput) {
+  int rc = -1;
+  test::runCapture(cli() + " compile " + q(map_) + " -q -o " + q(dir_ / "file.cm") + " 2>/dev/null", rc);
+  ASSERT_EQ(rc, 0);
+  const std::string report = test::runCapture(
+      "cat " + q(map_) + " | " + cli() + " compile - -q -o " + q(dir_ / "pipe.cm") + " 2>&1", rc);
+  ASSERT_EQ(rc, 0) << report;
+  EXPECT_EQ(report.find(".proc"), std::string::npos) << report;        // no .proc note for standard input
+  EXPECT_EQ(report.find("warning: -:"), std::string::npos) << report;  // warnings name <stdin>
+  EXPECT_EQ(test::readFile(dir_ / "pipe.cm"), test::readFile(dir_ / "file.cm"));
+  // -o - as well: the .cm on standard output, the report on stderr.
+  const std::string piped =
+      test::runCapture("cat " + q(map_) + " | " + cli() + " compile - -q -o - 2>/dev/null", rc);
+  ASSERT_EQ(rc, 0);
+  EXPECT_EQ(piped, test::readFile(dir_ / "file.cm"));
+  // A malformed map: exit 2, the error names standard input and the line.
+  std::ofstream(dir_ / "bad.map") << "{\n\"classname\" \"worldspawn\"\n{\n( 1 2";
+  const std::string bad =
+      test::runCapture("cat " + q(dir_ / "bad.map") + " | " + cli() + " compile - 2>&1", rc);
+  EXPECT_EQ(rc, 2) << bad;
+  EXPECT_NE(bad.find("<stdin>:"), std::string::npos) << bad;
+}
+
 TEST(CliLooksLikeCm, FirstTokenDecides) {
   // (The rule of tools/cmkit/model_loading.h, seen through the CLI above;
   // here its edge cases through a pipe.)

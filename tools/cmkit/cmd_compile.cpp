@@ -20,7 +20,8 @@ void registerCompile(CLI::App& app) {
       "With NAME.proc beside NAME.map (the renderer's BSP a map compiler writes), world\n"
       "polygons lying entirely in its solid leaves are dropped, as the original does; a\n"
       "line on stderr says so (\"pruned with NAME.proc: N polygons dropped\" or \"no .proc\n"
-      "beside NAME.map\"). --no-proc ignores it.\n\n"
+      "beside NAME.map\"). --no-proc ignores it. MAP - reads the map from standard input\n"
+      "(never pruned: there is no .proc beside it).\n\n"
       "--entity NAME writes one entity's model alone (the original's\n"
       "WriteCollisionModelForMapEntity): NAME is the entity's \"name\" value or #N for\n"
       "entity N (#0 = worldspawn); the model is named after the -o file, written with CRC 0\n"
@@ -46,13 +47,15 @@ void registerCompile(CLI::App& app) {
       "  cmkit compile level.map --materials base/materials --json > stats.json\n"
       "  cmkit compile maps/lt4.map --entity func_static_1 -o door.cm --test-trm\n"
       "  cmkit compile maps/lt4.map --robust-edges -o lt4-robust.cm\n"
+      "  generate_map | cmkit compile - -o - > level.cm   a .map from standard input\n"
       "  cmkit compile crate.obj -o crate.cm --contents solid,playerclip\n"
       "  cmkit compile level.glb --scale 39.37 -o level.cm      metres to Doom units\n\n"
       "Exit codes: 0 success, 2 unreadable or malformed input (file:line: message), an\n"
       "unknown --entity or one without brushes or patches.");
   auto req = std::make_shared<MapBuildRequest>();
   req->command = "compile";
-  cmd->add_option("MAP", req->mapPath, "the .map file, or a mesh file")->required();
+  cmd->add_option("MAP", req->mapPath, "the .map file, a mesh file, or - (a .map's text from standard input)")
+      ->required();
   cmd->add_option("-o,--output", req->outPath,
                   "write the models to this .cm file (- : standard output; the report then goes to stderr)");
   cmd->add_option("--materials", req->materialsDir,

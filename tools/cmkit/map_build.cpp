@@ -122,7 +122,16 @@ int runMapBuild(const MapBuildRequest& request) {
   if (isMeshFileName(request.mapPath)) return runMeshBuild(request, materials);
 
   const auto start = std::chrono::steady_clock::now();
-  auto map = loadMapFile(request.mapPath);
+  // "-": the map's text from standard input (no .proc beside it, no
+  // progress bar: its size is not known before it is read).
+  const bool fromStdin = request.mapPath == kStdinPath;
+  const std::string source = fromStdin ? "<stdin>" : request.mapPath;
+  Result<MapFile> map = [&]() -> Result<MapFile> {
+    if (!fromStdin) return loadMapFile(request.mapPath);
+    Result<std::string> text = readCliText(request.mapPath);
+    if (!text) return text.error();
+    return parseMapText(*text, "<stdin>");
+  }();
   if (!map) {
     fmt::print(stderr, "cmkit {}: {}\n", cmd, map.error().toString());
     return kExitBadInput;
@@ -131,14 +140,15 @@ int runMapBuild(const MapBuildRequest& request) {
   if (!request.entity.empty()) return runEntityWrite(request, *map, materials);
 
   std::vector<std::string> warnings;
-  const Result<ProcForCli> proc = loadProcForCli(request.mapPath, request.noProc, &warnings);
+  const Result<ProcForCli> proc = fromStdin ? Result<ProcForCli>(ProcForCli{})
+                                            : loadProcForCli(request.mapPath, request.noProc, &warnings);
   if (!proc) {
     fmt::print(stderr, "cmkit {}: {}\n", cmd, proc.error().toString());
     return kExitBadInput;
   }
 
   std::error_code ec;
-  const std::uintmax_t fileSize = std::filesystem::file_size(request.mapPath, ec);
+  const std::uintmax_t fileSize = fromStdin ? 0 : std::filesystem::file_size(request.mapPath, ec);
   ProgressBar bar(!request.json && isatty(fileno(stderr)) && !ec && fileSize >= kProgressMinFileSize);
   BuildOptions options;
   if (proc->bsp) options.procBsp = &*proc->bsp;
@@ -153,8 +163,8 @@ int runMapBuild(const MapBuildRequest& request) {
   const auto elapsed = std::chrono::steady_clock::now() - start;
   const std::vector<ModelPtr>& models = built->models;
   warnings.insert(warnings.end(), built->warnings.begin(), built->warnings.end());
-  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
-  fmt::print(stderr, "{}\n", procNote(*proc, request.mapPath, models));
+  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", source, w);
+  if (!fromStdin) fmt::print(stderr, "{}\n", procNote(*proc, request.mapPath, models));
 
   // "-o -": the .cm text goes to standard output and the report to stderr.
   const bool cmToStdout = request.outPath == kStdinPath;
@@ -171,7 +181,7 @@ int runMapBuild(const MapBuildRequest& request) {
   }
 
   StatsContext context;
-  context.source = request.mapPath;
+  context.source = source;
   context.milliseconds = std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count();
   context.entities = static_cast<long long>(map->entities.size());
   context.perModel = !request.quiet;
