@@ -10,8 +10,10 @@
 // polygon merging, internal edges, the axial BSP tree.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -99,6 +101,20 @@ bool isMeshFileName(std::string_view path);
 /// built without assimp, the file cannot be read or parsed (assimp's message
 /// with the file name), no triangles, non-finite coordinates.
 Result<TriangleMesh> loadMeshFile(const std::string& path, const MeshLoadOptions& options = {});
+
+/// loadMeshFile for a mesh file's bytes already in memory (an archive's
+/// entry, a download, Python bytes): `name`'s extension says the format
+/// (as isMeshFileName; "crate.glb", ".obj") and MeshUpAxis::Auto reads it;
+/// errors name `name`. Files the mesh refers to (an OBJ's .mtl, a .gltf's
+/// external buffers) cannot be read from memory: use self-contained
+/// formats (GLB, glTF with data: URIs, OBJ whose materials are only
+/// named). Inputs over kMaxMeshMemoryBytes are refused.
+Result<TriangleMesh> loadMeshMemory(std::span<const std::byte> bytes, std::string_view name,
+                                    const MeshLoadOptions& options = {});
+
+/// The largest input loadMeshMemory takes (1 GiB): assimp's buffer length
+/// is 32-bit on some platforms.
+inline constexpr std::size_t kMaxMeshMemoryBytes = std::size_t(1) << 30;
 
 /// loadMeshFile, then buildCollisionModelFromTriangles with the path as the
 /// model name: the model and its build warnings.

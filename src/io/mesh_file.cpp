@@ -5,10 +5,14 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <new>
+#include <string_view>
 
 #include "cmkit/mesh.h"
 #include "cmkit/tolerances.h"
+#include "ply_check.h"
 
 #ifdef CMKIT_HAVE_ASSIMP
 #include <assimp/postprocess.h>
@@ -83,11 +87,44 @@ class SceneReader {
   Real scale_;
 };
 
-Result<TriangleMesh> readWithAssimp(const std::string& path, const MeshLoadOptions& options) {
+/// Whether every face of every mesh of a scene has vertices and indexes
+/// its mesh's vertices.
+bool facesInRange(const aiScene& scene) {
+  for (unsigned int m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    if (!mesh) return false;
+    if (mesh->mNumFaces > 0 && !mesh->mFaces) return false;
+    for (unsigned int f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || !face.mIndices)
+        return false;  // Triangulate reads an empty face's first index
+      for (unsigned int k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices) return false;
+    }
+  }
+  return true;
+}
+
+/// Reads a scene with assimp from a file (`bytes` empty) or from memory
+/// (`bytes`, with `path` as the name whose extension tells the format).
+Result<TriangleMesh> readWithAssimp(const std::string& path, std::span<const std::byte> bytes,
+                                    const MeshLoadOptions& options) {
   Assimp::Importer importer;
   // Points and lines are dropped by SortByPType; polygons become triangles.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
+  std::string hint = lowerExtension(path);
+  if (!hint.empty()) hint.erase(0, 1);  // assimp's hint is the extension without its dot
+  // The scene is read without post-processing first and its faces checked
+  // (facesInRange): assimp 5.2's readers leave some malformed files' faces
+  // empty or with indices past their meshes' vertices (PLY numbers a
+  // mutation garbled, found by fuzzing), which Triangulate reads past.
+  const aiScene* scene = bytes.empty()
+                             ? importer.ReadFile(path, 0)
+                             : importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str());
+  if (scene && scene->mRootNode && !facesInRange(*scene))
+    return Error("the mesh file has a face without vertices or with a vertex index out of range", path);
+  if (scene && scene->mRootNode)
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) {
     std::string why = importer.GetErrorString();
     if (why.empty()) why = "unknown reason";
@@ -110,6 +147,43 @@ Result<TriangleMesh> readWithAssimp(const std::string& path, const MeshLoadOptio
     }
   }
   return std::move(reader.mesh);
+}
+
+/// The whole of a mesh file (for the checks of readGuarded).
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// readWithAssimp with what assimp throws turned into errors, after the
+/// check of PLY files, whose assimp reader hangs or crashes on some malformed ones.
+Result<TriangleMesh> readGuarded(const std::string& path, std::span<const std::byte> bytes,
+                                 const MeshLoadOptions& options) {
+  if (lowerExtension(path) == ".ply") {
+    const std::string file = bytes.empty() ? fileBytes(path) : std::string{};
+    const std::string_view text =
+        bytes.empty() ? std::string_view(file)
+                      : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (std::string why = plyProblem(text); !why.empty()) return Error(why, path);
+  }
+  try {
+    return readWithAssimp(path, bytes, options);
+  } catch (const std::bad_alloc&) {
+    return Error("out of memory while reading the mesh file", path);
+  } catch (const std::exception& e) {
+    return Error(std::string("assimp cannot read this mesh file: ") + e.what(), path);
+  } catch (...) {
+    return Error("assimp cannot read this mesh file (unknown error)", path);
+  }
+}
+
+#else
+
+Error withoutAssimp(const std::string& path) {
+  return Error(
+      "cmkit was built without assimp, so it cannot read mesh files: install Debian's libassimp-dev "
+      "and rebuild (or build the model with buildCollisionModelFromTriangles)",
+      path);
 }
 
 #endif
@@ -139,20 +213,23 @@ Result<TriangleMesh> loadMeshFile(const std::string& path, const MeshLoadOptions
   if (!std::filesystem::exists(path, ec)) return Error("cannot open the mesh file: no such file", path);
   if (!std::filesystem::is_regular_file(path, ec))
     return Error("cannot read the mesh file: not a regular file", path);
-  try {
-    return readWithAssimp(path, options);
-  } catch (const std::bad_alloc&) {
-    return Error("out of memory while reading the mesh file", path);
-  } catch (const std::exception& e) {
-    return Error(std::string("assimp cannot read this mesh file: ") + e.what(), path);
-  } catch (...) {
-    return Error("assimp cannot read this mesh file (unknown error)", path);
-  }
+  return readGuarded(path, {}, options);
 #else
-  return Error(
-      "cmkit was built without assimp, so it cannot read mesh files: install Debian's libassimp-dev "
-      "and rebuild (or build the model with buildCollisionModelFromTriangles)",
-      path);
+  return withoutAssimp(path);
+#endif
+}
+
+Result<TriangleMesh> loadMeshMemory(std::span<const std::byte> bytes, std::string_view name,
+                                    const MeshLoadOptions& options) {
+  const std::string path(name);
+  if (!(std::isfinite(options.scale) && options.scale > 0))
+    return Error("the mesh scale must be a positive finite number", path);
+  if (bytes.empty()) return Error("the mesh data is empty", path);
+  if (bytes.size() > kMaxMeshMemoryBytes) return Error("the mesh data is larger than 1 GiB", path);
+#ifdef CMKIT_HAVE_ASSIMP
+  return readGuarded(path, bytes, options);
+#else
+  return withoutAssimp(path);
 #endif
 }
 

@@ -475,6 +475,113 @@ TEST(MeshFile, MalformedAndMissingFilesNameTheFile) {
   EXPECT_NE(garbage.error().toString().find("not_a_mesh.glb"), std::string::npos);
 }
 
+TEST(MeshFile, BytesInMemoryGiveTheFilesMesh) {
+  CMKIT_REQUIRE_ASSIMP();
+  for (const char* name : {"cube.obj", "cube.gltf", "two_sided.obj"}) {
+    const std::string text = test::readFile(meshData(name));
+    const auto bytes = std::as_bytes(std::span<const char>(text.data(), text.size()));
+    auto fromFile = loadMeshFile(meshData(name).string());
+    auto fromMemory = loadMeshMemory(bytes, name);
+    ASSERT_TRUE(fromFile.ok()) << name;
+    ASSERT_TRUE(fromMemory.ok()) << name << ": " << fromMemory.error().toString();
+    EXPECT_EQ(fromMemory->positions, fromFile->positions) << name;  // glTF: turned y up by the name too
+    ASSERT_EQ(fromMemory->surfaces.size(), fromFile->surfaces.size()) << name;
+    for (std::size_t k = 0; k < fromFile->surfaces.size(); ++k) {
+      EXPECT_EQ(fromMemory->surfaces[k].material, fromFile->surfaces[k].material) << name;
+      EXPECT_EQ(fromMemory->surfaces[k].indices, fromFile->surfaces[k].indices) << name;
+    }
+  }
+  // Errors name the name given: garbage, nothing, a bad scale.
+  const std::string junk = "this is not glTF\n";
+  auto garbage = loadMeshMemory(std::as_bytes(std::span<const char>(junk.data(), junk.size())), "junk.glb");
+  ASSERT_FALSE(garbage.ok());
+  EXPECT_NE(garbage.error().toString().find("junk.glb"), std::string::npos) << garbage.error().toString();
+  auto empty = loadMeshMemory({}, "empty.obj");
+  ASSERT_FALSE(empty.ok());
+  EXPECT_NE(empty.error().toString().find("empty"), std::string::npos) << empty.error().toString();
+  MeshLoadOptions badScale;
+  badScale.scale = -1;
+  EXPECT_FALSE(
+      loadMeshMemory(std::as_bytes(std::span<const char>(junk.data(), junk.size())), "a.obj", badScale).ok());
+}
+
+/// A PLY cube's header (8 vertices, 6 quads) in the format given.
+std::string plyHeader(const char* format) {
+  return std::string("ply\nformat ") + format +
+         " 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+         "element face 6\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+Result<TriangleMesh> plyFromText(const std::string& text) {
+  return loadMeshMemory(std::as_bytes(std::span<const char>(text.data(), text.size())), "test.ply");
+}
+
+const char* const kPlyCubeBody =
+    "0 0 0\n32 0 0\n0 32 0\n32 32 0\n0 0 32\n32 0 32\n0 32 32\n32 32 32\n"
+    "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+
+TEST(MeshFile, MalformedPlyFilesAreErrorsNotHangsOrCrashes) {
+  CMKIT_REQUIRE_ASSIMP();
+  // Well formed, ASCII and binary: the cube.
+  auto ascii = plyFromText(plyHeader("ascii") + kPlyCubeBody);
+  ASSERT_TRUE(ascii.ok()) << ascii.error().toString();
+  EXPECT_EQ(ascii->positions.size(), 8u);
+  std::string binary = plyHeader("binary_little_endian");
+  for (int i = 0; i < 8; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const float v = float((i >> a) & 1) * 32.0f;
+      binary.append(reinterpret_cast<const char*>(&v), 4);
+    }
+  }
+  for (const std::array<std::int32_t, 4>& quad : std::vector<std::array<std::int32_t, 4>>{
+           {0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}) {
+    binary.push_back(char(4));
+    binary.append(reinterpret_cast<const char*>(quad.data()), 16);
+  }
+  auto fromBinary = plyFromText(binary);
+  ASSERT_TRUE(fromBinary.ok()) << fromBinary.error().toString();
+  EXPECT_EQ(fromBinary->positions, ascii->positions);
+
+  // Each of these made Debian 12's assimp hang or crash (found by fuzzing):
+  // now an error that says what is wrong.
+  struct Case {
+    std::string text;
+    const char* says;
+  };
+  std::string hang = plyHeader("ascii") + kPlyCubeBody;  // a garbled property line, no end_header
+  hang.replace(hang.find("property float y"), 16, "property floatcone: y");
+  hang.replace(hang.find("end_header"), 10, "end_hx");
+  const std::string emptyFace =  // a face list garbled into an empty face
+      plyHeader("ascii") +
+      "0 0 0\n32 0 0\n0 32 0\n32 32 0\n0 0 32\n32 0 32\n0 32 32\n32 32 32\n"
+      "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n 2 6 7 3\n4 \xec\x0dj\xeaW0 4 6 2\n4 1 3 7 5\n";
+  const std::vector<Case> cases = {
+      {hang, "PLY header line 5"},
+      {binary.substr(0, binary.size() - 10), "binary data ends in element 2"},
+      {binary.substr(0, plyHeader("binary_little_endian").size() + 20), "binary data ends in element 1"},
+      {binary.substr(0, plyHeader("binary_little_endian").size() + 5), "binary data ends before element 1"},
+      {plyHeader("binary_big_endian").replace(4, 0, "comment x\n") + std::string(8 * 12, '\0') +
+           std::string(6, char(200)),
+       "binary data ends in element 2"},
+      {emptyFace, "face without vertices"},
+      {"ply\nelement vertex 1\nend_header\n", "no format line"},
+      {"ply\nformat ascii 2.0\nend_header\n", "PLY header line 2"},
+      {"not a ply\n", "does not start"},
+  };
+  for (const Case& c : cases) {
+    auto m = plyFromText(c.text);
+    ASSERT_FALSE(m.ok()) << c.says;
+    EXPECT_NE(m.error().toString().find(c.says), std::string::npos) << m.error().toString();
+    EXPECT_NE(m.error().toString().find("test.ply"), std::string::npos) << m.error().toString();
+  }
+  // The same check for a file on disk.
+  const test::ScratchDir scratch("malformed_ply");
+  std::ofstream(scratch.path() / "hang.ply", std::ios::binary) << hang;
+  auto fromFile = loadMeshFile((scratch.path() / "hang.ply").string());
+  ASSERT_FALSE(fromFile.ok());
+  EXPECT_NE(fromFile.error().toString().find("PLY header line 5"), std::string::npos);
+}
+
 TEST(MeshFile, MeshFileNames) {
   EXPECT_TRUE(isMeshFileName("a/b/model.OBJ"));
   EXPECT_TRUE(isMeshFileName("level.glb"));
