@@ -13,7 +13,7 @@
 #   ./dev.sh deps    only install the Debian packages
 #   ./dev.sh build   only build (release preset)
 #   ./dev.sh tsan    build and run the tests under ThreadSanitizer
-#   ./dev.sh fuzz [map|cm|query] [SECONDS] [RUNS]
+#   ./dev.sh fuzz [map|cm|query|mesh] [SECONDS] [RUNS]
 #                    coverage-guided fuzzing with libFuzzer (Clang, ASan+UBSan);
 #                    SECONDS 0 = no time limit, RUNS = stop after that many
 #                    inputs (a campaign: ./dev.sh fuzz map 0 10000000)
@@ -154,11 +154,11 @@ case "${1:-}" in
     target="${2:-map}"
     seconds="${3:-300}"
     runs="${4:--1}"
-    # Map and query inputs stay small (4 KB): parsing and building a big map
-    # costs much and finds little that a small one does not.
+    # Map, query and mesh inputs stay small (4 KB): parsing and building a
+    # big map costs much and finds little that a small one does not.
     maxlen=()
     [ "$target" = cm ] || maxlen=(-max_len=4096)
-    case "$target" in map | cm | query) ;; *) echo "fuzz target: map, cm or query" >&2; exit 2 ;; esac
+    case "$target" in map | cm | query | mesh) ;; *) echo "fuzz target: map, cm, query or mesh" >&2; exit 2 ;; esac
     deps
     build fuzz
     # New inputs go to build/fuzz/work/TARGET; the seeds in fuzz/corpus stay as they are.
