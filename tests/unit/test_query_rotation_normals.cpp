@@ -14,6 +14,7 @@
 
 #include "cmkit/query.h"
 #include "cmkit/tolerances.h"
+#include "cmkit/tools/query_format.h"
 #include "model_fixtures.h"
 #include "test_support.h"
 
@@ -239,4 +240,108 @@ TEST(TranslationNormals, EveryContactOpposesTheMotion) {
   EXPECT_GT(traces.total(true), 200) << traces.summary();
   EXPECT_GT(touches.total(false) + touches.total(true), 200) << touches.summary();
   std::printf("translations: %s\ncontacts: %s\n", traces.summary().c_str(), touches.summary().c_str());
+}
+
+namespace {
+
+/// A rotation line of the shared reference files (spec/query-format.md) and
+/// what cmkit answers now: the original's fraction and the normal that
+/// opposes the contact point's motion.
+struct ReferenceRotation {
+  const char* where;  ///< reference file and result line
+  const char* query;
+  double fraction;
+  Vec3 normal;
+};
+
+/// Answers `r.query` on `models` and checks the fraction, the normal and
+/// that the normal opposes the contact point's motion.
+void expectReferenceRotation(std::span<const ModelPtr> models, const ReferenceRotation& r, QueryWork& work) {
+  SCOPED_TRACE(r.where);
+  const std::string answer = answerQueryLine(models, r.query, work);
+  const detail::Fields got(answer);
+  ASSERT_TRUE(got.has("fraction") && got.has("normal") && got.has("point")) << answer;
+  EXPECT_NEAR(test::numbers(got.value("fraction")).at(0), r.fraction, 1e-4) << answer;
+  const auto n = test::numbers(got.value("normal")), p = test::numbers(got.value("point"));
+  ASSERT_EQ(n.size(), 3u);
+  ASSERT_EQ(p.size(), 3u);
+  const Vec3 normal{n[0], n[1], n[2]};
+  EXPECT_LT((normal - r.normal).length(), 1e-3f) << answer;
+  const detail::Fields q(r.query);
+  const auto o = test::numbers(q.value("rotorigin")), a = test::numbers(q.value("rotaxis"));
+  const Rotation rotation({o[0], o[1], o[2]}, {a[0], a[1], a[2]}, test::numbers(q.value("angle")).at(0));
+  EXPECT_LT(cosineWithMotion(normal, arcMotion(rotation, {p[0], p[1], p[2]})), 0) << answer;
+}
+
+}  // namespace
+
+TEST(RotationNormals, ReferenceEdgeContactsWhoseNormalWasFlipped) {
+  // Lines of reference/box_room where the original's edge-contact normal
+  // opposes the motion and cmkit's once followed it (agree.py: "normal
+  // flipped"), and line 1353, where the original's follows the motion
+  // (cosine 0.32) and cmkit's is the opposite. Same fraction as the
+  // original on every line.
+  const std::vector<ModelPtr> models = test::buildMapModels(test::dataFile(kBundledMap));
+  ASSERT_FALSE(models.empty());
+  const ReferenceRotation lines[] = {
+      {"box_room 85",
+       "rotation trm=box:-23,-25.5,0,23,25.5,32 start=270.424591,273.824249,23.0348358 "
+       "rotorigin=312.821564,320.190765,71.2643585 rotaxis=0,0,-1 angle=167.705078 mask=solid,opaque",
+       0.0785015151,
+       {-0.227757692f, 0.973717809f, 0}},
+      {"box_room 963",
+       "rotation trm=polygon:19.5,0,0;13.75,13.75,0;-0.0625,19.5,0;-13.8125,13.75,0;-19.5,-0.0625,0;"
+       "-13.8125,-13.8125,0;0,-19.5,0;13.75,-13.8125,0 start=264.393433,243.096405,67.0977783 "
+       "rotorigin=229.263367,238.617081,116.529724 rotaxis=1,0,0 angle=238.777771",
+       0.0964241847,
+       {0.357770324f, 0.933809519f, 0}},
+      {"box_room 1403",
+       "rotation trm=cylinder:3:-24.5,-24.5,0,24.5,24.5,40 start=399.717163,-198.56012,95.3643036 "
+       "rotorigin=410.881744,-153.693207,132.60318 rotaxis=0,0,-1 angle=-242.430359",
+       0.0436541922,
+       {1, 0, 0}},
+      {"box_room 1621",
+       "rotation trm=octahedron:-29,-29,0,29,29,51 start=-256.680817,-386.455078,86.8413239 "
+       "rotorigin=-297,-328,24 "
+       "rotaxis=1,0,0 angle=-191.210175 "
+       "trmaxis=-0.57091713,-0.730513871,-0.374704003,-0.662120044,0.679532766,"
+       "-0.315962583,0.485438704,0.0677105784,-0.871644735",
+       0.00139905605,
+       {0.558621466f, 0.497653693f, 0.663538158f}},
+      {"box_room 1919",
+       "rotation trm=box:-21.5,-21.5,0,21.5,21.5,12 start=398,-227,82 rotorigin=388,-247,57 rotaxis=0,0,-1 "
+       "angle=216.953003 trmaxis=-0.813764691,-0.398616582,-0.422956377,-0.277602464,-0.372772336,0.88542521,"
+       "-0.510611534,0.837941408,0.192691803",
+       0.160292342,
+       {0.999848723f, 0, 0.017392572f}},
+      {"box_room 1353 (the original's normal, (-0.999, 0.035, 0), follows the motion)",
+       "rotation trm=box:-26.5,-26.5,-6.5,26.5,26.5,6.5 start=301.978119,285.028381,222.096069 "
+       "rotorigin=360.429535,299.391663,178.865112 rotaxis=0,0,1 angle=18.0380859",
+       0.111040406,
+       {0.999388993f, -0.0349512808f, 0}},
+  };
+  QueryWork work;
+  for (const ReferenceRotation& r : lines) expectReferenceRotation(models, r, work);
+}
+
+TEST(RotationNormals, ReferenceModelVertexContactFacesTheTurnedPolygon) {
+  // reference-proc/box_room_proc line 1466: a box turns 123 degrees (0.734
+  // of -167.6 about -z) until a floor vertex (448, -128, 0) meets its face
+  // whose normal is -x at the start. The original reports that start
+  // normal's opposite, (1, 0, 0), which follows the vertex's motion
+  // (cosine 0.999: the face has turned far past it); cmkit reports the face
+  // where it meets the vertex: its normal at the end is -endAxis[0], so the
+  // contact normal is endAxis[0] = (-0.544, -0.839, 0).
+  const std::vector<ModelPtr> models =
+      test::buildMapModels(test::dataFile("maps/synthetic-proc/box_room_proc.map"));
+  ASSERT_FALSE(models.empty());
+  QueryWork work;
+  expectReferenceRotation(
+      models,
+      {"box_room_proc 1466",
+       "rotation trm=box:-20.75,-20.75,-24,20.75,20.75,24 start=404.473816,-217.815323,16.75 "
+       "rotorigin=445.111847,-199.588928,-39.6263275 rotaxis=0,0,-1 angle=-167.606232",
+       0.733624339,
+       {-0.544053555f, -0.839050412f, 0}},
+      work);
 }
