@@ -92,8 +92,11 @@ const char* toString(ContactType type);
 struct ContactInfo {
   /// Which features touched.
   ContactType type = ContactType::None;
-  Vec3 point;                  ///< contact point (see the per-type notes in docs/fidelity.md)
-  Vec3 normal;                 ///< normal of the contact plane, facing the trace model
+  Vec3 point;  ///< contact point (see the per-type notes in docs/fidelity.md)
+  /// Normal of the contact plane, facing the trace model: against the motion
+  /// of the contact point (translations; rotations along the arc at the
+  /// contact), for starts in solid too; see RotationQuery.
+  Vec3 normal;
   Real dist = 0;               ///< normal . p = dist on the contact plane
   std::uint32_t contents = 0;  ///< contents of the surface hit
   std::int32_t material = -1;  ///< index into the model's materials, -1 = none
@@ -343,6 +346,13 @@ PenetrationResult penetration(const CollisionModel& model, const PenetrationQuer
 ///   the trace model overlaps anything, else 1; startSolid set accordingly).
 /// - Starting in solid is handled as the original does; `startSolid` tells it
 ///   when `detectStartSolid` is set.
+/// - The contact normal opposes the motion of the contact point along the arc
+///   at the contact, v = s * (point - origin) x axis (s = 1 for a positive
+///   angle, -1 for a negative one): normal . v <= 0, or the motion runs within
+///   the contact plane (|cosine| <= tol::kRotationContactTangentCosine), the
+///   same for starts in solid. A model-vertex contact's normal is that of the
+///   trace-model polygon turned to the contact. Both differ from the original
+///   (docs/fidelity.md, "Rotation contact normals").
 struct RotationQuery {
   const TraceModel* trm = nullptr;  ///< nullptr or a point shape: a point rotation
   Mat3 trmAxis;                     ///< orientation of the trace model at the start

@@ -35,6 +35,13 @@ inline constexpr int kMaxRotationWalkPieces = 16;
 /// cmkit: rotating edges whose directions differ by a sine below this at the
 /// contact are parallel: their crossing equation is float noise, no contact.
 inline constexpr Real kRotationParallelEdgeSine = 1e-5f;
+/// cmkit: a rotation's contact normal opposes the motion of the contact
+/// point along the arc; when the cosine of the two is within this, the
+/// motion runs within the contact plane (a grazing contact: no side is
+/// approached) and the normal's sign comes from the model instead (the model
+/// edge's normal for edge contacts). Well above the float rounding of a unit
+/// normal built from turned edges (about 1e-6).
+inline constexpr Real kRotationContactTangentCosine = 1e-3f;
 
 /// cmkit (RayIndex): a polygon accepts a ray crossing only within its bounds
 /// padded by this fraction of its largest coordinate magnitude plus one

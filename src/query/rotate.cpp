@@ -212,6 +212,27 @@ struct ModelEdgeLines {
   ModelEdgeLine line, lineIn, lineEps;
 };
 
+/// The sign of an edge-edge contact's normal: against the motion of the
+/// contact point along the arc at the contact, v = sign * (point - origin) x
+/// axis (the trace model's motion, model frame), as every contact of a
+/// translation opposes the motion; that holds whether the trace model
+/// started free or in solid. When the motion runs within the contact plane
+/// (cosine within tol::kRotationContactTangentCosine) neither side is
+/// approached: then out of the solid (the model edge's normal), else the
+/// side of the turned trace-model edge. (The original took the sign from a
+/// test at the start of the rotation; starting in solid it often followed
+/// the motion.)
+Vec3 edgeContactNormal(const RotationWork& rw, const Vec3& unitNormal, const Vec3& point,
+                       const Vec3& edgeNormal, const Vec3& trmEdgeFromModelEdge) {
+  const Vec3 motion = (point - rw.origin).cross(rw.axis) * rw.sign;
+  const Real along = unitNormal.dot(motion);
+  if (std::fabs(along) > tol::kRotationContactTangentCosine * motion.length())
+    return along > 0 ? -unitNormal : unitNormal;
+  const Real facing = unitNormal.dot(edgeNormal);
+  if (facing < 0 || (facing == 0 && unitNormal.dot(trmEdgeFromModelEdge) < 0)) return -unitNormal;
+  return unitNormal;
+}
+
 void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
                               const ModelEdgeLines& lines, int trmEdgeNum) {
   const CollisionModel& m = tw.model;
@@ -249,8 +270,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   Vec3 a, b, point;
   if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c0, d0, u, a, b, point)) return;
 
-  // Contact plane: through the model edge, containing both edge directions,
-  // facing out of the solid (the model edge's normal), else the trm edge.
+  // Contact plane: through the model edge, containing both edge directions.
   // Parallel edges have no such plane and no crossing: their product is
   // zero at every angle, so its roots are noise (vertex-polygon tests see
   // those contacts).
@@ -259,8 +279,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   if (!(sinSq > tol::kRotationParallelEdgeSine * tol::kRotationParallelEdgeSine)) return;
   normal.normalize();
   rw.maxTan = u;
-  const Real facing = normal.dot(edge.normal);
-  if (facing < 0 || (facing == 0 && normal.dot(a - c0) < 0)) normal = -normal;
+  normal = edgeContactNormal(rw, normal, point, edge.normal, a - c0);
   setContact(tw, poly, ContactType::Edge, normal, normal.dot(c0), point, edgeNum, trmEdgeNum);
 }
 
@@ -281,7 +300,13 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
       }))
     return;
   rw.maxTan = u;
-  const Vec3 normal = -tp.plane.normal;
+  // The contact plane is the trace-model polygon's where it meets the
+  // vertex, turned on by the contact angle (the original reported it at the
+  // start of the rotation, which can face along the motion once the polygon
+  // has turned further than the angle at which the vertex approaches it).
+  // Facing the trace model: its motion at the vertex runs into the polygon.
+  const Vec3 normal =
+      u == 0 ? -tp.plane.normal : -rotateByTanHalf(tp.plane.normal, Vec3{}, rw.axis, rw.sign * u);
   setContact(tw, poly, ContactType::ModelVertex, normal, normal.dot(p), p, std::int32_t(vertexNum),
              trmPolyNum);
 }
