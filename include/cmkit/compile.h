@@ -44,7 +44,13 @@ struct BuildOptions {
   /// a face that meets its polygon at an angle), and an edge shared by
   /// polygons of different contents (a solid face and a clip face) is never
   /// marked: the rule decides within one contents group, but the flag hides
-  /// the edge from every user. See docs/reliability.md.
+  /// the edge from every user. It also builds the edge normals of two-sided
+  /// polygons as one sheet: the line a two-sided polygon shares with its
+  /// reversed copy is not a sharp fold, so its epsilon edge lies 0.25 units
+  /// out, not the original's 0.83 (and more where neighbours add to it), and
+  /// traces stop 0.25 units from a two-sided surface. The .cm file does not
+  /// store edge normals: a .cm written from such a model loads with the
+  /// original's. See docs/reliability.md and docs/fidelity.md.
   bool robustEdges = false;
 };
 

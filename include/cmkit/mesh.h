@@ -50,6 +50,12 @@ struct MeshBuildOptions {
   /// (for meshes without Doom 3 materials); collision surfaces still decide
   /// which surfaces are used.
   std::optional<std::uint32_t> contents;
+  /// As BuildOptions::robustEdges (not the original's; off by default):
+  /// internal edges only from non-parallel polygons, and the edges of
+  /// two-sided surfaces built as one sheet, so that traces stop 0.25 units
+  /// from them instead of up to 0.83 (the original's sharp-edge rule applied
+  /// to a triangle and its reversed copy).
+  bool robustEdges = false;
 };
 
 /// What buildCollisionModelFromTriangles (and loadMeshModel) made.

@@ -152,7 +152,10 @@ void ModelBuilder::flattenTree(ModelArrays& model, const Remap& remap) const {
 
 void ModelBuilder::finishModel(ModelArrays& model) const {
   computeModelBoundsAndContents(model);
-  model.stats.sharpEdges = computeEdgeNormals(model);
+  // Robust edges: a two-sided polygon and its reversed copy are one sheet,
+  // not a sharp fold (edge_normals.h).
+  model.stats.sharpEdges =
+      computeEdgeNormals(model, robustEdges_ ? EdgeNormalRule::TwoSidedSheets : EdgeNormalRule::Original);
   model.stats.internalEdges = counters_.numInternalEdges;
   model.stats.containedPolygonsRemoved = counters_.numRemovedPolys;
   model.stats.procPolygonsRemoved = counters_.numProcRemovedPolys;

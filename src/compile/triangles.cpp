@@ -115,6 +115,7 @@ Result<MeshBuildResult> buildCollisionModelFromTriangles(const TriangleMesh& mes
     detail::MaterialCache cache(materials, options.contents);
     MeshBuildResult result;
     detail::ModelBuilder builder(mesh, std::move(name), cache, &result.warnings);
+    builder.setRobustEdges(options.robustEdges);
     result.model = builder.build();
     return result;
   } catch (const std::bad_alloc&) {

@@ -80,7 +80,8 @@ int runMeshBuild(const MapBuildRequest& request, const MaterialTable& materials)
   }
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
-  Result<ModelPtr> model = loadMeshForCli(request.mapPath, materials, request.mesh, &warnings);
+  Result<ModelPtr> model =
+      loadMeshForCli(request.mapPath, materials, request.mesh, &warnings, request.robustEdges);
   for (const std::string& w : warnings) fmt::print(stderr, "warning: {}: {}\n", request.mapPath, w);
   if (!model) {
     fmt::print(stderr, "cmkit {}: {}\n", cmd, model.error().toString());

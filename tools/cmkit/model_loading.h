@@ -30,9 +30,10 @@ struct MeshCliOptions {
 void addMeshOptions(CLI::App* cmd, MeshCliOptions& options);
 
 /// Reads a mesh file into one model named after the path (warnings
-/// appended when not null).
+/// appended when not null); `robustEdges`: MeshBuildOptions::robustEdges.
 Result<ModelPtr> loadMeshForCli(const std::string& path, const MaterialTable& materials,
-                                const MeshCliOptions& options, std::vector<std::string>* warnings);
+                                const MeshCliOptions& options, std::vector<std::string>* warnings,
+                                bool robustEdges = false);
 
 /// The built-in material rules, plus the .mtr files under `materialsDir`
 /// when it is not empty (--materials).
@@ -52,7 +53,8 @@ bool looksLikeCm(std::string_view text);
 /// (isMeshFileName) into one model (materials from `materialsDir` when not
 /// empty, else the default rules). For a .map, one line on stderr says
 /// whether a .proc pruned the world (procNote). `robustEdges`:
-/// BuildOptions::robustEdges for a .map (ignored otherwise). "-" (standard
+/// BuildOptions::robustEdges for a .map, MeshBuildOptions::robustEdges for a
+/// mesh file (ignored for a .cm). "-" (standard
 /// input) and files of other names are read whole and told apart by their
 /// first token (looksLikeCm): a .cm's models, or a .map built without a
 /// .proc.
