@@ -40,6 +40,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cmkit/contents.h"
@@ -68,6 +69,7 @@ enum class QueryStatus : std::uint8_t {
   OutOfRange,       ///< a coordinate, the end of the move or the trace model's bounds lie beyond
                     ///< tol::kMaxQueryCoordinate
   BadRotationAxis,  ///< the rotation axis is zero or not of unit length
+  MixedMotion,      ///< a contacts query given both a translation (dir * depth not zero) and a rotation
 };
 
 /// A short English description of a status ("ok", "trace-model axis is not a
@@ -106,6 +108,10 @@ struct ContactInfo {
   /// Trace-model feature: vertex index (TrmVertex), edge number (Edge) or
   /// polygon index (ModelVertex).
   std::int32_t trmFeature = 0;
+  /// Degrees turned when the contact is met, signed as the rotation's angle:
+  /// set by contacts() with a rotation (ContactsQuery::rotation); 0 for every
+  /// other query (rotate() reports its stop as TraceResult::fraction).
+  Real angle = 0;
 };
 
 /// The result of a translation, rotation or position test.
@@ -257,7 +263,8 @@ struct PointContentsResult {
 PointContentsResult pointContents(const CollisionModel& model, const PointContentsQuery& query,
                                   QueryWork& work);
 
-/// All contacts of a trace model moved up to `depth` along `dir`.
+/// All contacts of a trace model moved up to `depth` along `dir`, or turned
+/// up to an angle about an axis (`rotation`).
 struct ContactsQuery {
   /// The trace model moved (nullptr or a point shape: a point).
   const TraceModel* trm = nullptr;
@@ -274,9 +281,15 @@ struct ContactsQuery {
   Placement placement;
   /// At most this many contacts are returned.
   int maxContacts = 16;
+  /// Set: ROTATIONAL contacts. The trace model turns from `start` by
+  /// `rotation.angle` degrees about the line through `rotation.origin` along
+  /// `rotation.axis`, as RotationQuery describes (same sign, same parts,
+  /// same input checks, angle 0: no contacts); dir * depth must then be zero
+  /// (QueryStatus::MixedMotion otherwise). See contacts().
+  std::optional<Rotation> rotation;
 };
 
-/// Result of contacts(): the contacts found, in the order the walk met them.
+/// Result of contacts(): the contacts found (order: see contacts()).
 struct ContactsResult {
   /// The contacts found.
   std::vector<ContactInfo> contacts;
@@ -284,7 +297,18 @@ struct ContactsResult {
 };
 
 /// The original's Contacts: every surface the trace model touches when moved
-/// from start up to start + dir * depth, at most maxContacts of them.
+/// from start up to start + dir * depth, at most maxContacts of them, in the
+/// order the walk met them.
+///
+/// With ContactsQuery::rotation (cmkit's own; the original left contacts
+/// along a rotation unfinished): for every model polygon the turning trace
+/// model meets within the angle, its EARLIEST contact (as rotate() would
+/// stop there: tol::kClipEpsilon in front), with ContactInfo::angle the
+/// degrees turned to it (signed as rotation.angle). A contact of a polygon's
+/// edge or vertex counts for each polygon that holds it. The contacts are
+/// ordered by |angle| (ties: the order the walk met them), and the
+/// maxContacts earliest are kept. Normals oppose the motion of the contact
+/// point along the arc, as rotate()'s (RotationQuery).
 ContactsResult contacts(const CollisionModel& model, const ContactsQuery& query, QueryWork& work);
 /// contacts() into the caller's vector (the one form that fills a caller's
 /// container): `out` is cleared, then holds the same contacts in the same

@@ -21,6 +21,8 @@ const char* toString(QueryStatus status) {
       return "a coordinate, the end of the move or the trace model's size is beyond 1e9 units";
     case QueryStatus::BadRotationAxis:
       return "rotation axis is zero or not of unit length";
+    case QueryStatus::MixedMotion:
+      return "contacts query given both a translation (dir and depth) and a rotation";
   }
   return "unknown status";
 }
@@ -112,6 +114,17 @@ QueryStatus guardPointContents(PointContentsQuery& q) {
 
 QueryStatus guardContacts(ContactsQuery& q) {
   if (!std::isfinite(q.depth) || !q.dir.isFinite()) return QueryStatus::NonFinite;
+  if (q.rotation) {
+    // Rotational contacts: no translation beside the rotation, which is
+    // checked (and its axis normalised) as rotate() checks it.
+    if (q.depth != 0 && q.dir != Vec3{}) return QueryStatus::MixedMotion;
+    RotationQuery rq{q.trm, q.trmAxis, q.start, *q.rotation, q.contentMask, q.placement, false};
+    const QueryStatus s = guardRotation(rq);
+    q.trmAxis = rq.trmAxis;
+    q.placement = rq.placement;
+    q.rotation = rq.rotation;
+    return s;
+  }
   if (checkPoint(q.start + q.dir * q.depth) != QueryStatus::Ok && q.start.isFinite())
     return QueryStatus::OutOfRange;  // the end (finite input) is too far or overflows
   return checkCommon(q.start, q.placement, q.trm, q.trmAxis);

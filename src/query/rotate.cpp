@@ -12,6 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <type_traits>
 
 #include "query/cull_lanes.h"
@@ -21,6 +22,8 @@
 
 namespace cmkit::detail {
 namespace {
+
+constexpr double kPi = std::numbers::pi;
 
 /// The positive root of -v1 u^2 - 2 v2 u + v1 = 0 for v1 > 0: where the
 /// sinusoid v2 cos t + v1 sin t + v0 has its first extremum ahead (the two
@@ -312,7 +315,21 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
 }
 
 // A polygon's tests are done: a hit at the very start blocks completely.
-bool finishPolygon(TraceWork& tw, const RotationWork& rw) {
+// Contacts mode: the polygon's earliest contact, if it has one below the
+// part's limit `limit`, is recorded with its angle, and the limit restored
+// for the next polygon (nothing blocks: the walk goes on).
+bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum, double limit) {
+  if (rw.contactsFound) {
+    if (rw.maxTan < limit) {
+      RotationContact& found = rw.contactsFound->emplace_back();
+      found.contact = tw.c;
+      found.contact.angle =
+          Real(double(rw.partStartAngle) + double(rw.sign) * std::atan(rw.maxTan) * 360 / kPi);
+      found.polygon = polyNum;
+      rw.maxTan = limit;
+    }
+    return false;
+  }
   if (rw.maxTan != 0) return false;
   tw.fraction = 0;
   return true;
@@ -399,6 +416,12 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
 
   const auto edges = m.edgesOf(poly);
   bool edgeLinesSet = false;
+  // Contacts mode: each polygon is tested against the whole part (its
+  // contact lowers maxTan only until finishPolygon restores it), with every
+  // feature of its own (no model edge or vertex skipped as tested with an
+  // earlier polygon).
+  const bool collecting = rw.contactsFound != nullptr;
+  const double limit = rw.maxTan;
 
   // The original's back-face culls, for a convex trace model the axis passes
   // through: the whole polygon when the trace-model centre is behind it, a
@@ -417,7 +440,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
            rw.usedVertices & ~behind & boxesCrossing(rw.vertexBoxes, tw.numVerts, poly.bounds, poly.plane);
        todo; todo &= todo - 1)
     rotateTrmVertexThroughPolygon(tw, rw, polyNum, poly, std::countr_zero(todo), edgeLinesSet);
-  if (tw.pointTrace) return finishPolygon(tw, rw);
+  if (tw.pointTrace) return finishPolygon(tw, rw, polyNum, limit);
 
   // Trace-model edges through the polygon's edges. A (model edge, trm edge)
   // pair is tested once per query, with the first polygon of the edge whose
@@ -441,7 +464,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
     const CmEdge& edge = m.edges()[e];
     if (edge.internal) continue;
     std::uint32_t& tested = s.testedPairs(s.edges[e]);
-    const std::uint32_t todo = trmEdgesHere & ~tested;
+    const std::uint32_t todo = collecting ? trmEdgesHere : trmEdgesHere & ~tested;
     if (!todo) continue;
     tested |= todo;
     const Vec3& v0 = m.vertices()[std::size_t(edge.vertex[0])];
@@ -461,7 +484,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
 
   // Model vertices through the trace model's polygons (these culls do not
   // depend on the polygon).
-  forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
+  auto throughTrmPolygons = [&](std::size_t vn, const Vec3& p) {
     const Vec3 ro = rw.origin + rw.axis * rw.axis.dot(p - rw.origin);
     if ((p - ro).lengthSquared() <= tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon) return;
     Vec3 endp;  // where the vertex ends: made for the first polygon past the culls (most meet none)
@@ -476,8 +499,22 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
       }
       rotateVertexThroughTrmPolygon(tw, rw, poly, j, vn, p, endp, ro);
     }
-  });
-  return finishPolygon(tw, rw);
+  };
+  if (collecting) {
+    // Both ends of every edge the walk may hit (a vertex of two such edges
+    // is tested twice: the second finds no earlier contact).
+    for (const std::int32_t edgeNum : edges) {
+      const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
+      if (edge.internal) continue;
+      for (const std::int32_t vn : edge.vertex) {
+        const Vec3& p = m.vertices()[std::size_t(vn)];
+        if (insideBox(tw.bounds, p)) throughTrmPolygons(std::size_t(vn), p);
+      }
+    }
+  } else {
+    forEachNewModelVertex(tw, edges, throughTrmPolygons);
+  }
+  return finishPolygon(tw, rw, polyNum, limit);
 }
 
 }  // namespace

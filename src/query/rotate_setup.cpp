@@ -81,9 +81,11 @@ struct RotationFrame {
 /// `startM` turns the query's start to the part's start (null for the first
 /// part), `endM` to its end. Returns the fraction of the part turned before
 /// the first contact (1: none), the contact in world space in `contact`.
+/// Contacts mode (`found` set): every polygon's earliest contact is
+/// appended there instead (model frame), and the part returns 1.
 Real rotatePart(const CollisionModel& model, const RotationQuery& q, const RotationFrame& frame,
                 Real startAngle, Real endAngle, const Mat3* startM, const Mat3& endM, QueryWork& work,
-                ContactInfo& contact) {
+                ContactInfo& contact, std::vector<RotationContact>* found = nullptr) {
   QueryScratch& s = scratchOf(work);
   s.begin(model);
   TraceWork tw(model, s);
@@ -94,6 +96,8 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   rw.polygonBoundsSet = 0;
   rw.edgeTurnSet = 0;
   rw.axisThroughTrm = -1;
+  rw.contactsFound = found;
+  rw.partStartAngle = startAngle;
   tw.rotation = &rw;
   tw.fraction = 1;
   tw.c = ContactInfo{};
@@ -245,7 +249,54 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
   return Real(std::min(f, 1.0));
 }
 
+/// How rotate() splits an angle into parts below 180 degrees: a full turn
+/// (and more) in three 120-degree parts, other angles of 180 or more in two
+/// halves. `total` is the angle the parts cover, `step` each part's.
+void splitAngle(Real angle, Real& total, Real& step) {
+  total = angle;
+  step = angle;
+  if (angle >= 360) {
+    total = 360;
+    step = 120;
+  } else if (angle <= -360) {
+    total = -360;
+    step = -120;
+  } else if (std::fabs(angle) >= 180) {
+    step = angle * Real(0.5);
+  }
+}
+
+/// Calls part(a, startM, endM) for each part of a rotation by `total` in
+/// parts of `step` degrees, in order (startM null for the first part), until
+/// it returns true.
+template <class Part>
+void forEachPart(const RotationFrame& frame, Real total, Real step, Part part) {
+  Mat3 startM, endM = frame.stepMatrix;  // a part's start and end matrices
+  for (Real a = 0; std::fabs(a) < std::fabs(total); a += step) {
+    if (a != 0) {  // the next part starts where the last one ended
+      startM = endM;
+      endM = Rotation(frame.origin, frame.axis, a + step).matrix();
+    }
+    if (part(a, a != 0 ? &startM : nullptr, endM)) return;
+  }
+}
+
 }  // namespace
+
+bool collectRotationContacts(const CollisionModel& model, const RotationQuery& q, QueryWork& work,
+                             std::vector<RotationContact>& found) {
+  found.clear();
+  Real total, step;
+  splitAngle(q.rotation.angle, total, step);
+  count(scratchOf(work), &QueryStats::queries);
+  const RotationFrame frame(q, step);
+  forEachPart(frame, total, step, [&](Real a, const Mat3* startM, const Mat3& endM) {
+    ContactInfo unused;
+    rotatePart(model, q, frame, a, a + step, startM, endM, work, unused, &found);
+    return false;
+  });
+  return frame.modelRotated;
+}
 
 }  // namespace cmkit::detail
 
@@ -274,37 +325,22 @@ TraceResult rotate(const CollisionModel& model, const RotationQuery& query, Quer
     const ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r.startSolid = contentsTest(model, cq, work).contents != 0;
   }
-  // Parts below 180 degrees: a full turn (and more) in three 120-degree
-  // parts, other angles of 180 or more in two halves.
-  Real total = angle, step = angle;
-  if (angle >= 360) {
-    total = 360;
-    step = 120;
-  } else if (angle <= -360) {
-    total = -360;
-    step = -120;
-  } else if (std::fabs(angle) >= 180) {
-    step = angle * Real(0.5);
-  }
+  // Parts below 180 degrees (splitAngle).
+  Real total, step;
+  splitAngle(angle, total, step);
   count(scratchOf(work), &QueryStats::queries);
   Real turned = angle;  // no hit: the whole angle
   r.fraction = 1;
   const RotationFrame frame(q, step);
-  Mat3 startM, endM = frame.stepMatrix;  // a part's start and end matrices
-  for (Real a = 0; std::fabs(a) < std::fabs(total); a += step) {
-    if (a != 0) {  // the next part starts where the last one ended
-      startM = endM;
-      endM = Rotation(frame.origin, frame.axis, a + step).matrix();
-    }
+  forEachPart(frame, total, step, [&](Real a, const Mat3* startM, const Mat3& endM) {
     ContactInfo c;
-    const Real f = rotatePart(model, q, frame, a, a + step, a != 0 ? &startM : nullptr, endM, work, c);
-    if (f < 1) {
-      turned = a + step * f;
-      r.fraction = turned / angle;
-      r.contact = c;
-      break;
-    }
-  }
+    const Real f = rotatePart(model, q, frame, a, a + step, startM, endM, work, c);
+    if (!(f < 1)) return false;
+    turned = a + step * f;
+    r.fraction = turned / angle;
+    r.contact = c;
+    return true;
+  });
   const Rotation done(q.rotation.origin, q.rotation.axis, turned);
   r.endPos = done.rotatePoint(q.start);
   r.endAxis = point ? Mat3::identity() : done.rotateAxis(q.trmAxis);

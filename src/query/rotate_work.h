@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "math/dvec3.h"
 #include "query/trace_work.h"
@@ -96,6 +97,20 @@ struct RotPolygon {
 /// model (the intersection of its polygons' back half-spaces).
 bool axisThroughConvexTrm(const TraceWork& tw, const Vec3& origin, const Vec3& axis);
 
+/// A contact found by rotational contacts(): a polygon's earliest contact
+/// in one part (ContactInfo::angle set, model frame), with that polygon.
+struct RotationContact {
+  ContactInfo contact;
+  std::int32_t polygon = 0;
+};
+
+/// Rotational contacts (rotate_setup.cpp): the rotation walked part by part
+/// in contacts mode, every polygon's earliest contact of each part into
+/// `found` (model frame; cleared first). Returns whether the model's frame
+/// is rotated (for contactToWorld). The query has passed guardRotation.
+bool collectRotationContacts(const CollisionModel& model, const RotationQuery& q, QueryWork& work,
+                             std::vector<RotationContact>& found);
+
 /// One part of a rotation, in the model's frame.
 struct RotationWork {
   Vec3 origin;        ///< a point of the axis (model frame)
@@ -126,6 +141,12 @@ struct RotationWork {
   // was a large part of a short rotation's cost.
   std::uint32_t polygonBoundsSet = 0;  ///< bit j: polygons[j].bounds is made
   std::uint64_t edgeTurnSet = 0;       ///< bit j: edges[j].turn is made
+
+  /// Contacts mode (rotational contacts(), contacts.cpp): every polygon's
+  /// earliest contact within the part is appended here, and maxTan goes
+  /// back to the part's limit after each polygon; null for rotate().
+  std::vector<RotationContact>* contactsFound = nullptr;
+  Real partStartAngle = 0;  ///< contacts mode: degrees turned at the start of the part (signed)
 
   /// Trace-model edge j's turning parts (made on first use).
   const EdgeTurn& edgeTurn(const TraceWork& tw, int j) {

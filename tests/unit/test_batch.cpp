@@ -188,7 +188,7 @@ TEST(Batch, ContentsPointContentsAndContactsEqualSingleQueries) {
     contentsLoop[i] = contentsTest(world, {&playerBox(), {}, points[i], contents::kMaskSolid, {}}, work);
     pointLoop[i] = pointContents(world, {points[i], {}}, work);
     contactsLoop[i] =
-        contacts(world, {&playerBox(), {}, points[i], {0, 0, -1}, 32, contents::kMaskSolid, {}, 8}, work);
+        contacts(world, {&playerBox(), {}, points[i], {0, 0, -1}, 32, contents::kMaskSolid, {}, 8, {}}, work);
     stuck += contentsLoop[i].contents != 0;
     inside += pointLoop[i].contents != 0;
     touching += !contactsLoop[i].contacts.empty();

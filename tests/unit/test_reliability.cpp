@@ -469,7 +469,7 @@ TEST_F(QueryGuards, PositionsMustBeFiniteAndInRange) {
 }
 
 TEST_F(QueryGuards, ContactsNeedAFiniteMove) {
-  ContactsQuery q{&box_, Mat3::identity(), {0, 0, 8}, {0, 0, -1}, 16, 1, {}, 8};
+  ContactsQuery q{&box_, Mat3::identity(), {0, 0, 8}, {0, 0, -1}, 16, 1, {}, 8, {}};
   const ContactsResult ok = contacts(floor(), q, work_);
   EXPECT_EQ(ok.status, QueryStatus::Ok);
   EXPECT_FALSE(ok.contacts.empty());
