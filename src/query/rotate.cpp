@@ -24,6 +24,7 @@ namespace cmkit::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// The positive root of -v1 u^2 - 2 v2 u + v1 = 0 for v1 > 0: where the
 /// sinusoid v2 cos t + v1 sin t + v0 has its first extremum ahead (the two
@@ -201,6 +202,27 @@ bool collisionBetweenEdgeBounds(const RotationWork& rw, const Vec3& s, const Vec
   return w.dot(w) >= double(tol::kRotationAxisEpsilon) * double(tol::kRotationAxisEpsilon);
 }
 
+/// Where segments a-b and c-d, on lines that meet (a root of their line
+/// product), meet: false when the lines are parallel (no single point) or
+/// the point lies beyond an end of either segment (by more than
+/// kSegmentEndSlack of its length).
+bool segmentsMeetAt(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Vec3& point) {
+  /// Rounding of the root's angle moves the meeting point along the edges
+  /// by a tiny fraction of their lengths: ends are met within this much.
+  constexpr double kSegmentEndSlack = 1e-6;
+  const DVec r = DVec(b) - DVec(a), w = DVec(d) - DVec(c), ac = DVec(c) - DVec(a);
+  const DVec n = r.cross(w);
+  const double nn = n.dot(n);
+  if (!(nn > 0)) return false;
+  const double s = ac.cross(w).dot(n) / nn;
+  const double t = ac.cross(r).dot(n) / nn;
+  if (!(s >= -kSegmentEndSlack && s <= 1 + kSegmentEndSlack && t >= -kSegmentEndSlack &&
+        t <= 1 + kSegmentEndSlack))
+    return false;
+  point = (DVec(a) + r * s).toVec3();
+  return point.isFinite();
+}
+
 /// The lines of a model edge c0 -> d0 that its edge pairs test against (the
 /// same for every trace-model edge, so made once per model edge): the edge;
 /// the edge moved out along its normal by the clip plus the range epsilon
@@ -252,7 +274,10 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   const double f1 = lines.line.atStart(turn);
   const double f2 = lines.lineIn.atStart(turn);
   double u;
-  if ((f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0)) {
+  Sinusoid curve;  // the product whose root u is (none when u = 0 in the band)
+  bool hasCurve = true;
+  const bool inBand = (f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0);
+  if (inBand) {
     // Within the band (on the model edge line included): the side of the
     // epsilon line is the outside, so moving away from it is moving in.
     // away = d|f1|/dt, with sign(f1) = -sign(f2) in the band.
@@ -261,17 +286,35 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
     const double away = flip * real.v1;
     if (away <= 0) {
       u = 0;
+      hasCurve = false;
     } else {
       const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
-      if (!sinusoidRoot(lines.lineIn.sinusoid(turn, sign), furthest, rw.maxTan, u)) return;
+      curve = lines.lineIn.sinusoid(turn, sign);
+      if (!sinusoidRoot(curve, furthest, rw.maxTan, u)) return;
     }
-  } else if (!sinusoidRoot(lines.lineEps.sinusoid(turn, sign), 0, rw.maxTan, u)) {
-    return;
+  } else {
+    curve = lines.lineEps.sinusoid(turn, sign);
+    if (!sinusoidRoot(curve, 0, rw.maxTan, u)) return;
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
-  if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c0, d0, u, a, b, point)) return;
+  if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c0, d0, u, a, b, point)) {
+    // The lines met beyond the ends of an edge. Turning on, they can meet
+    // once more (the product is a sinusoid of the angle: two roots a turn),
+    // within both edges: the contact is then that second root. (The
+    // original stopped at the first root: a trace-model edge swept past the
+    // model edge's line outside it, then across the edge itself, went
+    // through the corner unseen.)
+    if (!hasCurve || !sinusoidRoot(curve, std::nextafter(u, kInfinity), rw.maxTan, u)) return;
+    a = rotateByTanHalf(te.start, rw.origin, rw.axis, sign * u);
+    b = rotateByTanHalf(te.end, rw.origin, rw.axis, sign * u);
+    // At a root the two lines meet: whether within both segments is decided
+    // exactly, on the line whose root it is (the edge moved out).
+    const Vec3 shift =
+        edge.normal * (inBand ? tol::kClipEpsilon + tol::kPluckerRangeEpsilon : tol::kClipEpsilon);
+    if (!segmentsMeetAt(a, b, c0 + shift, d0 + shift, point)) return;
+  }
 
   // Contact plane: through the model edge, containing both edge directions.
   // Parallel edges have no such plane and no crossing: their product is

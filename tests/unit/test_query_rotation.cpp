@@ -63,6 +63,40 @@ TEST(Rotation, BoxTurningIntoAWallStopsWhenItsCornerIsAQuarterUnitAway) {
   EXPECT_LT(r.endAxis.orthonormalityError(), 1e-5f);
 }
 
+TEST(Rotation, AnEdgeThatPassesAModelEdgesLineBeyondItsEndIsTestedAgain) {
+  // A box turning about a slanted axis: one of its 12-unit edges first
+  // crosses the line of the slab's bottom front edge (y = 40, z = -20) beyond
+  // the edge's end (46.1 degrees), then crosses the edge itself (~58.7
+  // degrees, where the brute force below finds the overlap). Only the first
+  // crossing used to be tested: the box went on into the slab and stopped at
+  // 67.3 degrees with a vertex contact, 8.6 degrees deep (found by the
+  // brute-force test of rotational contacts, seed 34 trial 69).
+  const CollisionModel m = ModelMaker().addBox({{-30, 40, -20}, {30, 50, 20}}).build();
+  const TraceModel box = *TraceModel::box({{-6, -4, -3}, {6, 4, 3}});
+  RotationQuery q;
+  q.trm = &box;
+  q.start = {16.429739f, 18.0616989f, -10.7344065f};
+  q.rotation = Rotation({36.3963089f, 31.1707573f, -18.3682194f}, {0.472971767f, 0.547795475f, 0.690085411f},
+                        108.571945f);
+  QueryWork work;
+  const TraceResult r = rotate(m, q, work);
+  // The brute force: the first overlapping pose, in 0.01-degree steps.
+  double overlapAt = -1;
+  for (int k = 0; k <= 10857 && overlapAt < 0; ++k) {
+    const Rotation at(q.rotation.origin, q.rotation.axis, Real(k * 0.01));
+    if (contentsTest(
+            m, {&box, at.rotateAxis(Mat3::identity()), at.rotatePoint(q.start), contents::kMaskSolid, {}},
+            work)
+            .contents != 0)
+      overlapAt = k * 0.01;
+  }
+  ASSERT_GT(overlapAt, 58.0);
+  ASSERT_LT(overlapAt, 59.0);
+  EXPECT_LT(r.fraction * 108.571945, overlapAt);
+  EXPECT_EQ(r.contact.type, ContactType::Edge);
+  EXPECT_EQ(contentsTest(m, {&box, r.endAxis, r.endPos, contents::kMaskSolid, {}}, work).contents, 0u);
+}
+
 TEST(Rotation, BothDirectionsGiveTheSameAngleBySymmetry) {
   const CollisionModel m = wallModel();
   const TraceModel box = *TraceModel::box({{-16, -16, 0}, {16, 16, 72}});

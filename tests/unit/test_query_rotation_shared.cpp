@@ -66,6 +66,41 @@ float firstOverlap(std::span<const ModelPtr> models, const std::string& query, f
   return -1;
 }
 
+// The trace-model spec of a query line with its bounds grown by `grow`
+// ("box:x0,y0,z0,x1,y1,z1", "cylinder:N:..." and the other kinds given by
+// bounds); empty for other specs.
+std::string grownTrm(std::string_view spec, float grow) {
+  const std::size_t numbersAt = spec.rfind(':') + 1;
+  const auto b = numbers(spec.substr(numbersAt));
+  if (numbersAt == 0 || b.size() != 6) return {};
+  std::string out(spec.substr(0, numbersAt));
+  for (int i = 0; i < 6; ++i) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%s%.9g", i ? "," : "",
+                  double(b[std::size_t(i)] + (i < 3 ? -grow : grow)));
+    out += buf;
+  }
+  return out;
+}
+
+// Whether the trace model of a rotation line, at the pose of its answer,
+// grown by `grow` on every side, overlaps something: a stop at the clip band
+// of a surface (within the clip epsilon of an edge, along the edge's normal,
+// which for a right-angled edge is 0.25 * sqrt(2) away).
+bool nearSomethingAtStop(std::span<const ModelPtr> models, const std::string& query, const Fields& answer,
+                         float grow, QueryWork& work) {
+  const Fields f(query);
+  const std::string trm = grownTrm(f.value("trm"), grow);
+  if (trm.empty()) return false;
+  std::string line = "contents trm=" + trm + " start=" + std::string(answer.value("endpos")) +
+                     " trmaxis=" + std::string(answer.value("endaxis"));
+  for (const char* k : {"mask", "model", "origin", "modelaxis"})
+    if (f.has(k)) line += std::string(" ") + k + "=" + std::string(f.value(k));
+  const std::string result = answerQueryLine(models, line, work);
+  const Fields res(result);
+  return res.has("result") && res.value("result") != "0";
+}
+
 }  // namespace
 
 TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
@@ -75,9 +110,11 @@ TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
                                         *TraceModel::bone(40, 12),
                                         *TraceModel::dodecahedron({{-9, -9, -9}, {9, 9, 9}})};
   QueryWork work;
-  // OPEN ISSUE: a few free starts still end overlapping (16 of 1200 with
-  // seed 11: 14 on altar's patches, 2 on lt4), the original's weakness that
-  // cmkit has not fixed yet. Guarded so that it cannot get worse.
+  // OPEN ISSUE: a few free starts still end overlapping (10 of 1200 with
+  // seed 11, all on altar's patches; 16 before a trace-model edge that
+  // passes a model edge's line beyond its end was tested for its second
+  // crossing), the original's weakness that cmkit has not fixed yet.
+  // Guarded so that it cannot get worse.
   int endInSolid = 0;
   for (const char* name : {"synthetic/box_room.map", "darkradiant-altar/altar.map", "lt4/lt4.map"}) {
     const auto path = test::dataFile(std::string("maps/") + name);
@@ -121,7 +158,7 @@ TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
     EXPECT_GT(tested, 200) << name;
     EXPECT_GT(hits, 20) << name;
   }
-  EXPECT_LE(endInSolid, 16);
+  EXPECT_LE(endInSolid, 10);
 }
 
 // Agreement on the reference rotation lines (agree or tie, as
@@ -136,7 +173,11 @@ TEST(RotationShared, AgreesWithTheOriginalAndItsMissesAreConfirmed) {
       "per map, not bundled to keep the repository small, and some made from the GPL-2.0+ darkradiant maps, "
       "whose licence does not allow bundling them");
   const auto refDir = test::sharedDir() / "reference";
-  int allLines = 0, allOk = 0, confirmedMisses = 0, startSolid = 0, unexplained = 0;
+  int allLines = 0, allOk = 0, confirmedMisses = 0, startSolid = 0, bandStops = 0, unexplained = 0;
+  // A stop counts as one at the clip band when the trace model grown by this
+  // much overlaps something there: the band is the clip epsilon (0.25) out
+  // along an edge's normal, up to 0.25 * sqrt(2) from a right-angled edge.
+  constexpr float kClipBandSlack = 0.4f;
   QueryWork work;
   for (const auto& entry : std::filesystem::directory_iterator(refDir)) {
     const std::string file = entry.path().filename().string();
@@ -184,11 +225,13 @@ TEST(RotationShared, AgreesWithTheOriginalAndItsMissesAreConfirmed) {
         ++startSolid;
       else if (hit > 0)
         ++confirmedMisses;
-      else
+      else if (nearSomethingAtStop(models, q, mine, kClipBandSlack, work))
+        ++bandStops;  // the original passed within the clip band of an edge; cmkit stopped there
+      else {
         ++unexplained;
-      if (hit < 0)
         ADD_FAILURE() << name << ": cmkit stops at " << fg << " before the original (" << fr
-                      << ") with no overlap found: " << q;
+                      << ") with no overlap found, nor anything within its clip band: " << q;
+      }
     }
     EXPECT_GE(100.0 * ok / lines, 98.0) << name;
     allLines += lines;
@@ -196,8 +239,9 @@ TEST(RotationShared, AgreesWithTheOriginalAndItsMissesAreConfirmed) {
   }
   std::printf(
       "rotation lines %d, agree or tie %d (%.2f%%); original turned further: %d start in solid, %d "
-      "confirmed misses of the original, %d unexplained\n",
-      allLines, allOk, 100.0 * allOk / allLines, startSolid, confirmedMisses, unexplained);
+      "confirmed misses of the original, %d stops at the clip band of an edge the original passed, %d "
+      "unexplained\n",
+      allLines, allOk, 100.0 * allOk / allLines, startSolid, confirmedMisses, bandStops, unexplained);
   EXPECT_GE(100.0 * allOk / allLines, 99.0);
   EXPECT_EQ(unexplained, 0);
 }
