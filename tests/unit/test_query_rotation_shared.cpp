@@ -111,7 +111,7 @@ TEST(RotationShared, FreeStartsEndFreeWithOrthonormalAxes) {
                                         *TraceModel::dodecahedron({{-9, -9, -9}, {9, 9, 9}})};
   QueryWork work;
   // OPEN ISSUE: a few free starts still end overlapping (10 of 1200 with
-  // seed 11, all on altar's patches; 16 before a trace-model edge that
+  // seed 11, all on altar's patches; 15 before a trace-model edge that
   // passes a model edge's line beyond its end was tested for its second
   // crossing), the original's weakness that cmkit has not fixed yet.
   // Guarded so that it cannot get worse.
