@@ -50,7 +50,7 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
       ++bad;
       continue;
     }
-    Shape shape{q->trmSpec, q->trm ? *q->trm : TraceModel::point()};
+    Shape shape{q->trmSpec, q->trm ? *q->trm : TraceModel::point(), q->trmAxis};
     SoakOptions one = o;
     one.mask = q->contentMask;
     const Soak soak(*models.front(), {}, shape, one);
@@ -103,9 +103,9 @@ int runSoak(const SoakOptions& o) {
       fmt::print(stderr, "cmkit soak: --trm {}: {}\n", spec, trm.error().toString());
       return kExitBadInput;
     }
-    shapes.push_back({spec, std::move(*trm)});
+    shapes.push_back({spec, std::move(*trm), {}});
   }
-  Shape walker{kWalkerTrm, *TraceModel::parse(kWalkerTrm)};
+  Shape walker{kWalkerTrm, *TraceModel::parse(kWalkerTrm), {}};
   const CollisionModel& world = *models->front();
   Soak soak(world, std::move(shapes), std::move(walker), o);
 
@@ -129,6 +129,8 @@ int runSoak(const SoakOptions& o) {
     }
     std::lock_guard lock(merge);
     total.sweeps += tally.sweeps;
+    total.rotatedSweeps += tally.rotatedSweeps;
+    total.pointSweeps += tally.pointSweeps;
     total.noStart += tally.noStart;
     total.hits += tally.hits;
     total.walkerSteps += tally.walkerSteps;
@@ -162,8 +164,10 @@ int runSoak(const SoakOptions& o) {
   fmt::print("trace models:");
   for (const std::string& s : specs) fmt::print(" {}", s);
   fmt::print("\n");
-  fmt::print("sweeps: {} run, {} without a free start, {} hit something\n", total.sweeps, total.noStart,
-             total.hits);
+  fmt::print(
+      "sweeps: {} run ({} point traces, {} turned trace models), {} without a free start, {} hit "
+      "something\n",
+      total.sweeps, total.pointSweeps, total.rotatedSweeps, total.noStart, total.hits);
   fmt::print("walker: {} steps ({}), {} restarts\n", total.walkerSteps, kWalkerTrm, total.respawns);
   fmt::print("time: {:.1f} s on {} thread(s)\n", secs, o.threads);
   fmt::print("\nfindings:\n");
