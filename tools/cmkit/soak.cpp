@@ -327,13 +327,14 @@ struct Soak::Impl {
   /// One slide move of the walker: up to kMaxSlidePlanes contacts per step,
   /// the velocity clipped along each (creases between two planes followed).
   /// False when a must-hold check failed.
-  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine) const {
+  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine, Vec3& lastFrom) const {
     Vec3 planes[kMaxSlidePlanes];
     int numPlanes = 0;
     for (int bump = 0; bump < kMaxSlidePlanes && time > 0; ++bump) {
       const Vec3 end = pos + vel * time;
       const TraceResult r = move(c, walker_, pos, end);
       lastLine = translationLine(walker_, pos, end);
+      lastFrom = pos;
       if (!checkResult(c, walker_, pos, end, r)) return false;
       pos = r.endPos;
       if (r.fraction >= 1) break;
@@ -377,6 +378,7 @@ struct Soak::Impl {
     Vec3 progressFrom = pos;
     int sinceProgress = 0;
     std::string lastLine;
+    Vec3 lastFrom;
     for (int step = 0; step < steps; ++step) {
       c.tally.walkerSteps++;
       if (step % 40 == 0) {
@@ -395,7 +397,7 @@ struct Soak::Impl {
         vel.z -= kGravity * kFrameTime;
       }
       Vec3 slidPos = pos, slidVel = vel;
-      if (!slideMove(c, slidPos, slidVel, kFrameTime, lastLine)) return;
+      if (!slideMove(c, slidPos, slidVel, kFrameTime, lastLine, lastFrom)) return;
       // Step up: over kStepHeight, move, back down; kept when it got further.
       if (onGround) {
         Vec3 up = pos + Vec3{0, 0, kStepHeight};
@@ -404,7 +406,8 @@ struct Soak::Impl {
         Vec3 stepPos = ru.endPos, stepVel = vel;
         stepVel.z = 0;
         std::string stepLine;
-        if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine)) return;
+        Vec3 stepFrom;
+        if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine, stepFrom)) return;
         const Vec3 downTo = stepPos - Vec3{0, 0, kStepHeight + 1};
         const TraceResult rd = move(c, walker_, stepPos, downTo);
         if (!checkResult(c, walker_, stepPos, downTo, rd)) return;
@@ -414,6 +417,7 @@ struct Soak::Impl {
           slidPos = rd.endPos;
           slidVel = stepVel;
           lastLine = translationLine(walker_, stepPos, downTo);
+          lastFrom = stepPos;
         }
       }
       pos = slidPos;
@@ -432,7 +436,17 @@ struct Soak::Impl {
       } else if (++sinceProgress >= kStuckSteps) {
         finding = Finding::WalkerStuck;
       }
-      if (finding) record(c, *finding, lastLine + contentsLine(walker_, pos));
+      // An embedded step's last move is classified as a sweep's end is (the
+      // map's faults: brush-face, patch-behind, other-polygon; cmkit's:
+      // closed-brush, precision, grazing), counted per class and named in
+      // the case.
+      std::string cause;
+      if (finding == Finding::WalkerEmbedded) {
+        const Finding why = classify(c, walker_, lastFrom, pos);
+        c.tally.walkerCauses[std::size_t(why)]++;
+        cause = fmt::format("# walker-embedded: {}\n", kFindingNames[std::size_t(why)]);
+      }
+      if (finding) record(c, *finding, cause + lastLine + contentsLine(walker_, pos));
       if (finding || restart) {
         if (!(start = freeStart(c, walker_))) return;
         c.tally.respawns++;

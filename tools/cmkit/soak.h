@@ -103,6 +103,8 @@ struct ItemTally {
   std::uint64_t sweeps = 0, rotatedSweeps = 0, pointSweeps = 0, noStart = 0, hits = 0, walkerSteps = 0,
                 respawns = 0;
   std::array<std::uint64_t, kNumFindings> counts{};
+  /// Walker-embedded steps by the class of their last move's end (as a sweep's).
+  std::array<std::uint64_t, kNumFindings> walkerCauses{};
 };
 
 /// Runs the items of a soak (sweeps, then walkers); const after set-up, so
