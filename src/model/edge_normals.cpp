@@ -122,15 +122,21 @@ struct LineUses {
 
 // Pairs each use with an earlier unpaired one it is the reversed twin of: the
 // other face of the same sheet (normals opposite within
-// kRobustEdgeParallelDot, the line walked the other way). Returns the number
-// of pairs.
+// kRobustEdgeParallelDot, the line walked the other way, the same material
+// and contents, as a two-sided polygon's reversed copy has). Two brushes
+// back to back with different contents (a clip brush against a solid one,
+// both faces kept) are not a sheet: they keep the original's normal, which
+// points out of the pair's solid side (test_robust_edges_misses.cpp).
+// Returns the number of pairs.
 int pairTwins(const ModelArrays& model, std::vector<EdgeUse>& uses) {
   int pairs = 0;
   for (std::size_t j = 0; j < uses.size(); ++j) {
-    const Vec3& nj = model.polygons[uses[j].polygon].plane.normal;
+    const CmPolygon& pj = model.polygons[uses[j].polygon];
     for (std::size_t i = 0; i < j; ++i) {
       if (uses[i].twin >= 0 || uses[i].forward == uses[j].forward) continue;
-      if (model.polygons[uses[i].polygon].plane.normal.dot(nj) >= -tol::kRobustEdgeParallelDot) continue;
+      const CmPolygon& pi = model.polygons[uses[i].polygon];
+      if (pi.material != pj.material || pi.contents != pj.contents) continue;
+      if (pi.plane.normal.dot(pj.plane.normal) >= -tol::kRobustEdgeParallelDot) continue;
       uses[i].twin = int(j);
       uses[j].twin = int(i);
       ++pairs;

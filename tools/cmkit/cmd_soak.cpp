@@ -50,7 +50,7 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
       ++bad;
       continue;
     }
-    Shape shape{q->trmSpec, q->trm ? *q->trm : TraceModel::point()};
+    Shape shape{q->trmSpec, q->trm ? *q->trm : TraceModel::point(), q->trmAxis};
     SoakOptions one = o;
     one.mask = q->contentMask;
     const Soak soak(*models.front(), {}, shape, one);
@@ -103,9 +103,9 @@ int runSoak(const SoakOptions& o) {
       fmt::print(stderr, "cmkit soak: --trm {}: {}\n", spec, trm.error().toString());
       return kExitBadInput;
     }
-    shapes.push_back({spec, std::move(*trm)});
+    shapes.push_back({spec, std::move(*trm), {}});
   }
-  Shape walker{kWalkerTrm, *TraceModel::parse(kWalkerTrm)};
+  Shape walker{kWalkerTrm, *TraceModel::parse(kWalkerTrm), {}};
   const CollisionModel& world = *models->front();
   Soak soak(world, std::move(shapes), std::move(walker), o);
 
@@ -129,11 +129,14 @@ int runSoak(const SoakOptions& o) {
     }
     std::lock_guard lock(merge);
     total.sweeps += tally.sweeps;
+    total.rotatedSweeps += tally.rotatedSweeps;
+    total.pointSweeps += tally.pointSweeps;
     total.noStart += tally.noStart;
     total.hits += tally.hits;
     total.walkerSteps += tally.walkerSteps;
     total.respawns += tally.respawns;
     for (std::size_t k = 0; k < kNumFindings; ++k) total.counts[k] += tally.counts[k];
+    for (std::size_t k = 0; k < kNumFindings; ++k) total.walkerCauses[k] += tally.walkerCauses[k];
     cases.insert(cases.end(), mine.begin(), mine.end());
   };
   std::vector<std::thread> pool;
@@ -162,13 +165,23 @@ int runSoak(const SoakOptions& o) {
   fmt::print("trace models:");
   for (const std::string& s : specs) fmt::print(" {}", s);
   fmt::print("\n");
-  fmt::print("sweeps: {} run, {} without a free start, {} hit something\n", total.sweeps, total.noStart,
-             total.hits);
+  fmt::print(
+      "sweeps: {} run ({} point traces, {} turned trace models), {} without a free start, {} hit "
+      "something\n",
+      total.sweeps, total.pointSweeps, total.rotatedSweeps, total.noStart, total.hits);
   fmt::print("walker: {} steps ({}), {} restarts\n", total.walkerSteps, kWalkerTrm, total.respawns);
   fmt::print("time: {:.1f} s on {} thread(s)\n", secs, o.threads);
   fmt::print("\nfindings:\n");
   for (std::size_t k = 0; k < kNumFindings; ++k)
     fmt::print("  {:<16} {:>9}  {}\n", kFindingNames[k], total.counts[k], kFindingMeaning[k]);
+  if (total.counts[std::size_t(Finding::WalkerEmbedded)] > 0) {
+    fmt::print(
+        "walker-embedded by the class of the step's last move (closed-brush, precision, grazing: "
+        "cmkit's; the others: the map's):");
+    for (std::size_t k = 0; k < kNumFindings; ++k)
+      if (total.walkerCauses[k] > 0) fmt::print(" {} {}", kFindingNames[k], total.walkerCauses[k]);
+    fmt::print("\n");
+  }
   for (std::size_t k = 0; k < kNumFindings; ++k) {
     std::size_t shown = 0;
     for (const Case& c : cases) {
@@ -198,20 +211,23 @@ void registerSoak(CLI::App& app) {
       "Sweeps: --sweeps translations, the trace models taken in turn (--trm, default every kind),\n"
       "each from a random free start (a contents test of the trace model there finds nothing, and\n"
       "point traces along +-x, +-y, +-z all hit a surface: inside the map) to a random end.\n"
+      "30% of the sweeps of a trace model other than the point turn it to a random orientation\n"
+      "(trmAxis; the query lines print it as trmaxis=).\n"
       "Walker: --walker-steps steps of a 32x32x72 box (60 steps a second, gravity 800, speed 320,\n"
       "up to 4 slide planes a step with the velocity clipped along each, 18-unit step-up, random\n"
       "wish directions and jumps), restarted elsewhere every 500 steps.\n\n"
       "Checks: every result finite and its fraction in [0,1] (these must hold: exit 1), and every\n"
-      "end free (a contents test). An end in solid is classified, first match:\n"
-      "  precision      penetration() depth <= 0.01 units\n"
-      "  grazing        |cos| of the move and the plane to leave the brush by < 0.02 (edge-on)\n"
-      "  closed-brush   the end overlaps (by the brush planes, deeper than 0.01) a brush the start\n"
+      "end free (a contents test). An end in solid is classified, first match (closed-brush\n"
+      "first, so that no other class can hide a miss):\n"
+      "  closed-brush   the end overlaps (exact separating-axis depth > 0.01) a brush the start\n"
       "                 did not, and every face the trace model had to cross to get in (each\n"
       "                 brush plane it was wholly in front of at the start; all planes if none)\n"
       "                 is covered by polygons of the mask (every sample point of the face, a grid of\n"
       "                 at most 32 x 32 points 1 unit or more apart, lies in a polygon in its plane:\n"
       "                 same normal, |dist difference| < 0.01): the move should have\n"
       "                 hit that polygon\n"
+      "  precision      penetration() depth <= 0.01 units\n"
+      "  grazing        |cos| of the move and the plane to leave the brush by < 0.02 (edge-on)\n"
       "  brush-face     as closed-brush, but one of those faces is not (wholly) covered\n"
       "  patch-behind   the end overlaps polygons only; one was crossed from behind\n"
       "  other-polygon  the end overlaps polygons only, none crossed from behind\n"

@@ -105,8 +105,10 @@ struct Soak::Impl {
     const TraceResult r = move(c, s, from, to);
     if (!checkResult(c, s, from, to, r)) return kFindingNames[std::size_t(cases.front().finding)];
     if (isFree(c, s, r.endPos)) return fmt::format("free (fraction {})", r.fraction);
-    return fmt::format("{} (fraction {}, end {})", kFindingNames[std::size_t(classify(c, s, from, r.endPos))],
-                       r.fraction, vec(r.endPos));
+    std::string detail;
+    const Finding f = classify(c, s, from, r.endPos, &detail);
+    return fmt::format("{} (fraction {}, end {}{}{})", kFindingNames[std::size_t(f)], r.fraction,
+                       vec(r.endPos), detail.empty() ? "" : "; entered ", detail);
   }
 
  private:
@@ -128,6 +130,7 @@ struct Soak::Impl {
   TraceResult move(Ctx& c, const Shape& s, const Vec3& from, const Vec3& to) const {
     TranslationQuery q;
     q.trm = s.query();
+    q.trmAxis = s.axis;
     q.start = from;
     q.end = to;
     q.contentMask = o_.mask;
@@ -136,6 +139,7 @@ struct Soak::Impl {
   ContentsQuery at(const Shape& s, const Vec3& pos) const {
     ContentsQuery q;
     q.trm = s.query();
+    q.trmAxis = s.axis;
     q.position = pos;
     q.contentMask = o_.mask;
     return q;
@@ -153,7 +157,7 @@ struct Soak::Impl {
     static const Vec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     const Vec3 size = world_.bounds().max - world_.bounds().min;
     const Real reach = size.x + size.y + size.z;
-    Shape point{"point", TraceModel::point()};
+    Shape point{"point", TraceModel::point(), {}};
     for (int tryNo = 0; tryNo < kStartTries; ++tryNo) {
       const Vec3 p = randomIn(c, inner_);
       if (!isFree(c, s, p)) continue;
@@ -169,11 +173,32 @@ struct Soak::Impl {
     return std::nullopt;
   }
 
+  /// " trmaxis=r0,r1,r2" (the rows) for a turned trace model, else nothing.
+  static std::string axisField(const Shape& s) {
+    if (!s.rotated()) return {};
+    const Mat3& a = s.axis;
+    return fmt::format(" trmaxis={},{},{}", vec(a[0]), vec(a[1]), vec(a[2]));
+  }
   std::string translationLine(const Shape& s, const Vec3& from, const Vec3& to) const {
-    return fmt::format("translation trm={} start={} end={} mask={}\n", s.spec, vec(from), vec(to), o_.mask);
+    return fmt::format("translation trm={}{} start={} end={} mask={}\n", s.spec, axisField(s), vec(from),
+                       vec(to), o_.mask);
   }
   std::string contentsLine(const Shape& s, const Vec3& pos) const {
-    return fmt::format("contents trm={} start={} mask={}\n", s.spec, vec(pos), o_.mask);
+    return fmt::format("contents trm={}{} start={} mask={}\n", s.spec, axisField(s), vec(pos), o_.mask);
+  }
+
+  /// A uniformly random rotation (a unit quaternion from three uniforms,
+  /// Shoemake's method), as the rows of a matrix.
+  Mat3 randomRotation(Ctx& c) const {
+    const double u1 = double(uniform(c, 0, 1)), u2 = double(uniform(c, 0, 1)), u3 = double(uniform(c, 0, 1));
+    constexpr double kTwoPi = 6.283185307179586;
+    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+    const double x = a * std::sin(kTwoPi * u2), y = a * std::cos(kTwoPi * u2);
+    const double z = b * std::sin(kTwoPi * u3), w = b * std::cos(kTwoPi * u3);
+    auto row = [](double p, double q, double r) { return Vec3{Real(p), Real(q), Real(r)}; };
+    return Mat3{row(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)),
+                row(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)),
+                row(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y))};
   }
 
   void record(Ctx& c, Finding f, std::string lines) const {
@@ -196,7 +221,32 @@ struct Soak::Impl {
   }
 
   /// Why the trace model at `end` overlaps solid after moving from `from`.
-  Finding classify(Ctx& c, const Shape& s, const Vec3& from, const Vec3& end) const {
+  /// The closed-brush test comes first: an end that overlaps a brush the
+  /// start did not (by the exact separating-axis depth, deeper than
+  /// kPrecisionDepth) whose faces to cross all have polygons is a missed
+  /// collision whatever penetration() or the move's angle say, so neither
+  /// the precision nor the grazing class can hide one.
+  /// `detail` (when given) gets the brushes entered: number, depth, closed or open.
+  Finding classify(Ctx& c, const Shape& s, const Vec3& from, const Vec3& end,
+                   std::string* detail = nullptr) const {
+    const std::vector<Vec3> vEnd = placedVertices(s, end);
+    const std::vector<Vec3> vFrom = placedVertices(s, from);
+    const Bounds bEnd = boundsOf(vEnd).expanded(1);
+    // The brushes the end overlaps (exact separating-axis test) that the start did not.
+    bool anyOpen = false, anyClosed = false;
+    for (std::size_t b = 0; b < world_.brushes().size(); ++b) {
+      const CmBrush& brush = world_.brushes()[b];
+      if (!(brush.contents & o_.mask) || !brush.bounds.intersects(bEnd)) continue;
+      const double depth = overlapDepth(world_, brush, s, end);
+      if (depth <= kPrecisionDepth) continue;
+      if (overlapDepth(world_, brush, s, from) > 0) continue;  // started inside it
+      const bool closed = closedForMove(brush, vFrom);
+      (closed ? anyClosed : anyOpen) = true;
+      if (detail)
+        *detail += fmt::format("{}brush {} depth {:.4f} {}", detail->empty() ? "" : ", ", b, depth,
+                               closed ? "closed" : "open");
+    }
+    if (anyClosed) return Finding::ClosedBrush;
     const ContentsQuery q = at(s, end);
     const PenetrationResult pen =
         penetration(world_, {q.trm, q.trmAxis, q.position, q.contentMask, q.placement}, c.work);
@@ -204,25 +254,10 @@ struct Soak::Impl {
     Vec3 dir = end - from;
     const Real length = dir.length();
     if (length > 0) dir = dir * (1 / length);
-    const std::vector<Vec3> vEnd = placedVertices(s, end);
-    const std::vector<Vec3> vFrom = placedVertices(s, from);
-    const Bounds bEnd = boundsOf(vEnd).expanded(1);
-    if (pen.stuck) {
-      if (length > 0 && std::fabs(dir.dot(pen.direction)) < kGrazingCos) return Finding::Grazing;
-      // The brushes the end overlaps (exact separating-axis test) that the start did not.
-      bool anyOpen = false, anyClosed = false;
-      for (std::size_t b = 0; b < world_.brushes().size(); ++b) {
-        const CmBrush& brush = world_.brushes()[b];
-        if (!(brush.contents & o_.mask) || !brush.bounds.intersects(bEnd)) continue;
-        if (overlapDepth(world_, brush, s, end) <= kPrecisionDepth) continue;
-        if (overlapDepth(world_, brush, s, from) > 0) continue;  // started inside it
-        (closedForMove(brush, vFrom) ? anyClosed : anyOpen) = true;
-      }
-      if (anyClosed) return Finding::ClosedBrush;
-      if (anyOpen) return Finding::BrushFace;
-      // penetration() judges by the brush planes alone; no brush entered
-      // overlaps the end by the exact test: the end is in polygons only.
-    }
+    if (pen.stuck && length > 0 && std::fabs(dir.dot(pen.direction)) < kGrazingCos) return Finding::Grazing;
+    if (anyOpen) return Finding::BrushFace;
+    // No brush entered overlaps the end deeper than kPrecisionDepth by the
+    // exact test: the end is in polygons only (or in brushes it started in).
     // Only polygons: was one crossed from behind (start wholly behind its
     // plane, end straddling it)?
     for (const CmPolygon& p : world_.polygons()) {
@@ -258,13 +293,22 @@ struct Soak::Impl {
     return anyEntry ? entryHave : allHave;
   }
 
-  void sweep(Ctx& c, const Shape& s) const {
+  void sweep(Ctx& c, const Shape& shape) const {
+    // Some sweeps turn the trace model: a copy with a random orientation.
+    std::optional<Shape> turned;
+    if (!shape.trm.isPoint() && c.rng() % 100 < kRotatedSweepPercent) {
+      turned = shape;
+      turned->axis = randomRotation(c);
+    }
+    const Shape& s = turned ? *turned : shape;
     const std::optional<Vec3> start = freeStart(c, s);
     if (!start) {
       c.tally.noStart++;
       return;
     }
     c.tally.sweeps++;
+    c.tally.rotatedSweeps += s.rotated();
+    c.tally.pointSweeps += s.trm.isPoint();
     Vec3 end;
     if (c.rng() & 1) {
       end = randomIn(c, world_.bounds());
@@ -283,13 +327,14 @@ struct Soak::Impl {
   /// One slide move of the walker: up to kMaxSlidePlanes contacts per step,
   /// the velocity clipped along each (creases between two planes followed).
   /// False when a must-hold check failed.
-  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine) const {
+  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine, Vec3& lastFrom) const {
     Vec3 planes[kMaxSlidePlanes];
     int numPlanes = 0;
     for (int bump = 0; bump < kMaxSlidePlanes && time > 0; ++bump) {
       const Vec3 end = pos + vel * time;
       const TraceResult r = move(c, walker_, pos, end);
       lastLine = translationLine(walker_, pos, end);
+      lastFrom = pos;
       if (!checkResult(c, walker_, pos, end, r)) return false;
       pos = r.endPos;
       if (r.fraction >= 1) break;
@@ -333,6 +378,7 @@ struct Soak::Impl {
     Vec3 progressFrom = pos;
     int sinceProgress = 0;
     std::string lastLine;
+    Vec3 lastFrom;
     for (int step = 0; step < steps; ++step) {
       c.tally.walkerSteps++;
       if (step % 40 == 0) {
@@ -351,7 +397,7 @@ struct Soak::Impl {
         vel.z -= kGravity * kFrameTime;
       }
       Vec3 slidPos = pos, slidVel = vel;
-      if (!slideMove(c, slidPos, slidVel, kFrameTime, lastLine)) return;
+      if (!slideMove(c, slidPos, slidVel, kFrameTime, lastLine, lastFrom)) return;
       // Step up: over kStepHeight, move, back down; kept when it got further.
       if (onGround) {
         Vec3 up = pos + Vec3{0, 0, kStepHeight};
@@ -360,7 +406,8 @@ struct Soak::Impl {
         Vec3 stepPos = ru.endPos, stepVel = vel;
         stepVel.z = 0;
         std::string stepLine;
-        if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine)) return;
+        Vec3 stepFrom;
+        if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine, stepFrom)) return;
         const Vec3 downTo = stepPos - Vec3{0, 0, kStepHeight + 1};
         const TraceResult rd = move(c, walker_, stepPos, downTo);
         if (!checkResult(c, walker_, stepPos, downTo, rd)) return;
@@ -370,6 +417,7 @@ struct Soak::Impl {
           slidPos = rd.endPos;
           slidVel = stepVel;
           lastLine = translationLine(walker_, stepPos, downTo);
+          lastFrom = stepPos;
         }
       }
       pos = slidPos;
@@ -388,7 +436,17 @@ struct Soak::Impl {
       } else if (++sinceProgress >= kStuckSteps) {
         finding = Finding::WalkerStuck;
       }
-      if (finding) record(c, *finding, lastLine + contentsLine(walker_, pos));
+      // An embedded step's last move is classified as a sweep's end is (the
+      // map's faults: brush-face, patch-behind, other-polygon; cmkit's:
+      // closed-brush, precision, grazing), counted per class and named in
+      // the case.
+      std::string cause;
+      if (finding == Finding::WalkerEmbedded) {
+        const Finding why = classify(c, walker_, lastFrom, pos);
+        c.tally.walkerCauses[std::size_t(why)]++;
+        cause = fmt::format("# walker-embedded: {}\n", kFindingNames[std::size_t(why)]);
+      }
+      if (finding) record(c, *finding, cause + lastLine + contentsLine(walker_, pos));
       if (finding || restart) {
         if (!(start = freeStart(c, walker_))) return;
         c.tally.respawns++;

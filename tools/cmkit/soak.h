@@ -77,10 +77,18 @@ struct SoakOptions {
   std::string offset;        ///< "x,y,z": move a .map's world geometry by this first (empty: not moved)
 };
 
+/// Percent of the sweeps (of trace models other than a point) that turn
+/// the trace model to a random orientation (TranslationQuery::trmAxis).
+inline constexpr std::uint64_t kRotatedSweepPercent = 30;
+
+/// A trace model as the soak moves it: its spec, the model, and its
+/// orientation (identity unless the sweep turned it; a point ignores it).
 struct Shape {
   std::string spec;
   TraceModel trm;
+  Mat3 axis;
   const TraceModel* query() const { return trm.isPoint() ? nullptr : &trm; }
+  bool rotated() const { return !trm.isPoint() && !axis.isIdentity(); }
 };
 
 /// A finding of one item, with the query lines that show it.
@@ -92,8 +100,11 @@ struct Case {
 
 /// What one item (a sweep or a walker) did.
 struct ItemTally {
-  std::uint64_t sweeps = 0, noStart = 0, hits = 0, walkerSteps = 0, respawns = 0;
+  std::uint64_t sweeps = 0, rotatedSweeps = 0, pointSweeps = 0, noStart = 0, hits = 0, walkerSteps = 0,
+                respawns = 0;
   std::array<std::uint64_t, kNumFindings> counts{};
+  /// Walker-embedded steps by the class of their last move's end (as a sweep's).
+  std::array<std::uint64_t, kNumFindings> walkerCauses{};
 };
 
 /// Runs the items of a soak (sweeps, then walkers); const after set-up, so

@@ -166,7 +166,7 @@ bool WorldFacts::covered(const CmBrush& brush, std::uint32_t k, std::uint32_t ma
 std::vector<Vec3> placedVertices(const Shape& shape, const Vec3& pos) {
   std::vector<Vec3> out;
   if (shape.trm.isPoint()) return {pos};
-  for (const Vec3& v : shape.trm.vertices()) out.push_back(v + pos);
+  for (const Vec3& v : shape.trm.vertices()) out.push_back(v * shape.axis + pos);
   return out;
 }
 
@@ -202,9 +202,11 @@ double overlapDepth(const CollisionModel& world, const CmBrush& brush, const Sha
     return std::min(tMax - bMin, bMax - tMin);
   };
   const TraceModel& t = shape.trm;
-  for (int i = 0; i < t.numPolygons(); ++i) depth = std::min(depth, overlapAlong(d3(t.polygon(i).normal)));
+  // (The trace model's normals and edges turned by its orientation, as its vertices.)
+  for (int i = 0; i < t.numPolygons(); ++i)
+    depth = std::min(depth, overlapAlong(d3(t.polygon(i).normal * shape.axis)));
   for (int e = 1; e <= t.numEdges(); ++e) {
-    const Vec3 a = t.vertex(t.edge(e).v[1]) - t.vertex(t.edge(e).v[0]);
+    const Vec3 a = (t.vertex(t.edge(e).v[1]) - t.vertex(t.edge(e).v[0])) * shape.axis;
     for (const D3& b : brushEdges) depth = std::min(depth, overlapAlong(cross(d3(a), b)));
   }
   return depth;
