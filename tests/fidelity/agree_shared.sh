@@ -3,10 +3,11 @@
 # shared data folder (SHARED, default ../shared: reference/ and reference-proc/), with the
 # original's edges and with --robust-edges, and agree.py's summary of each against the
 # original's answers. Writes OUTDIR/TAG.res and OUTDIR/TAG.robust.res (TAG = folder-name), the
-# summaries to OUTDIR/agree.txt, and prints the rotation, translation, ... lines summed per kind.
+# summaries to OUTDIR/agree.txt, and prints the rotation, translation, ... lines summed per kind;
+# the maps' .cm files (cmkit compile) go to OUTDIR/TAG.cm.
 #
 #   tests/fidelity/agree_shared.sh build/release/bin/cmkit /tmp/agree
-#   diff -rq /tmp/agree-before /tmp/agree      the answers that changed between two builds
+#   diff -rq -x '*.err' /tmp/agree-before /tmp/agree   answers and .cm files that changed between two builds
 set -euo pipefail
 cli=$(realpath "$1")
 out=$2
@@ -28,6 +29,7 @@ for dir in "$shared/reference" "$shared/reference-proc"; do
     "$cli" query "$src" "$queries" -o "$out/$tag.res" --threads 2 >/dev/null 2>"$out/$tag.err" || true
     "$cli" query "$src" "$queries" -o "$out/$tag.robust.res" --robust-edges --threads 2 >/dev/null \
       2>>"$out/$tag.err" || true
+    case "$src" in *.map) "$cli" compile "$src" -o "$out/$tag.cm" >/dev/null 2>>"$out/$tag.err" || true ;; esac
     python3 "$shared/tools/agree.py" "$queries" "$dir/$name.results.txt" "$out/$tag.res" |
       grep -E "^(translation|rotation|contents|pointcontents|contacts) " | sed "s|^|$tag |" >>"$out/agree.txt"
   done
