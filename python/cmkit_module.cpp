@@ -56,10 +56,11 @@ class Error(Exception):
   m.attr("STATUS_NON_FINITE") = int(cmkit::QueryStatus::NonFinite);
   m.attr("STATUS_OUT_OF_RANGE") = int(cmkit::QueryStatus::OutOfRange);
   m.attr("STATUS_BAD_ROTATION_AXIS") = int(cmkit::QueryStatus::BadRotationAxis);
+  m.attr("STATUS_MIXED_MOTION") = int(cmkit::QueryStatus::MixedMotion);
   m.def(
       "status_name",
       [](int status) {
-        if (status < int(cmkit::QueryStatus::Ok) || status > int(cmkit::QueryStatus::BadRotationAxis))
+        if (status < int(cmkit::QueryStatus::Ok) || status > int(cmkit::QueryStatus::MixedMotion))
           throw py::value_error("not a query status (STATUS_*): " + std::to_string(status));
         return std::string(cmkit::toString(cmkit::QueryStatus(status)));
       },

@@ -104,6 +104,7 @@ py::object parseQueryLine(const std::vector<std::shared_ptr<PyModel>>& models, c
   d["rot_origin"] = vecArray(q.rotation.origin);
   d["rot_axis"] = vecArray(q.rotation.axis);
   d["angle"] = q.rotation.angle;
+  d["rotational"] = q.rotational;  // contacts along the rotation
   d["mask"] = q.contentMask;
   d["model"] = q.model;
   d["origin"] = vecArray(q.placement.origin);

@@ -164,12 +164,11 @@ py::dict translateBatch(PyModel& self, const py::object& trm, const py::object& 
   return traceArrays(out);
 }
 
-py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& starts,
-                     const py::object& origins, const py::object& axes, const py::object& angles,
-                     std::int64_t mask, const py::object& axis, bool startSolid, const py::object& origin,
-                     const py::object& modelAxis, int threads, const py::object& progress) {
-  const TrmArg t = trmArg(trm);
-  const auto s = vectors(starts, "starts"), o = vectors(origins, "origins"), a = vectors(axes, "axes");
+// The rotations of origins (N, 3), unit axes (N, 3) and angles (N,) degrees
+// (each may be given once for all), checked.
+std::vector<cmkit::Rotation> rotationsOf(const py::object& origins, const py::object& axes,
+                                         const py::object& angles) {
+  const auto o = vectors(origins, "origins"), a = vectors(axes, "axes");
   const auto deg = py::array_t<Real, py::array::c_style | py::array::forcecast>::ensure(angles);
   if (!deg || deg.ndim() > 1) throw py::value_error("angles must be a number or an array of shape (N,)");
   const std::size_t numAngles = deg.ndim() == 0 ? 1 : std::size_t(deg.shape(0));
@@ -185,6 +184,17 @@ py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& sta
       throw py::value_error("axes[" + std::to_string(i) + "] must be a unit vector");
     rotations[i] = cmkit::Rotation(o[o.size() == 1 ? 0 : i], ax, angle);
   }
+  return rotations;
+}
+
+py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& starts,
+                     const py::object& origins, const py::object& axes, const py::object& angles,
+                     std::int64_t mask, const py::object& axis, bool startSolid, const py::object& origin,
+                     const py::object& modelAxis, int threads, const py::object& progress) {
+  const TrmArg t = trmArg(trm);
+  const auto s = vectors(starts, "starts");
+  const std::vector<cmkit::Rotation> rotations = rotationsOf(origins, axes, angles);
+  const std::size_t n = rotations.size();
   cmkit::RotationBatch b;
   setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
   b.query.detectStartSolid = startSolid;
@@ -282,36 +292,56 @@ py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& p
 }
 
 py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& starts, const py::object& dirs,
-                       double depth, int maxContacts, std::int64_t mask, const py::object& axis,
+                       double depth, int maxContacts, const py::object& origins, const py::object& axes,
+                       const py::object& angles, std::int64_t mask, const py::object& axis,
                        const py::object& origin, const py::object& modelAxis, int threads,
                        const py::object& progress) {
   const TrmArg t = trmArg(trm);
-  const auto s = vectors(starts, "starts"), dv = vectors(dirs, "dirs");
+  const auto s = vectors(starts, "starts");
   if (!std::isfinite(depth) || depth < 0) throw py::value_error("depth must be finite and not negative");
   if (maxContacts < 1 || maxContacts > 1024) throw py::value_error("max_contacts must be 1..1024");
+  const int rotationArgs = int(!origins.is_none()) + int(!axes.is_none()) + int(!angles.is_none());
+  if (rotationArgs != 0 && rotationArgs != 3)
+    throw py::value_error("a rotation needs origins, axes and angles (all three)");
+  if (rotationArgs == 0 && dirs.is_none())
+    throw py::value_error("contacts need dirs (or origins, axes and angles)");
+  // Along rotations: dirs may be left out (no translation); dirs with a
+  // depth beside them is a query the library refuses (STATUS_MIXED_MOTION).
+  const std::vector<Vec3> dv = dirs.is_none() ? std::vector<Vec3>{} : vectors(dirs, "dirs");
+  const std::vector<cmkit::Rotation> rotations =
+      rotationArgs == 3 ? rotationsOf(origins, axes, angles) : std::vector<cmkit::Rotation>{};
   cmkit::ContactsBatch b;
   setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
   b.query.depth = Real(depth);
   b.query.maxContacts = maxContacts;
   b.starts = s;
   b.dirs = dv;
-  const std::size_t n = unwrap(cmkit::batchSize(s.size(), dv.size(), "starts and dirs"));
+  b.rotations = rotations;
+  std::size_t n = s.size();
+  if (!dv.empty() || rotations.empty()) n = unwrap(cmkit::batchSize(n, dv.size(), "starts and dirs"));
+  if (!rotations.empty()) n = unwrap(cmkit::batchSize(n, rotations.size(), "starts, dirs and rotations"));
   std::vector<cmkit::ContactsResult> out(n);
   Hook hook(threads, progress);
   runBatch([&] { return cmkit::contactsBatch(*self.model, b, out, hook.options); });
   const std::size_t m = std::size_t(maxContacts);
   auto count = py::array_t<std::int32_t>(py::ssize_t(n));
   ContactArrays arrays({py::ssize_t(n), py::ssize_t(m)});
+  auto angle = py::array_t<Real>({py::ssize_t(n), py::ssize_t(m)});
   const cmkit::ContactInfo none;
   for (std::size_t i = 0; i < n; ++i) {
     const auto& list = out[i].contacts;
     count.mutable_data()[i] = std::int32_t(list.size());
-    for (std::size_t k = 0; k < m; ++k) arrays.set(i * m + k, k < list.size() ? list[k] : none);
+    for (std::size_t k = 0; k < m; ++k) {
+      const cmkit::ContactInfo& c = k < list.size() ? list[k] : none;
+      arrays.set(i * m + k, c);
+      angle.mutable_data()[i * m + k] = c.angle;
+    }
   }
   py::dict d;
   d["count"] = count;
   d["status"] = statusArray(out);
   arrays.into(d);
+  d["angle"] = angle;
   return d;
 }
 
@@ -380,14 +410,19 @@ status (N,) (STATUS_*), fraction (N,) (0: stuck, 1: free), and the contact field
 contact_contents).)") +
             batchNote)
                .c_str())
-      .def("contacts", &contactsBatch, py::arg("trm"), py::arg("starts"), py::arg("dirs"), py::arg("depth"),
-           py::kw_only(), py::arg("max_contacts") = 16, py::arg("mask") = c::kMaskSolid,
-           py::arg("axis") = py::none(), py::arg("origin") = py::none(), py::arg("model_axis") = py::none(),
-           py::arg("threads") = 0, py::arg("progress") = py::none(),
+      .def("contacts", &contactsBatch, py::arg("trm"), py::arg("starts"), py::arg("dirs") = py::none(),
+           py::arg("depth") = 0.0, py::kw_only(), py::arg("max_contacts") = 16,
+           py::arg("origins") = py::none(), py::arg("axes") = py::none(), py::arg("angles") = py::none(),
+           py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("origin") = py::none(),
+           py::arg("model_axis") = py::none(), py::arg("threads") = 0, py::arg("progress") = py::none(),
            (std::string(
-                R"(Every surface the trace model touches moved from starts (N, 3) along dirs (N, 3) by depth.
+                R"(Every surface the trace model touches moved from starts (N, 3) along dirs (N, 3) by depth,
+or, with origins=, axes= and angles= (as rotate() takes them), turned from starts: then every
+polygon's earliest contact within the angle, ordered by the angle turned (dirs may be left out;
+dirs with a depth beside a rotation: STATUS_MIXED_MOTION).
 
-Returns a dict: count (N,), status (N,) (STATUS_*), and the contact fields of translate() with shape (N, max_contacts, ...);
+Returns a dict: count (N,), status (N,) (STATUS_*), the contact fields of translate() with shape (N, max_contacts, ...),
+and angle (N, max_contacts): the degrees turned to each contact (signed as the angle; 0 for translations);
 entries past count[i] hold type CONTACT_NONE, material -1 and zeros.)") +
             batchNote)
                .c_str());

@@ -96,13 +96,19 @@ struct ContentsBatch {
 };
 
 /// Contacts of one trace model: query i is `query` moved from starts[i]
-/// along dirs[i] by query.depth (query.start and query.dir are ignored).
-/// See ContactsQuery.
+/// along dirs[i] by query.depth (query.start and query.dir are ignored), or,
+/// with `rotations`, turned from starts[i] by rotations[i] (query.rotation
+/// ignored; with dirs empty, query.dir for every query). See ContactsQuery.
 struct ContactsBatch {
-  /// The fields every contacts query shares (start and dir ignored).
+  /// The fields every contacts query shares (start and dir ignored; rotation
+  /// too when `rotations` is given).
   ContactsQuery query;
   std::span<const Vec3> starts;  ///< 1 or N
-  std::span<const Vec3> dirs;    ///< 1 or N
+  std::span<const Vec3> dirs;    ///< 1 or N; may be empty when `rotations` is given
+  /// Empty: query.rotation for every query (translations when unset); else
+  /// 1 or N: contacts along rotations[i] (as ContactsQuery::rotation, so
+  /// dirs[i] * query.depth must be zero: QueryStatus::MixedMotion).
+  std::span<const Rotation> rotations;
 };
 
 /// Point contents of many points: query i is `query` at points[i]

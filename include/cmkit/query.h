@@ -304,8 +304,11 @@ struct ContactsResult {
 /// along a rotation unfinished): for every model polygon the turning trace
 /// model meets within the angle, its EARLIEST contact (as rotate() would
 /// stop there: tol::kClipEpsilon in front), with ContactInfo::angle the
-/// degrees turned to it (signed as rotation.angle). A contact of a polygon's
-/// edge or vertex counts for each polygon that holds it. The contacts are
+/// degrees turned to it (signed as rotation.angle). Each polygon is tested
+/// with its own edges and vertices, behind its own culls (its box, its
+/// plane, the back-face culls): a contact at an edge or vertex that several
+/// polygons share is listed for each of them whose culls reach it, which
+/// need not be all of them. The contacts are
 /// ordered by |angle| (ties: the order the walk met them), and the
 /// maxContacts earliest are kept. Normals oppose the motion of the contact
 /// point along the arc, as rotate()'s (RotationQuery).

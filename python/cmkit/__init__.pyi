@@ -28,6 +28,7 @@ STATUS_BAD_MODEL_AXIS: int
 STATUS_NON_FINITE: int
 STATUS_OUT_OF_RANGE: int
 STATUS_BAD_ROTATION_AXIS: int
+STATUS_MIXED_MOTION: int
 
 class Error(Exception):
     """A cmkit error; str() is "file:line:column: message" where known."""
@@ -113,9 +114,11 @@ class Model:
     def contents(self, trm: Trm, positions: Vectors, *, mask: int = ..., axis: Matrix | None = ...,
                  origin: npt.ArrayLike | None = ..., model_axis: Matrix | None = ..., threads: int = ...,
                  progress: Progress = ...) -> Results: ...
-    def contacts(self, trm: Trm, starts: Vectors, dirs: Vectors, depth: float, *, max_contacts: int = ...,
-                 mask: int = ..., axis: Matrix | None = ..., origin: npt.ArrayLike | None = ...,
-                 model_axis: Matrix | None = ..., threads: int = ..., progress: Progress = ...) -> Results: ...
+    def contacts(self, trm: Trm, starts: Vectors, dirs: Vectors | None = ..., depth: float = ..., *,
+                 max_contacts: int = ..., origins: Vectors | None = ..., axes: Vectors | None = ...,
+                 angles: npt.ArrayLike | None = ..., mask: int = ..., axis: Matrix | None = ...,
+                 origin: npt.ArrayLike | None = ..., model_axis: Matrix | None = ..., threads: int = ...,
+                 progress: Progress = ...) -> Results: ...
 
 class Models(Sequence[Model]):
     crc: int

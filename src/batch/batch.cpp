@@ -224,13 +224,21 @@ Status contentsBatch(const CollisionModel& model, const ContentsBatch& batch, st
 
 Status contactsBatch(const CollisionModel& model, const ContactsBatch& batch, std::span<ContactsResult> out,
                      const BatchOptions& options) {
-  const auto n = pairedSize(batch.starts.size(), batch.dirs.size(), "starts and dirs", out.size());
+  // starts, dirs (unless rotations stand without them) and rotations (when
+  // given): each 1 or N.
+  const bool turning = !batch.rotations.empty();
+  const bool sharedDir = turning && batch.dirs.empty();
+  Result<std::size_t> n = batch.starts.size();
+  if (!sharedDir) n = batchSize(*n, batch.dirs.size(), "starts and dirs");
+  if (n && turning) n = batchSize(*n, batch.rotations.size(), "starts, dirs and rotations");
   if (!n) return n.error();
+  if (auto s = checkOut(out.size(), *n); !s) return s;
   return runChunks(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
     ContactsQuery q = batch.query;
     for (std::size_t i = begin; i < end; ++i) {
       q.start = pick(batch.starts, i);
-      q.dir = pick(batch.dirs, i);
+      if (!sharedDir) q.dir = pick(batch.dirs, i);
+      if (turning) q.rotation = pick(batch.rotations, i);
       out[i] = contacts(model, q, work);
     }
   });

@@ -145,6 +145,9 @@ def test_other_batches_equal_single_queries(lt4):
         "point_contents": lambda s, t: world.point_contents(pts[s], threads=t),
         "contents": lambda s, t: world.contents(PLAYER, pts[s], threads=t),
         "contacts": lambda s, t: world.contacts(PLAYER, pts[s], (0, 0, -1), 32, max_contacts=8, threads=t),
+        "contacts along rotations": lambda s, t: world.contacts(bone, pts[s], origins=pts[s] + [40, 0, 0],
+                                                                axes=(0, 1, 0), angles=angles[s], max_contacts=8,
+                                                                threads=t),
     }
     for name, call in calls.items():
         batch = call(slice(None), 1)
@@ -155,6 +158,8 @@ def test_other_batches_equal_single_queries(lt4):
     assert world.cast_rays(pts, ends)["hit"].sum() > n // 4
     assert (world.point_contents(pts)["contents"] != 0).sum() > 10
     assert (world.contacts(PLAYER, pts, (0, 0, -1), 32)["count"] > 0).sum() >= 5
+    turned = world.contacts(bone, pts, origins=pts + [40, 0, 0], axes=(0, 1, 0), angles=angles)
+    assert (turned["count"] > 0).sum() >= 20, "the rotations must touch something to compare anything"
 
 
 def test_empty_batches(lt4):
@@ -207,6 +212,85 @@ def test_every_result_has_the_query_status(lt4):
     assert "not finite" in cmkit.status_name(cmkit.STATUS_NON_FINITE)
     with pytest.raises(ValueError):
         cmkit.status_name(99)
+
+
+# ---- contacts along a rotation --------------------------------------------------------------------------
+
+
+def box_brush(mins, maxs):
+    """A brushDef3 box: each side ( a b c d ) is the plane a*x + b*y + c*z + d = 0, normal outward."""
+    sides = [((0, 0, 1), maxs[2]), ((0, 1, 0), maxs[1]), ((1, 0, 0), maxs[0]),
+             ((0, 0, -1), -mins[2]), ((0, -1, 0), -mins[1]), ((-1, 0, 0), -mins[0])]
+    text = "".join(f"( {n[0]} {n[1]} {n[2]} {-d} ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/a\" 0 0 0\n"
+                   for n, d in sides)
+    return "{\nbrushDef3\n{\n" + text + "}\n}\n"
+
+
+@pytest.fixture
+def two_walls(tmp_path):
+    """The C++ test's scene (test_query_contacts_rotation.cpp): walls y <= -10 for x >= 0 and y >= 14 for x <= 0."""
+    path = tmp_path / "two_walls.map"
+    path.write_text('Version 2\n{\n"classname" "worldspawn"\n' + box_brush((0, -40, -50), (100, -10, 100)) +
+                    box_brush((-100, 14, -50), (0, 40, 100)) + "}\n")
+    return cmkit.load_map(path)
+
+
+def corner_angle(d):
+    """Degrees a 60-long, 4-wide bar turns about its centre until a corner (30, 2) is 0.25 from a wall d away."""
+    r = np.hypot(30.0, 2.0)
+    return np.degrees(np.arcsin((d - 0.25) / r) - np.arctan(2.0 / 30))
+
+
+def test_contacts_along_a_rotation_hand_computed(two_walls):
+    world = two_walls[0]
+    bar = cmkit.TraceModel.box((-30, -2, 0), (30, 2, 16))
+    r = world.contacts(bar, (0, 0, 0), origins=(0, 0, 0), axes=(0, 0, 1), angles=30, max_contacts=8)
+    assert list(r["status"]) == [cmkit.STATUS_OK] and r["count"][0] == 2
+    assert r["angle"].shape == (1, 8) and r["angle"].dtype == np.float32
+    # The +x end meets y = -10 (about 16.9 degrees), then the -x end y = 14 (about 23.5).
+    assert r["angle"][0, 0] == pytest.approx(corner_angle(10), abs=1e-3)
+    assert r["angle"][0, 1] == pytest.approx(corner_angle(14), abs=1e-3)
+    assert list(r["type"][0, :2]) == [cmkit.CONTACT_TRM_VERTEX] * 2
+    assert np.array_equal(r["normal"][0, :2], [[0, 1, 0], [0, -1, 0]])
+    assert r["point"][0, 0, 1] == pytest.approx(-9.75, abs=1e-4)
+    assert r["point"][0, 1, 1] == pytest.approx(13.75, abs=1e-4)
+    assert np.all(r["angle"][0, 2:] == 0) and np.all(r["type"][0, 2:] == cmkit.CONTACT_NONE)
+    # rotate() stops at the first contact.
+    assert world.rotate(bar, (0, 0, 0), (0, 0, 0), (0, 0, 1), 30)["fraction"][0] * 30 == pytest.approx(
+        r["angle"][0, 0], abs=1e-3)
+    # Counter-clockwise meets nothing; a translation's contacts have angle 0.
+    assert world.contacts(bar, (0, 0, 0), origins=(0, 0, 0), axes=(0, 0, 1), angles=-30)["count"][0] == 0
+    moved = world.contacts(bar, (0, -7, 0), (0, -1, 0), 8)
+    assert moved["count"][0] > 0 and np.all(moved["angle"] == 0)
+    # The same answer as the query-file path, angle for angle (%.9g gives the float back).
+    line = "contacts trm=box:-30,-2,0,30,2,16 start=0,0,0 rotorigin=0,0,0 rotaxis=0,0,1 angle=30 max=8"
+    assert python_answer_matches(two_walls, line)
+    fields = dict(kv.split("=", 1) for kv in cmkit._cmkit._answer_query_line(list(two_walls), line).split(" "))
+    assert [np.float32(fields[f"angle.{k}"]) for k in range(2)] == list(r["angle"][0, :2])
+
+
+def test_contacts_along_a_rotation_input(two_walls):
+    world = two_walls[0]
+    bar = cmkit.TraceModel.box((-30, -2, 0), (30, 2, 16))
+    turn = dict(origins=(0, 0, 0), axes=(0, 0, 1), angles=30)
+    # dirs may be given when zero, or with depth 0; with a depth beside the rotation the query is refused.
+    base = world.contacts(bar, (0, 0, 0), **turn)
+    assert_same(world.contacts(bar, (0, 0, 0), (0, 0, 0), 8, **turn), base)
+    assert_same(world.contacts(bar, (0, 0, 0), (1, 0, 0), 0, **turn), base)
+    mixed = world.contacts(bar, (0, 0, 0), (1, 0, 0), 8, **turn)
+    assert list(mixed["status"]) == [cmkit.STATUS_MIXED_MOTION] and mixed["count"][0] == 0
+    assert cmkit.status_name(cmkit.STATUS_MIXED_MOTION) == (
+        "contacts query given both a translation (dir and depth) and a rotation")
+    with pytest.raises(ValueError):
+        cmkit.status_name(cmkit.STATUS_MIXED_MOTION + 1)
+    with pytest.raises(ValueError, match="origins, axes and angles"):
+        world.contacts(bar, (0, 0, 0), origins=(0, 0, 0), angles=30)
+    with pytest.raises(ValueError, match="dirs"):
+        world.contacts(bar, (0, 0, 0))
+    with pytest.raises(ValueError, match="unit vector"):
+        world.contacts(bar, (0, 0, 0), origins=(0, 0, 0), axes=(0, 0, 2), angles=30)
+    with pytest.raises(cmkit.Error, match="starts, dirs and rotations"):
+        world.contacts(bar, np.zeros((3, 3)), origins=np.zeros((2, 3)), axes=(0, 0, 1), angles=30)
 
 
 # ---- progress, cancelling, bad input ----------------------------------------------------------------------
@@ -291,11 +375,14 @@ def python_answer_matches(models, line):
         assert int(fields["contents"]) == model.point_contents(q["start"], **place)["contents"][0], line
         return True
     if op == "contacts":
-        r = model.contacts(trm, q["start"], q["dir"], q["depth"], max_contacts=q["max_contacts"], **common)
+        turn = dict(origins=q["rot_origin"], axes=q["rot_axis"], angles=q["angle"]) if q["rotational"] else {}
+        r = model.contacts(trm, q["start"], q["dir"], q["depth"], max_contacts=q["max_contacts"], **turn, **common)
         assert int(fields["count"]) == r["count"][0], line
         for k in range(r["count"][0]):
             assert fields[f"contents.{k}"] == str(r["contents"][0, k])
             check_contact(fields, {key: v[0] for key, v in r.items()}, k, model, f".{k}")
+            # angle.k only along a rotation (other lines are as the reference results)
+            assert fields.get(f"angle.{k}") == (f"{r['angle'][0, k]:.9g}" if q["rotational"] else None), line
         return True
     if op == "translation":
         r = model.translate(trm, q["start"], q["end"], **common)
@@ -329,7 +416,9 @@ def test_same_answers_as_the_cpp_api_on_bundled_lt4(lt4):
                   f"contents trm={trm} start={v(pts[i])}",
                   f"pointcontents pos={v(pts[i])}",
                   f"rotation trm={trm} start={v(pts[i])} rotorigin={v(pts[i] + 8)} rotaxis=0,0,1 angle={i % 300 - 150}",
-                  f"contacts trm={trm} start={v(pts[i])} dir=0,0,-1 depth=24 max=6"]
+                  f"contacts trm={trm} start={v(pts[i])} dir=0,0,-1 depth=24 max=6",
+                  f"contacts trm={trm} start={v(pts[i])} rotorigin={v(pts[i] + 8)} rotaxis=0,0,1 "
+                  f"angle={i % 300 - 150} max=6"]
     assert all(python_answer_matches(lt4, line) for line in lines)
 
 

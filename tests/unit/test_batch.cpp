@@ -26,8 +26,8 @@ std::string bits(const Vec3& v) {
 }
 std::string bits(const ContactInfo& c) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, " %a %u %d %d %d ", double(c.dist), c.contents, c.material, c.modelFeature,
-                c.trmFeature);
+  std::snprintf(buf, sizeof buf, " %a %u %d %d %d %a ", double(c.dist), c.contents, c.material,
+                c.modelFeature, c.trmFeature, double(c.angle));
   return std::to_string(int(c.type)) + " " + bits(c.point) + " " + bits(c.normal) + buf;
 }
 std::string bits(const TraceResult& r) {
@@ -222,6 +222,66 @@ TEST(Batch, ContentsPointContentsAndContactsEqualSingleQueries) {
   }
 }
 
+TEST(Batch, ContactsAlongRotationsEqualSingleQueriesAtAnyThreadCount) {
+  ASSERT_FALSE(lt4().empty());
+  const CollisionModel& world = *lt4()[0];
+  const auto starts = randomPoints(world.bounds(), 600, 6);
+  std::vector<Rotation> rotations;
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    // An arm of 40 (about z or y): turning 60-long bones sweep wide enough to meet walls and floors.
+    rotations.emplace_back(starts[i] + Vec3{40, Real(i % 5), 0}, i % 2 ? Vec3{0, 0, 1} : Vec3{0, 1, 0},
+                           Real(int(i % 360) - 180));
+  const TraceModel bone = *TraceModel::bone(60, 12);
+  ContactsBatch batch;
+  batch.query.trm = &bone;
+  batch.query.maxContacts = 8;
+  batch.starts = starts;
+  batch.rotations = rotations;  // dirs left empty: query.dir (zero) for every query
+  std::vector<ContactsResult> loop(starts.size());
+  QueryWork work;
+  int touching = 0;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    ContactsQuery q = batch.query;
+    q.start = starts[i];
+    q.rotation = rotations[i];
+    loop[i] = contacts(world, q, work);
+    ASSERT_EQ(loop[i].status, QueryStatus::Ok);
+    touching += !loop[i].contacts.empty();
+  }
+  EXPECT_GT(touching, 30);
+  for (const auto& options : optionVariants()) {
+    std::vector<ContactsResult> out(starts.size());
+    ASSERT_TRUE(contactsBatch(world, batch, out, options).ok());
+    EXPECT_EQ(allBits(out), allBits(loop)) << "threads " << options.threads;
+  }
+
+  // One rotation for all, in the query struct (no rotations span): the same
+  // as the single queries with it.
+  ContactsBatch shared = batch;
+  shared.rotations = {};
+  shared.query.rotation = rotations[7];
+  const std::vector<Vec3> still{{0, 0, 0}};
+  shared.dirs = still;
+  std::vector<ContactsResult> out(starts.size());
+  ASSERT_TRUE(contactsBatch(world, shared, out, threadsAndChunk(3, 7)).ok());
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    ContactsQuery q = shared.query;
+    q.start = starts[i];
+    EXPECT_EQ(bits(out[i]), bits(contacts(world, q, work))) << i;
+  }
+
+  // Dirs with a depth beside the rotations: every query refused.
+  ContactsBatch mixed = batch;
+  const std::vector<Vec3> east{{1, 0, 0}};
+  mixed.dirs = east;
+  mixed.query.depth = 8;
+  ASSERT_TRUE(contactsBatch(world, mixed, out, threadsAndChunk(2)).ok());
+  for (const ContactsResult& r : out) {
+    EXPECT_EQ(r.status, QueryStatus::MixedMotion);
+    EXPECT_TRUE(r.contacts.empty());
+  }
+}
+
 // A batch holds the single query's struct: its shared fields (here a mask,
 // a turned and moved placement, a turned trace model) reach every query,
 // and the fields the spans give (start, end, position, point, dir) are
@@ -252,7 +312,7 @@ TEST(Batch, TheQueryStructOfABatchIsTheSingleQuerysWithTheSpansFieldsIgnored) {
   kq.maxContacts = 5;
   kq.placement = turned;
   const std::vector<Vec3> down{{0, 0, -1}};
-  const ContactsBatch kb{kq, starts, down};
+  const ContactsBatch kb{kq, starts, down, {}};
   const PointContentsBatch pb{{{nan, nan, nan}, turned}, starts};
   RayBatch rb{{{nan, nan, nan}, {nan, nan, nan}, contents::kMaskPlayerSolid, turned}, starts, ends};
 
@@ -450,6 +510,17 @@ TEST(Batch, InputsOfTheWrongLengthAreRefused) {
   kb.starts = three;
   kb.dirs = two;
   EXPECT_FALSE(contactsBatch(world, kb, k3).ok());
+  kb.dirs = {};
+  kb.rotations = rotations;  // 2 rotations for 3 starts
+  const Status turns = contactsBatch(world, kb, k3);
+  ASSERT_FALSE(turns.ok());
+  EXPECT_EQ(turns.error().message,
+            "batch inputs of different lengths: starts, dirs and rotations (3 and 2; each "
+            "must be 1 or the batch size)");
+  kb.starts = two;
+  EXPECT_FALSE(contactsBatch(world, kb, k3).ok()) << "an out span of the wrong length";
+  kb.dirs = three;
+  EXPECT_FALSE(contactsBatch(world, kb, k3).ok()) << "3 dirs, 2 starts";
   std::vector<PointContentsResult> p2(2);
   EXPECT_FALSE(pointContentsBatch(world, {{}, three}, p2).ok());
   std::vector<RayHit> h3(3);

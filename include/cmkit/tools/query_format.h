@@ -37,7 +37,10 @@ struct ParsedQuery {
   Vec3 dir;              ///< contacts
   Real depth = 0;        ///< contacts
   int maxContacts = 16;  ///< contacts
-  Rotation rotation;     ///< rotation
+  Rotation rotation;     ///< rotation; contacts when `rotational`
+  /// contacts: along `rotation` (the line has rotorigin=, rotaxis=, angle=);
+  /// its result line gives each contact's angle (angle.i=).
+  bool rotational = false;
   /// Content flags the queries collide with.
   std::uint32_t contentMask = contents::kMaskSolid;
   std::size_t model = 0;  ///< index into the models

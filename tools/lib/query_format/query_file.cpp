@@ -134,6 +134,8 @@ class QueryFields {
     if (v) used_.push_back(key);
     return v;
   }
+  /// Whether the line has `key` (without using it).
+  bool has(std::string_view key) const { return fields_.has(key); }
   std::string_view require(std::string_view key) {
     auto v = get(key);
     if (!v) throw LineError{"missing " + std::string(key)};
@@ -193,6 +195,16 @@ Placement parsePlacement(QueryFields& f) {
   return p;
 }
 
+// The rotation of a rotation line, or of a contacts line along a rotation:
+// rotorigin=, rotaxis= (of unit length within 0.01 of its square) and angle=.
+Rotation parseRotation(QueryFields& f) {
+  const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
+  const Vec3 rotOrigin = parseVec(f.require("rotorigin"), "rotorigin");
+  const Real angle = parseFloat(f.require("angle"), "angle");
+  if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
+  return Rotation(rotOrigin, axis, angle);
+}
+
 // Parses a line into a ParsedQuery (throws LineError).
 ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
   const auto [op, rest] = detail::splitWord(line);
@@ -233,22 +245,22 @@ ParsedQuery parseLine(std::span<const ModelPtr> models, std::string_view line) {
       q.end = parseVec(f.require("end"), "end");
       break;
     case QueryOp::Contacts:
-      q.dir = parseVec(f.require("dir"), "dir");
-      q.depth = parseFloat(f.require("depth"), "depth");
+      // Along a rotation when any of its keys is there (then all three must
+      // be); dir and depth may then be left out (zero). Both a translation
+      // and a rotation: the library refuses the query (MixedMotion).
+      q.rotational = f.has("rotorigin") || f.has("rotaxis") || f.has("angle");
+      if (q.rotational) q.rotation = parseRotation(f);
+      if (!q.rotational || f.has("dir")) q.dir = parseVec(f.require("dir"), "dir");
+      if (!q.rotational || f.has("depth")) q.depth = parseFloat(f.require("depth"), "depth");
       if (auto mx = f.get("max")) {
         const std::optional<Real> v = detail::parseReal(*mx);
         if (!v || *v < 0 || *v != std::floor(*v) || *v > 1e6f) throw LineError{"bad max"};
         q.maxContacts = int(*v);
       }
       break;
-    case QueryOp::Rotation: {
-      const Vec3 axis = parseVec(f.require("rotaxis"), "rotaxis");
-      const Vec3 rotOrigin = parseVec(f.require("rotorigin"), "rotorigin");
-      const Real angle = parseFloat(f.require("angle"), "angle");
-      if (std::fabs(axis.lengthSquared() - 1) > 0.01f) throw LineError{"rotaxis not unit length"};
-      q.rotation = Rotation(rotOrigin, axis, angle);
+    case QueryOp::Rotation:
+      q.rotation = parseRotation(f);
       break;
-    }
     default:
       break;
   }
@@ -278,6 +290,7 @@ ContactsQuery contactsQuery(const ParsedQuery& q) {
   cq.contentMask = q.contentMask;
   cq.placement = q.placement;
   cq.maxContacts = q.maxContacts;
+  if (q.rotational) cq.rotation = q.rotation;
   return cq;
 }
 
@@ -350,6 +363,7 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
         out += ' ';
         ResultWriter w(out, m, "." + std::to_string(i));
         detail::visitContactFields(w, found[std::size_t(i)]);
+        if (q.rotational) detail::visitRotationContactFields(w, found[std::size_t(i)]);
       }
       return out;
     }

@@ -30,4 +30,13 @@ void visitContactFields(Visitor& v, Contact& c) {
   v("trmfeature", c.trmFeature);
 }
 
+/// The field a contact of a contacts query along a rotation has after those
+/// of visitContactFields: the degrees turned to it. Written for those
+/// queries only, so that every other result line stays as the reference
+/// files have it; read wherever present.
+template <typename Visitor, typename Contact>
+void visitRotationContactFields(Visitor& v, Contact& c) {
+  v("angle", c.angle);
+}
+
 }  // namespace cmkit::detail

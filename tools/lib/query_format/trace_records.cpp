@@ -117,6 +117,7 @@ void readResult(std::string_view line, TraceRecord& r) {
   // Contacts queries list contacts as type.0, point.0, ...: show the first.
   ResultReader contact(f, f.has("type") ? "" : ".0");
   detail::visitContactFields(contact, t.contact);
+  detail::visitRotationContactFields(contact, t.contact);  // contacts along a rotation only
 }
 
 }  // namespace
