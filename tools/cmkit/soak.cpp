@@ -107,7 +107,7 @@ struct Soak::Impl {
     std::vector<Case> cases;
     std::mt19937_64 rng(0);
     Ctx c{work, tally, cases, 0, rng};
-    return diagnoseStuck(c, pos, wish, detail);
+    return diagnoseStuck(c, pos, wish, -1, detail);
   }
 
   std::string replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const {
@@ -462,18 +462,29 @@ struct Soak::Impl {
     return std::max(flat, stepped);
   }
 
-  /// Why a walker at `pos` with the wish velocity `wish` made no progress:
+  /// A blocked step: it moved the walker less than kStuckDistance /
+  /// kStuckSteps, and its slide move stopped on at least one plane (the
+  /// contact planes clipped its velocity to ~0).
+  static bool blockedStep(const Vec3& from, const Vec3& to, const StepInfo& info) {
+    return (to - from).length() * Real(kStuckSteps) < kStuckDistance && info.planes.count > 0;
+  }
+
+  /// Why a walker at `pos` with the wish velocity `wish` made no progress,
+  /// `blockedSteps` of its last kStuckSteps steps blocked (blockedStep;
+  /// negative: unknown, one step replayed from rest stands for them all):
   ///  no-room     it moves less than kStuckDistance along each of
   ///              kRoomDirections horizontal directions, flat or after a
   ///              step up (the map's: a space too small for the box);
-  ///  cornered    else, one step replayed from rest (walkerStep, no jump)
-  ///              moves it less than kStuckDistance / kStuckSteps against at
-  ///              least one contact plane: the planes clip the velocity to
-  ///              ~0 while another direction has room (the walk's: its wish
-  ///              points into a corner or crease);
-  ///  unexplained else: the replayed step moves the box, yet it made no
-  ///              progress (would hint at a query fault).
-  StuckCause diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, std::string* detail) const {
+  ///  cornered    else, at least half of the steps were blocked: their
+  ///              contact planes clipped the velocity to ~0 while another
+  ///              direction has room (the walk's: its wish pointed into a
+  ///              corner or crease);
+  ///  unexplained else: the steps moved the box, yet it made no progress
+  ///              (would hint at a query fault).
+  /// Half, not all: the wish direction changes every 40 steps, so a walker
+  /// cornered for 59 steps may be freed by the 60th.
+  StuckCause diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, int blockedSteps,
+                           std::string* detail) const {
     Real most = -1;
     Vec3 mostDir;
     for (int k = 0; k < kRoomDirections; ++k) {
@@ -489,10 +500,11 @@ struct Soak::Impl {
     StepInfo info;
     const bool ok = walkerStep(c, stepped, vel, wish, false, info);
     const Real moved = (stepped - pos).length();
+    if (blockedSteps < 0) blockedSteps = ok && blockedStep(pos, stepped, info) ? kStuckSteps : 0;
     StuckCause cause = StuckCause::Unexplained;
     if (most < kStuckDistance)
       cause = StuckCause::NoRoom;
-    else if (ok && moved * Real(kStuckSteps) < kStuckDistance && info.planes.count > 0)
+    else if (2 * blockedSteps >= kStuckSteps)
       cause = StuckCause::Cornered;
     if (detail) {
       const Real speed = Vec3{wish.x, wish.y, 0}.length();
@@ -503,10 +515,10 @@ struct Soak::Impl {
         planes += fmt::format("{}({:.3f} {:.3f} {:.3f})", i ? " " : "", n.x, n.y, n.z);
       }
       *detail = fmt::format(
-          "{}, wish ({:.3f} {:.3f}): a step moves it {:.5f} against {} plane(s) {}; room along the wish "
-          "{:.3f}, most room {:.3f} toward ({:.3f} {:.3f})",
-          info.onGround ? "on the ground" : "in the air", wishDir.x, wishDir.y, moved, info.planes.count,
-          planes, roomAlong(c, pos, wishDir), most, mostDir.x, mostDir.y);
+          "{} of {} steps blocked; {}, wish ({:.3f} {:.3f}): a step from rest moves it {:.5f} against {} "
+          "plane(s) {}; room along the wish {:.3f}, most room {:.3f} toward ({:.3f} {:.3f})",
+          blockedSteps, kStuckSteps, info.onGround ? "on the ground" : "in the air", wishDir.x, wishDir.y,
+          moved, info.planes.count, planes, roomAlong(c, pos, wishDir), most, mostDir.x, mostDir.y);
     }
     return cause;
   }
@@ -520,7 +532,7 @@ struct Soak::Impl {
     Vec3 pos = *start, vel;
     Vec3 wish;
     Vec3 progressFrom = pos;
-    int sinceProgress = 0;
+    int sinceProgress = 0, blockedSteps = 0;
     StepInfo info;
     for (int step = 0; step < steps; ++step) {
       c.tally.walkerSteps++;
@@ -528,6 +540,7 @@ struct Soak::Impl {
         const Real a = uniform(c, 0, kTwoPi);
         wish = {std::cos(a) * kWalkSpeed, std::sin(a) * kWalkSpeed, 0};
       }
+      const Vec3 before = pos;
       if (!walkerStep(c, pos, vel, wish, true, info)) return;
       // Embedded, fallen out of the map or stuck: count it and start again
       // from a new free position.
@@ -539,9 +552,10 @@ struct Soak::Impl {
         restart = true;
       } else if ((pos - progressFrom).length() >= kStuckDistance) {
         progressFrom = pos;
-        sinceProgress = 0;
-      } else if (++sinceProgress >= kStuckSteps) {
-        finding = Finding::WalkerStuck;
+        sinceProgress = blockedSteps = 0;
+      } else {
+        blockedSteps += blockedStep(before, pos, info);
+        if (++sinceProgress >= kStuckSteps) finding = Finding::WalkerStuck;
       }
       // An embedded step's last move is classified as a sweep's end is (the
       // map's faults: brush-face, patch-behind, other-polygon; cmkit's:
@@ -555,7 +569,7 @@ struct Soak::Impl {
                    contentsLine(walker_, pos));
       } else if (finding == Finding::WalkerStuck) {
         std::string detail;
-        const StuckCause why = diagnoseStuck(c, pos, wish, &detail);
+        const StuckCause why = diagnoseStuck(c, pos, wish, blockedSteps, &detail);
         recordStuck(c, why,
                     fmt::format("# walker-stuck: {}: {}\n", kStuckCauseNames[std::size_t(why)], detail) +
                         info.lastLine + contentsLine(walker_, pos));
@@ -565,7 +579,7 @@ struct Soak::Impl {
         c.tally.respawns++;
         pos = progressFrom = *start;
         vel = {};
-        sinceProgress = 0;
+        sinceProgress = blockedSteps = 0;
       }
     }
   }

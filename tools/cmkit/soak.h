@@ -64,16 +64,16 @@ inline const char* const kFindingMeaning[kNumFindings] = {
 /// diagnoseStuck). Unexplained first: its cases are printed first.
 enum class StuckCause : std::uint8_t {
   Unexplained,  // none of the below: would hint at a query fault
-  Cornered,     // the walk's: the step's contact planes clip the wish velocity to ~0
+  Cornered,     // the walk's: contact planes clipped the velocity to ~0 for most steps
   NoRoom,       // the map's: the box cannot move 1 unit in any of 8 horizontal directions
   Count
 };
 inline constexpr std::size_t kNumStuckCauses = std::size_t(StuckCause::Count);
 inline const char* const kStuckCauseNames[kNumStuckCauses] = {"unexplained", "cornered", "no-room"};
 inline const char* const kStuckCauseMeaning[kNumStuckCauses] = {
-    "neither below: the step's slide moves the box, yet it made no progress (a query fault?)",
-    "the walk's: the step's slide planes clip the wish velocity to ~0 (a corner or crease), "
-    "though another direction has room",
+    "neither below: the steps moved the box, yet it made no progress (a query fault?)",
+    "the walk's: for at least half of the steps the slide planes clipped the velocity to ~0 "
+    "(a corner or crease), though another direction has room",
     "the map's: the box cannot move 1 unit in any of 8 horizontal directions, flat or 18 up",
 };
 
