@@ -137,6 +137,7 @@ int runSoak(const SoakOptions& o) {
     total.respawns += tally.respawns;
     for (std::size_t k = 0; k < kNumFindings; ++k) total.counts[k] += tally.counts[k];
     for (std::size_t k = 0; k < kNumFindings; ++k) total.walkerCauses[k] += tally.walkerCauses[k];
+    for (std::size_t k = 0; k < kNumStuckCauses; ++k) total.stuckCauses[k] += tally.stuckCauses[k];
     cases.insert(cases.end(), mine.begin(), mine.end());
   };
   std::vector<std::thread> pool;
@@ -182,12 +183,25 @@ int runSoak(const SoakOptions& o) {
       if (total.walkerCauses[k] > 0) fmt::print(" {} {}", kFindingNames[k], total.walkerCauses[k]);
     fmt::print("\n");
   }
+  if (total.counts[std::size_t(Finding::WalkerStuck)] > 0) {
+    fmt::print("walker-stuck by cause (cornered: the walk's; no-room: the map's; unexplained: neither):");
+    for (std::size_t k = 0; k < kNumStuckCauses; ++k)
+      if (total.stuckCauses[k] > 0) fmt::print(" {} {}", kStuckCauseNames[k], total.stuckCauses[k]);
+    fmt::print("\n");
+  }
+  // The first --examples cases of each class; walker-stuck ones per cause,
+  // unexplained first.
   for (std::size_t k = 0; k < kNumFindings; ++k) {
+    const bool stuck = k == std::size_t(Finding::WalkerStuck);
     std::size_t shown = 0;
-    for (const Case& c : cases) {
-      if (std::size_t(c.finding) != k || shown >= o.examples) continue;
-      if (shown++ == 0) fmt::print("\n# {} ({}):\n", kFindingNames[k], kFindingMeaning[k]);
-      fmt::print("{}", c.lines);
+    for (std::size_t why = 0; why < (stuck ? kNumStuckCauses : 1); ++why) {
+      std::size_t shownOfCause = 0;
+      for (const Case& c : cases) {
+        if (std::size_t(c.finding) != k || (stuck && std::size_t(c.stuck) != why)) continue;
+        if (shownOfCause++ >= o.examples) break;
+        if (shown++ == 0) fmt::print("\n# {} ({}):\n", kFindingNames[k], kFindingMeaning[k]);
+        fmt::print("{}", c.lines);
+      }
     }
   }
   const bool mustHoldFailed = total.counts[std::size_t(Finding::NonFinite)] > 0 ||
@@ -232,7 +246,16 @@ void registerSoak(CLI::App& app) {
       "  patch-behind   the end overlaps polygons only; one was crossed from behind\n"
       "  other-polygon  the end overlaps polygons only, none crossed from behind\n"
       "Walker steps that end in solid (walker-embedded) or make less than 1 unit of progress in\n"
-      "60 steps (walker-stuck) are counted and the walker restarts.\n"
+      "60 steps (walker-stuck) are counted and the walker restarts. An embedded step's last move\n"
+      "is classified as above (closed-brush, precision, grazing: cmkit's; the others: the map's).\n"
+      "A stuck walker is diagnosed, first match:\n"
+      "  no-room        the box moves less than 1 unit along each of 8 horizontal directions\n"
+      "                 (probes of 4 units, flat or 18 units up): the map's (too small a space)\n"
+      "  cornered       at least 30 of the 60 steps were blocked (each moved it less than 1/60\n"
+      "                 unit, its slide stopped on a plane: the contact planes clipped the velocity\n"
+      "                 to ~0 in a corner or crease; another direction has room): the walk's\n"
+      "  unexplained    the steps moved it, yet it made no progress (a query fault?; printed\n"
+      "                 first)\n"
       "Prints the count per class and the first --examples cases of each as query lines (the\n"
       "translation, then a contents test at its end) to paste into 'cmkit query'.\n"
       "Results are the same for any --threads (each item has its own seeded generator).\n\n"

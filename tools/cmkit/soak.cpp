@@ -48,6 +48,11 @@ constexpr Real kStepHeight = 18.0f;
 constexpr int kMaxSlidePlanes = 4;
 constexpr Real kOverbounce = 1.001f;
 constexpr Real kMinWalkNormalZ = 0.7f;
+/// The room test of a stuck walker: how far the box moves (up to
+/// kRoomProbe units) along each of kRoomDirections horizontal directions.
+constexpr Real kRoomProbe = 4.0f;
+constexpr int kRoomDirections = 8;
+constexpr Real kTwoPi = 6.2831853f;
 
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -97,6 +102,14 @@ struct Soak::Impl {
 
   /// Runs one translation and names what its end is: "free", or the class
   /// of the finding (the --replay of a pasted query line).
+  StuckCause diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWork& work, std::string* detail) const {
+    ItemTally tally;
+    std::vector<Case> cases;
+    std::mt19937_64 rng(0);
+    Ctx c{work, tally, cases, 0, rng};
+    return diagnoseStuck(c, pos, wish, -1, detail);
+  }
+
   std::string replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const {
     ItemTally tally;
     std::vector<Case> cases;
@@ -204,7 +217,16 @@ struct Soak::Impl {
   void record(Ctx& c, Finding f, std::string lines) const {
     // Each thread keeps its first --examples cases per class; since it runs
     // its items in increasing order, the first ones overall are among them.
-    if (++c.tally.counts[std::size_t(f)] <= o_.examples) c.cases.push_back({c.item, f, std::move(lines)});
+    if (++c.tally.counts[std::size_t(f)] <= o_.examples)
+      c.cases.push_back({c.item, f, StuckCause::Unexplained, std::move(lines)});
+  }
+
+  /// A walker-stuck case: counted, and kept when among the first --examples
+  /// of its cause (so that every cause has examples).
+  void recordStuck(Ctx& c, StuckCause why, std::string lines) const {
+    c.tally.counts[std::size_t(Finding::WalkerStuck)]++;
+    if (++c.tally.stuckCauses[std::size_t(why)] <= o_.examples)
+      c.cases.push_back({c.item, Finding::WalkerStuck, why, std::move(lines)});
   }
 
   /// Checks a translation's result; false when a must-hold check failed.
@@ -324,12 +346,20 @@ struct Soak::Impl {
     record(c, f, translationLine(s, *start, end) + contentsLine(s, r.endPos));
   }
 
+  /// The contact normals a slide move stopped on, in order.
+  struct SlidePlanes {
+    Vec3 normals[kMaxSlidePlanes];
+    int count = 0;
+  };
+
   /// One slide move of the walker: up to kMaxSlidePlanes contacts per step,
   /// the velocity clipped along each (creases between two planes followed).
   /// False when a must-hold check failed.
-  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine, Vec3& lastFrom) const {
-    Vec3 planes[kMaxSlidePlanes];
-    int numPlanes = 0;
+  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine, Vec3& lastFrom,
+                 SlidePlanes& hit) const {
+    Vec3* const planes = hit.normals;
+    int& numPlanes = hit.count;
+    numPlanes = 0;
     for (int bump = 0; bump < kMaxSlidePlanes && time > 0; ++bump) {
       const Vec3 end = pos + vel * time;
       const TraceResult r = move(c, walker_, pos, end);
@@ -367,6 +397,132 @@ struct Soak::Impl {
     return true;
   }
 
+  /// What one walker step did: whether it stood on walkable ground, the
+  /// contact normals of the slide move it kept, its last move.
+  struct StepInfo {
+    bool onGround = false;
+    SlidePlanes planes;
+    std::string lastLine;
+    Vec3 lastFrom;
+  };
+
+  /// One walker step from `pos` with velocity `vel` and wish velocity `wish`:
+  /// a ground check, the velocity (the wish on the ground, a jump when
+  /// `mayJump` and the generator says so; gravity in the air), a slide move
+  /// and the step-up (over kStepHeight, move, back down; kept when it got
+  /// further). False when a must-hold check failed.
+  bool walkerStep(Ctx& c, Vec3& pos, Vec3& vel, const Vec3& wish, bool mayJump, StepInfo& info) const {
+    // Ground check: a short point-of-feet trace down.
+    const TraceResult down = move(c, walker_, pos, pos - Vec3{0, 0, 1});
+    if (!checkResult(c, walker_, pos, pos - Vec3{0, 0, 1}, down)) return false;
+    info.onGround = down.fraction < 1 && down.contact.normal.z >= kMinWalkNormalZ;
+    if (info.onGround) {
+      vel.x = wish.x;
+      vel.y = wish.y;
+      vel.z = (mayJump && c.rng() % 97 == 0) ? kJumpSpeed : std::max<Real>(vel.z, 0);
+    } else {
+      vel.z -= kGravity * kFrameTime;
+    }
+    Vec3 slidPos = pos, slidVel = vel;
+    if (!slideMove(c, slidPos, slidVel, kFrameTime, info.lastLine, info.lastFrom, info.planes)) return false;
+    if (info.onGround) {
+      Vec3 up = pos + Vec3{0, 0, kStepHeight};
+      const TraceResult ru = move(c, walker_, pos, up);
+      if (!checkResult(c, walker_, pos, up, ru)) return false;
+      Vec3 stepPos = ru.endPos, stepVel = vel;
+      stepVel.z = 0;
+      std::string stepLine;
+      Vec3 stepFrom;
+      SlidePlanes stepPlanes;
+      if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine, stepFrom, stepPlanes)) return false;
+      const Vec3 downTo = stepPos - Vec3{0, 0, kStepHeight + 1};
+      const TraceResult rd = move(c, walker_, stepPos, downTo);
+      if (!checkResult(c, walker_, stepPos, downTo, rd)) return false;
+      const auto flat = [&](const Vec3& p) { return Vec3{p.x - pos.x, p.y - pos.y, 0}.lengthSquared(); };
+      if (rd.fraction < 1 && rd.contact.normal.z >= kMinWalkNormalZ &&
+          flat(rd.endPos) > flat(slidPos) + 0.01f) {
+        slidPos = rd.endPos;
+        slidVel = stepVel;
+        info.planes = stepPlanes;
+        info.lastLine = translationLine(walker_, stepPos, downTo);
+        info.lastFrom = stepPos;
+      }
+    }
+    pos = slidPos;
+    vel = slidVel;
+    return true;
+  }
+
+  /// How far the walker at `pos` moves along the horizontal unit `dir`, up
+  /// to kRoomProbe: flat, or after going up kStepHeight (whichever is further).
+  Real roomAlong(Ctx& c, const Vec3& pos, const Vec3& dir) const {
+    const Real flat = move(c, walker_, pos, pos + dir * kRoomProbe).fraction * kRoomProbe;
+    const TraceResult up = move(c, walker_, pos, pos + Vec3{0, 0, kStepHeight});
+    const Real stepped = move(c, walker_, up.endPos, up.endPos + dir * kRoomProbe).fraction * kRoomProbe;
+    return std::max(flat, stepped);
+  }
+
+  /// A blocked step: it moved the walker less than kStuckDistance /
+  /// kStuckSteps, and its slide move stopped on at least one plane (the
+  /// contact planes clipped its velocity to ~0).
+  static bool blockedStep(const Vec3& from, const Vec3& to, const StepInfo& info) {
+    return (to - from).length() * Real(kStuckSteps) < kStuckDistance && info.planes.count > 0;
+  }
+
+  /// Why a walker at `pos` with the wish velocity `wish` made no progress,
+  /// `blockedSteps` of its last kStuckSteps steps blocked (blockedStep;
+  /// negative: unknown, one step replayed from rest stands for them all):
+  ///  no-room     it moves less than kStuckDistance along each of
+  ///              kRoomDirections horizontal directions, flat or after a
+  ///              step up (the map's: a space too small for the box);
+  ///  cornered    else, at least half of the steps were blocked: their
+  ///              contact planes clipped the velocity to ~0 while another
+  ///              direction has room (the walk's: its wish pointed into a
+  ///              corner or crease);
+  ///  unexplained else: the steps moved the box, yet it made no progress
+  ///              (would hint at a query fault).
+  /// Half, not all: the wish direction changes every 40 steps, so a walker
+  /// cornered for 59 steps may be freed by the 60th.
+  StuckCause diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, int blockedSteps,
+                           std::string* detail) const {
+    Real most = -1;
+    Vec3 mostDir;
+    for (int k = 0; k < kRoomDirections; ++k) {
+      const Real a = Real(k) * (kTwoPi / Real(kRoomDirections));
+      const Vec3 dir{std::cos(a), std::sin(a), 0};
+      const Real room = roomAlong(c, pos, dir);
+      if (room > most) {
+        most = room;
+        mostDir = dir;
+      }
+    }
+    Vec3 stepped = pos, vel;
+    StepInfo info;
+    const bool ok = walkerStep(c, stepped, vel, wish, false, info);
+    const Real moved = (stepped - pos).length();
+    if (blockedSteps < 0) blockedSteps = ok && blockedStep(pos, stepped, info) ? kStuckSteps : 0;
+    StuckCause cause = StuckCause::Unexplained;
+    if (most < kStuckDistance)
+      cause = StuckCause::NoRoom;
+    else if (2 * blockedSteps >= kStuckSteps)
+      cause = StuckCause::Cornered;
+    if (detail) {
+      const Real speed = Vec3{wish.x, wish.y, 0}.length();
+      const Vec3 wishDir = speed > 0 ? Vec3{wish.x, wish.y, 0} * (1 / speed) : Vec3{};
+      std::string planes;
+      for (int i = 0; i < info.planes.count; ++i) {
+        const Vec3& n = info.planes.normals[i];
+        planes += fmt::format("{}({:.3f} {:.3f} {:.3f})", i ? " " : "", n.x, n.y, n.z);
+      }
+      *detail = fmt::format(
+          "{} of {} steps blocked; {}, wish ({:.3f} {:.3f}): a step from rest moves it {:.5f} against {} "
+          "plane(s) {}; room along the wish {:.3f}, most room {:.3f} toward ({:.3f} {:.3f})",
+          blockedSteps, kStuckSteps, info.onGround ? "on the ground" : "in the air", wishDir.x, wishDir.y,
+          moved, info.planes.count, planes, roomAlong(c, pos, wishDir), most, mostDir.x, mostDir.y);
+    }
+    return cause;
+  }
+
   void walk(Ctx& c, int steps) const {
     std::optional<Vec3> start = freeStart(c, walker_);
     if (!start) {
@@ -376,52 +532,16 @@ struct Soak::Impl {
     Vec3 pos = *start, vel;
     Vec3 wish;
     Vec3 progressFrom = pos;
-    int sinceProgress = 0;
-    std::string lastLine;
-    Vec3 lastFrom;
+    int sinceProgress = 0, blockedSteps = 0;
+    StepInfo info;
     for (int step = 0; step < steps; ++step) {
       c.tally.walkerSteps++;
       if (step % 40 == 0) {
-        const Real a = uniform(c, 0, 6.2831853f);
+        const Real a = uniform(c, 0, kTwoPi);
         wish = {std::cos(a) * kWalkSpeed, std::sin(a) * kWalkSpeed, 0};
       }
-      // Ground check: a short point-of-feet trace down.
-      const TraceResult down = move(c, walker_, pos, pos - Vec3{0, 0, 1});
-      if (!checkResult(c, walker_, pos, pos - Vec3{0, 0, 1}, down)) return;
-      const bool onGround = down.fraction < 1 && down.contact.normal.z >= kMinWalkNormalZ;
-      if (onGround) {
-        vel.x = wish.x;
-        vel.y = wish.y;
-        vel.z = (c.rng() % 97 == 0) ? kJumpSpeed : std::max<Real>(vel.z, 0);
-      } else {
-        vel.z -= kGravity * kFrameTime;
-      }
-      Vec3 slidPos = pos, slidVel = vel;
-      if (!slideMove(c, slidPos, slidVel, kFrameTime, lastLine, lastFrom)) return;
-      // Step up: over kStepHeight, move, back down; kept when it got further.
-      if (onGround) {
-        Vec3 up = pos + Vec3{0, 0, kStepHeight};
-        const TraceResult ru = move(c, walker_, pos, up);
-        if (!checkResult(c, walker_, pos, up, ru)) return;
-        Vec3 stepPos = ru.endPos, stepVel = vel;
-        stepVel.z = 0;
-        std::string stepLine;
-        Vec3 stepFrom;
-        if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine, stepFrom)) return;
-        const Vec3 downTo = stepPos - Vec3{0, 0, kStepHeight + 1};
-        const TraceResult rd = move(c, walker_, stepPos, downTo);
-        if (!checkResult(c, walker_, stepPos, downTo, rd)) return;
-        const auto flat = [&](const Vec3& p) { return Vec3{p.x - pos.x, p.y - pos.y, 0}.lengthSquared(); };
-        if (rd.fraction < 1 && rd.contact.normal.z >= kMinWalkNormalZ &&
-            flat(rd.endPos) > flat(slidPos) + 0.01f) {
-          slidPos = rd.endPos;
-          slidVel = stepVel;
-          lastLine = translationLine(walker_, stepPos, downTo);
-          lastFrom = stepPos;
-        }
-      }
-      pos = slidPos;
-      vel = slidVel;
+      const Vec3 before = pos;
+      if (!walkerStep(c, pos, vel, wish, true, info)) return;
       // Embedded, fallen out of the map or stuck: count it and start again
       // from a new free position.
       std::optional<Finding> finding;
@@ -432,27 +552,34 @@ struct Soak::Impl {
         restart = true;
       } else if ((pos - progressFrom).length() >= kStuckDistance) {
         progressFrom = pos;
-        sinceProgress = 0;
-      } else if (++sinceProgress >= kStuckSteps) {
-        finding = Finding::WalkerStuck;
+        sinceProgress = blockedSteps = 0;
+      } else {
+        blockedSteps += blockedStep(before, pos, info);
+        if (++sinceProgress >= kStuckSteps) finding = Finding::WalkerStuck;
       }
       // An embedded step's last move is classified as a sweep's end is (the
       // map's faults: brush-face, patch-behind, other-polygon; cmkit's:
       // closed-brush, precision, grazing), counted per class and named in
-      // the case.
-      std::string cause;
+      // the case; a stuck walker is diagnosed (diagnoseStuck) likewise.
       if (finding == Finding::WalkerEmbedded) {
-        const Finding why = classify(c, walker_, lastFrom, pos);
+        const Finding why = classify(c, walker_, info.lastFrom, pos);
         c.tally.walkerCauses[std::size_t(why)]++;
-        cause = fmt::format("# walker-embedded: {}\n", kFindingNames[std::size_t(why)]);
+        record(c, *finding,
+               fmt::format("# walker-embedded: {}\n", kFindingNames[std::size_t(why)]) + info.lastLine +
+                   contentsLine(walker_, pos));
+      } else if (finding == Finding::WalkerStuck) {
+        std::string detail;
+        const StuckCause why = diagnoseStuck(c, pos, wish, blockedSteps, &detail);
+        recordStuck(c, why,
+                    fmt::format("# walker-stuck: {}: {}\n", kStuckCauseNames[std::size_t(why)], detail) +
+                        info.lastLine + contentsLine(walker_, pos));
       }
-      if (finding) record(c, *finding, cause + lastLine + contentsLine(walker_, pos));
       if (finding || restart) {
         if (!(start = freeStart(c, walker_))) return;
         c.tally.respawns++;
         pos = progressFrom = *start;
         vel = {};
-        sinceProgress = 0;
+        sinceProgress = blockedSteps = 0;
       }
     }
   }
@@ -475,6 +602,10 @@ void Soak::runItem(std::uint64_t item, QueryWork& work, ItemTally& tally, std::v
 }
 std::string Soak::replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const {
   return impl_->replay(s, from, to, work);
+}
+StuckCause Soak::diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWork& work,
+                               std::string* detail) const {
+  return impl_->diagnoseStuck(pos, wish, work, detail);
 }
 
 }  // namespace cmkit::cli

@@ -60,6 +60,23 @@ inline const char* const kFindingMeaning[kNumFindings] = {
     "walker made no progress",
 };
 
+/// Why a walker made no progress (the class of a walker-stuck case; soak.cpp,
+/// diagnoseStuck). Unexplained first: its cases are printed first.
+enum class StuckCause : std::uint8_t {
+  Unexplained,  // none of the below: would hint at a query fault
+  Cornered,     // the walk's: contact planes clipped the velocity to ~0 for most steps
+  NoRoom,       // the map's: the box cannot move 1 unit in any of 8 horizontal directions
+  Count
+};
+inline constexpr std::size_t kNumStuckCauses = std::size_t(StuckCause::Count);
+inline const char* const kStuckCauseNames[kNumStuckCauses] = {"unexplained", "cornered", "no-room"};
+inline const char* const kStuckCauseMeaning[kNumStuckCauses] = {
+    "neither below: the steps moved the box, yet it made no progress (a query fault?)",
+    "the walk's: for at least half of the steps the slide planes clipped the velocity to ~0 "
+    "(a corner or crease), though another direction has room",
+    "the map's: the box cannot move 1 unit in any of 8 horizontal directions, flat or 18 up",
+};
+
 struct SoakOptions {
   std::string map;
   std::string materials;
@@ -95,6 +112,7 @@ struct Shape {
 struct Case {
   std::uint64_t item = 0;
   Finding finding = Finding::NonFinite;
+  StuckCause stuck = StuckCause::Unexplained;  ///< the class of a walker-stuck case
   std::string lines;
 };
 
@@ -105,6 +123,8 @@ struct ItemTally {
   std::array<std::uint64_t, kNumFindings> counts{};
   /// Walker-embedded steps by the class of their last move's end (as a sweep's).
   std::array<std::uint64_t, kNumFindings> walkerCauses{};
+  /// Walker-stuck cases by cause.
+  std::array<std::uint64_t, kNumStuckCauses> stuckCauses{};
 };
 
 /// Runs the items of a soak (sweeps, then walkers); const after set-up, so
@@ -125,6 +145,11 @@ class Soak {
   /// Runs one translation and names what its end is: "free", or the class
   /// of the finding (the --replay of a pasted query line).
   std::string replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const;
+  /// Why a walker at the free position `pos` with the wish velocity `wish`
+  /// (horizontal, units a second) makes no progress; `detail` (when given)
+  /// gets what the tests measured.
+  StuckCause diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWork& work,
+                           std::string* detail = nullptr) const;
 
  private:
   struct Impl;

@@ -1,0 +1,124 @@
+// The soak's diagnosis of a stuck walker (tools/cmkit/soak.cpp,
+// diagnoseStuck; issue #34, item 5): a walker pressed into a room's corner
+// with its wish direction into it is `cornered` (the walk's), one in a pit
+// a little wider than the box is `no-room` (the map's), and walkers whose
+// step moves them (in the open, or sliding along a wall) are `unexplained`
+// (the class a query fault would show as; these walkers are not stuck).
+#if CMKIT_TEST_SOAK
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cmkit/compile.h"
+#include "cmkit/map.h"
+#include "cmkit/materials.h"
+#include "cmkit/query.h"
+#include "soak.h"
+
+namespace cmkit::cli {
+/// GoogleTest prints a cause by its name.
+void PrintTo(StuckCause cause, std::ostream* os) { *os << kStuckCauseNames[std::size_t(cause)]; }
+}  // namespace cmkit::cli
+
+using namespace cmkit;
+using cmkit::cli::StuckCause;
+
+namespace {
+
+std::string box(const Vec3& lo, const Vec3& hi) {
+  auto face = [&](const char* n, Real d) {
+    return "  ( " + std::string(n) + " " + std::to_string(d) +
+           " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/base_wall/lfwall27d\" 0 0 0\n";
+  };
+  return "{\n brushDef3\n {\n" + face("0 0 1", -hi.z) + face("0 0 -1", lo.z) + face("1 0 0", -hi.x) +
+         face("-1 0 0", lo.x) + face("0 1 0", -hi.y) + face("0 -1 0", lo.y) + " }\n}\n";
+}
+
+/// A closed room, inside x, y in [-256, 256], z in [0, 256], and in it a
+/// pit 33 x 33 units wide (x, y in [111.5, 144.5]) with walls 128 high:
+/// the 32 x 32 box has half a unit of room in it.
+ModelPtr roomWithPit() {
+  std::string text = "Version 2\n{\n\"classname\" \"worldspawn\"\n";
+  text += box({-272, -272, -16}, {272, 272, 0});    // floor
+  text += box({-272, -272, 256}, {272, 272, 272});  // ceiling
+  text += box({-272, -272, 0}, {-256, 272, 256});   // walls
+  text += box({256, -272, 0}, {272, 272, 256});
+  text += box({-256, -272, 0}, {256, -256, 256});
+  text += box({-256, 256, 0}, {256, 272, 256});
+  text += box({95.5f, 95.5f, 0}, {111.5f, 160.5f, 128});  // the pit's walls
+  text += box({144.5f, 95.5f, 0}, {160.5f, 160.5f, 128});
+  text += box({111.5f, 95.5f, 0}, {144.5f, 111.5f, 128});
+  text += box({111.5f, 144.5f, 0}, {144.5f, 160.5f, 128});
+  text += "}\n";
+  auto map = parseMapText(text);
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
+  if (!map) return nullptr;
+  auto built = buildCollisionModels(*map, MaterialTable{}, BuildOptions{});
+  EXPECT_TRUE(built.ok());
+  if (!built || built->models.empty()) return nullptr;
+  return built->models[0];
+}
+
+/// The walker's wish velocity toward (x, y) at its walking speed (320).
+Vec3 wishToward(Real x, Real y) {
+  const Real len = std::sqrt(x * x + y * y);
+  return {x / len * 320, y / len * 320, 0};
+}
+
+struct SoakWalker : ::testing::Test {
+  void SetUp() override {
+    world = roomWithPit();
+    ASSERT_TRUE(world);
+    walker = {cli::kWalkerTrm, *TraceModel::parse(cli::kWalkerTrm), {}};
+    soak = std::make_unique<cli::Soak>(*world, std::vector<cli::Shape>{}, walker, options);
+  }
+  /// The diagnosis at `pos` (which must be free: the walker only gets stuck
+  /// at free positions).
+  StuckCause diagnose(const Vec3& pos, const Vec3& wish, std::string& detail) {
+    ContentsQuery q;
+    q.trm = &walker.trm;
+    q.position = pos;
+    q.contentMask = options.mask;
+    EXPECT_EQ(contentsTest(*world, q, work).contents & options.mask, 0u) << "not free";
+    return soak->diagnoseStuck(pos, wish, work, &detail);
+  }
+  ModelPtr world;
+  cli::Shape walker;
+  cli::SoakOptions options;
+  std::unique_ptr<cli::Soak> soak;
+  QueryWork work;
+};
+
+}  // namespace
+
+// The box 0.25 units (the clip epsilon) from two walls of the room's corner,
+// wishing into the corner: each slide plane clips the velocity and the
+// crease of the two walls is vertical, so a step moves it ~0. The box has
+// room along +x and +y.
+TEST_F(SoakWalker, WishIntoACornerIsCornered) {
+  std::string detail;
+  EXPECT_EQ(diagnose({-239.75f, -239.75f, 0.25f}, wishToward(-1, -0.7f), detail), StuckCause::Cornered)
+      << detail;
+  EXPECT_EQ(diagnose({239.75f, 239.75f, 0.25f}, wishToward(0.3f, 1), detail), StuckCause::Cornered) << detail;
+}
+
+// The same corner with the wish along one wall: the walker slides away.
+TEST_F(SoakWalker, WishAlongAWallIsNotCornered) {
+  std::string detail;
+  EXPECT_EQ(diagnose({-239.75f, -239.75f, 0.25f}, wishToward(-1, 0.5f), detail), StuckCause::Unexplained)
+      << detail;
+  EXPECT_EQ(diagnose({0, 0, 0.25f}, wishToward(1, 0), detail), StuckCause::Unexplained) << detail;
+}
+
+// In the pit the box can move 0.25 units along an axis (0.35 diagonally),
+// and its walls are higher than a step up: no-room, whatever the wish.
+TEST_F(SoakWalker, NarrowPitIsNoRoom) {
+  std::string detail;
+  for (const Vec3& wish : {wishToward(1, 0), wishToward(-1, -1), wishToward(0.2f, 1)})
+    EXPECT_EQ(diagnose({128, 128, 0.25f}, wish, detail), StuckCause::NoRoom) << detail;
+}
+#endif
