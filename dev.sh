@@ -158,6 +158,9 @@ case "${1:-}" in
     # big map costs much and finds little that a small one does not.
     maxlen=()
     [ "$target" = cm ] || maxlen=(-max_len=4096)
+    # Debian 12's assimp leaks on some malformed OBJ files (LeakSanitizer
+    # shows only its own frames): leaks are not findings of the mesh target.
+    [ "$target" = mesh ] && maxlen+=(-detect_leaks=0)
     case "$target" in map | cm | query | mesh) ;; *) echo "fuzz target: map, cm, query or mesh" >&2; exit 2 ;; esac
     deps
     build fuzz
