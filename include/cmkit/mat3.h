@@ -111,4 +111,10 @@ constexpr Vec3 operator*(const Vec3& v, const Mat3& m) {
 /// unchanged (bit for bit). The error message says what is wrong.
 Result<Mat3> validateAxis(const Mat3& axis);
 
+/// A rotation drawn uniformly from all rotations, made from three numbers
+/// u1, u2, u3 drawn uniformly from [0, 1) (Shoemake's unit quaternion from
+/// three uniforms), as the rows of a matrix: a trace model's orientation for
+/// random tests, soaks and training data.
+Mat3 rotationFromUniforms(double u1, double u2, double u3);
+
 }  // namespace cmkit

@@ -76,6 +76,17 @@ Result<Mat3> validateAxis(const Mat3& axis) {
   return *fixed;
 }
 
+Mat3 rotationFromUniforms(double u1, double u2, double u3) {
+  constexpr double kTwoPi = 6.283185307179586;
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  const double x = a * std::sin(kTwoPi * u2), y = a * std::cos(kTwoPi * u2);
+  const double z = b * std::sin(kTwoPi * u3), w = b * std::cos(kTwoPi * u3);
+  auto row = [](double p, double q, double r) { return Vec3{Real(p), Real(q), Real(r)}; };
+  return Mat3{row(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)),
+              row(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)),
+              row(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y))};
+}
+
 Mat3 Rotation::matrix() const {
   // Quaternion form of the right-handed rotation by +angle, applied by the
   // original as a row vector (v * M), which turns clockwise.

@@ -295,3 +295,28 @@ TEST(Pluecker, MatchesTheTripleProductAndRays) {
     EXPECT_EQ(l1.direction(), e1 - s1);
   }
 }
+
+TEST(Mat3, RotationFromUniformsIsARotationAndHandChecked) {
+  // u = (0, 0, 0): the quaternion (x, y, z, w) = (0, 1, 0, 0), a half turn about y.
+  const Mat3 half = rotationFromUniforms(0, 0, 0);
+  EXPECT_EQ(half.rows[0], (Vec3{-1, 0, 0}));
+  EXPECT_EQ(half.rows[1], (Vec3{0, 1, 0}));
+  EXPECT_EQ(half.rows[2], (Vec3{0, 0, -1}));
+  // u1 = 1, u3 = 0: (0, 0, 0, 1), the identity (u2 does not matter).
+  const Mat3 identity = rotationFromUniforms(1, 0.3, 0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(identity.rows[r][c], r == c ? 1.0 : 0.0, 1e-6) << r << c;
+  // Any three uniforms: orthonormal and right-handed; the mean of the first
+  // row over many draws is near zero (no preferred direction).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  Vec3 mean{};
+  constexpr int kDraws = 20000;
+  for (int i = 0; i < kDraws; ++i) {
+    const Mat3 m = rotationFromUniforms(u(rng), u(rng), u(rng));
+    ASSERT_LT(m.orthonormalityError(), 1e-5f);
+    ASSERT_GT(m.determinant(), 0);
+    mean = mean + m.rows[0] * (Real(1) / kDraws);
+  }
+  EXPECT_LT(mean.length(), 0.03f);
+}

@@ -80,18 +80,11 @@ bool overlapsSolid(const CollisionModel& m, const TraceModel& trm, const Mat3& a
   return (contentsTest(m, q, work).contents & kMask) != 0;
 }
 
-/// A uniformly random rotation (unit quaternion from three uniforms).
+/// A uniformly random rotation (rotationFromUniforms).
 Mat3 randomRotation(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   const double u1 = u(rng), u2 = u(rng), u3 = u(rng);
-  constexpr double kTwoPi = 6.283185307179586;
-  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-  const double x = a * std::sin(kTwoPi * u2), y = a * std::cos(kTwoPi * u2);
-  const double z = b * std::sin(kTwoPi * u3), w = b * std::cos(kTwoPi * u3);
-  auto row = [](double p, double q, double r) { return Vec3{Real(p), Real(q), Real(r)}; };
-  return Mat3{row(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)),
-              row(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)),
-              row(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y))};
+  return rotationFromUniforms(u1, u2, u3);
 }
 
 }  // namespace

@@ -200,18 +200,10 @@ struct Soak::Impl {
     return fmt::format("contents trm={}{} start={} mask={}\n", s.spec, axisField(s), vec(pos), o_.mask);
   }
 
-  /// A uniformly random rotation (a unit quaternion from three uniforms,
-  /// Shoemake's method), as the rows of a matrix.
+  /// A uniformly random rotation (rotationFromUniforms).
   Mat3 randomRotation(Ctx& c) const {
     const double u1 = double(uniform(c, 0, 1)), u2 = double(uniform(c, 0, 1)), u3 = double(uniform(c, 0, 1));
-    constexpr double kTwoPi = 6.283185307179586;
-    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    const double x = a * std::sin(kTwoPi * u2), y = a * std::cos(kTwoPi * u2);
-    const double z = b * std::sin(kTwoPi * u3), w = b * std::cos(kTwoPi * u3);
-    auto row = [](double p, double q, double r) { return Vec3{Real(p), Real(q), Real(r)}; };
-    return Mat3{row(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)),
-                row(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)),
-                row(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y))};
+    return rotationFromUniforms(u1, u2, u3);
   }
 
   void record(Ctx& c, Finding f, std::string lines) const {
