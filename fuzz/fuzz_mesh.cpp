@@ -16,8 +16,8 @@ namespace {
 
 /// The names whose extensions select the importers fuzzed: OBJ, glTF and
 /// GLB, the formats cmkit's users bring most (the other formats assimp
-/// reads are not fuzzed: its PLY reader hangs on a malformed header, for
-/// which loadMeshMemory and loadMeshFile check PLY headers themselves, see
+/// reads are not fuzzed; its PLY reader hangs on some malformed headers,
+/// which loadMeshMemory and loadMeshFile check themselves: src/io/mesh_checks.h,
 /// docs/reliability.md). Files an OBJ or a .gltf refers to are not there
 /// in memory; they still parse.
 constexpr std::array<std::string_view, 3> kNames = {"fuzz.obj", "fuzz.gltf", "fuzz.glb"};

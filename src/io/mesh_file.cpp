@@ -12,7 +12,7 @@
 
 #include "cmkit/mesh.h"
 #include "cmkit/tolerances.h"
-#include "ply_check.h"
+#include "mesh_checks.h"
 
 #ifdef CMKIT_HAVE_ASSIMP
 #include <assimp/postprocess.h>
@@ -149,22 +149,35 @@ Result<TriangleMesh> readWithAssimp(const std::string& path, std::span<const std
   return std::move(reader.mesh);
 }
 
-/// The whole of a mesh file (for the checks of readGuarded).
-std::string fileBytes(const std::string& path) {
+/// The first `limit` bytes of a mesh file, or all of it (for the checks of
+/// readGuarded).
+std::string fileBytes(const std::string& path, std::size_t limit = std::string::npos) {
   std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (limit == std::string::npos)
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::string head(limit, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(limit));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  return head;
 }
 
 /// readWithAssimp with what assimp throws turned into errors, after the
-/// check of PLY files, whose assimp reader hangs or crashes on some malformed ones.
+/// checks of PLY and GLB files (mesh_checks.h), on some malformed ones of
+/// which assimp hangs, crashes or takes gigabytes.
 Result<TriangleMesh> readGuarded(const std::string& path, std::span<const std::byte> bytes,
                                  const MeshLoadOptions& options) {
-  if (lowerExtension(path) == ".ply") {
-    const std::string file = bytes.empty() ? fileBytes(path) : std::string{};
+  {
+    // A file is read whole for its checks (assimp reads it again): PLY by
+    // its name, binary glTF by its magic whatever its name.
+    const bool ply = lowerExtension(path) == ".ply";
+    const std::string file =
+        bytes.empty() && (ply || fileBytes(path, 4) == "glTF") ? fileBytes(path) : std::string{};
     const std::string_view text =
         bytes.empty() ? std::string_view(file)
                       : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    if (std::string why = plyProblem(text); !why.empty()) return Error(why, path);
+    std::string why = ply ? plyProblem(text) : std::string{};
+    if (why.empty()) why = glbProblem(text);
+    if (!why.empty()) return Error(why, path);
   }
   try {
     return readWithAssimp(path, bytes, options);

@@ -582,6 +582,39 @@ TEST(MeshFile, MalformedPlyFilesAreErrorsNotHangsOrCrashes) {
   EXPECT_NE(fromFile.error().toString().find("PLY header line 5"), std::string::npos);
 }
 
+TEST(MeshFile, GlbLengthsPastTheEndAreErrorsNotGigabytes) {
+  CMKIT_REQUIRE_ASSIMP();
+  // A well-formed GLB (cmkit's export of a cube) loads; with its total
+  // length or its JSON chunk's length garbled it is an error before assimp
+  // allocates what the header claims (4 GB for the 2 KB file fuzzing found).
+  const ModelPtr cube = build(cubeMesh());
+  ASSERT_TRUE(cube);
+  ExportOptions options;
+  options.edges = false;
+  const std::vector<std::uint8_t> glb = exportGlb(std::span<const ModelPtr>(&cube, 1), {}, options);
+  auto load = [](std::vector<std::uint8_t> bytes) {
+    return loadMeshMemory(std::as_bytes(std::span<const std::uint8_t>(bytes)), "cube.glb");
+  };
+  ASSERT_TRUE(load(glb).ok()) << load(glb).error().toString();
+  auto setU32 = [](std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) b[at + std::size_t(k)] = std::uint8_t(v >> (8 * k));
+  };
+  std::vector<std::uint8_t> longTotal = glb;
+  setU32(longTotal, 8, 0xfa0004c0u);
+  std::vector<std::uint8_t> longChunk = glb;
+  setU32(longChunk, 12, 0xfa0004c0u);
+  std::vector<std::uint8_t> cut(glb.begin(), glb.begin() + 16);
+  setU32(cut, 8, 16);
+  for (const auto& [bytes, says] : {std::pair{longTotal, "the GLB header says the file is 4194305216 bytes"},
+                                    std::pair{longChunk, "chunk 1 is 4194305216 bytes long"},
+                                    std::pair{cut, "chunk 1 header is cut off"}}) {
+    auto m = load(bytes);
+    ASSERT_FALSE(m.ok()) << says;
+    EXPECT_NE(m.error().toString().find(says), std::string::npos) << m.error().toString();
+    EXPECT_NE(m.error().toString().find("cube.glb"), std::string::npos);
+  }
+}
+
 TEST(MeshFile, MeshFileNames) {
   EXPECT_TRUE(isMeshFileName("a/b/model.OBJ"));
   EXPECT_TRUE(isMeshFileName("level.glb"));

@@ -1,5 +1,5 @@
-// The PLY check before assimp (ply_check.h).
-#include "ply_check.h"
+// The mesh file checks before assimp (mesh_checks.h).
+#include "mesh_checks.h"
 
 #include <algorithm>
 #include <array>
@@ -183,6 +183,41 @@ std::string plyProblem(std::string_view file) {
     }
   }
   return "the PLY header has no end_header line";
+}
+
+namespace {
+
+/// A little-endian 32-bit number at byte `at` of `file` (in range).
+std::uint32_t readU32(std::string_view file, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(file[at + std::size_t(k)]);
+  return v;
+}
+
+}  // namespace
+
+std::string glbProblem(std::string_view file) {
+  // Header: magic "glTF", version, total length; then chunks of a length,
+  // a type and the data (4-byte aligned by the format; not required here).
+  constexpr std::size_t kHeaderBytes = 12, kChunkHeaderBytes = 8;
+  if (file.substr(0, 4) != "glTF") return {};
+  if (file.size() < kHeaderBytes) return "the GLB file's header is cut off";
+  const std::uint64_t total = readU32(file, 8);
+  if (total > file.size())
+    return "the GLB header says the file is " + std::to_string(total) + " bytes long; it has " +
+           std::to_string(file.size());
+  std::size_t at = kHeaderBytes;
+  for (int chunk = 1; at < total; ++chunk) {
+    if (total - at < kChunkHeaderBytes)
+      return "the GLB file's chunk " + std::to_string(chunk) + " header is cut off";
+    const std::uint64_t length = readU32(file, at);
+    if (length > total - at - kChunkHeaderBytes)
+      return "the GLB file's chunk " + std::to_string(chunk) + " is " + std::to_string(length) +
+             " bytes long; the file has " + std::to_string(total - at - kChunkHeaderBytes) +
+             " after its header";
+    at += kChunkHeaderBytes + std::size_t(length);
+  }
+  return {};
 }
 
 }  // namespace cmkit
