@@ -72,8 +72,8 @@ inline constexpr std::size_t kNumStuckCauses = std::size_t(StuckCause::Count);
 inline const char* const kStuckCauseNames[kNumStuckCauses] = {"unexplained", "cornered", "no-room"};
 inline const char* const kStuckCauseMeaning[kNumStuckCauses] = {
     "neither below: the steps moved the box, yet it made no progress (a query fault?)",
-    "the walk's: for at least half of the steps the slide planes clipped the velocity to ~0 "
-    "(a corner or crease), though another direction has room",
+    ("the walk's: for at least half of the steps the slide planes clipped the velocity to ~0 "
+     "(a corner or crease), though another direction has room"),
     "the map's: the box cannot move 1 unit in any of 8 horizontal directions, flat or 18 up",
 };
 
