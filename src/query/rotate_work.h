@@ -1,5 +1,6 @@
 // Internal: the per-feature data of one rotation part (below 180 degrees),
-// shared by the set-up (rotate_setup.cpp) and the tests (rotate.cpp).
+// shared by the set-up (rotate_setup.cpp) and the tests (rotate.cpp,
+// rotate_edges.cpp).
 //
 // Every exact test is an equation in u = tan(|t| / 2), where t is the angle
 // turned so far in the direction of the rotation (u = 0 at the start of the
@@ -22,7 +23,7 @@ namespace cmkit::detail {
 using DVec = DVec3;
 
 /// A trace-model edge s -> e turning about the axis (unit a through o), for
-/// its line products with model edges (rotate.cpp, ModelEdgeLine): the edge
+/// its line products with model edges (rotate_edges.h, ModelEdgeLine): the edge
 /// vector u = e - s and q = (s - o) x u, each split as R(t) x = axial +
 /// cos t across + sin t turned (axial = a (a . x), across = x - axial,
 /// turned = x x a: the library's direction of positive angles).
@@ -229,6 +230,34 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
 /// p turned about the line (origin, unit axis) by the angle whose half has
 /// the tangent `tanHalf` (signed: positive = the positive-angle direction).
 Vec3 rotateByTanHalf(const Vec3& p, const Vec3& origin, const Vec3& axis, double tanHalf);
+
+/// The positive root of -v1 u^2 - 2 v2 u + v1 = 0 for v1 > 0: where the
+/// sinusoid v2 cos t + v1 sin t + v0 has its first extremum ahead (the two
+/// roots multiply to -1, so exactly one is positive).
+inline double firstExtremumTan(double v1, double v2) {
+  const double k = v2 / v1;
+  const double s = std::sqrt(k * k + 1);
+  return k >= 0 ? 1 / (k + s) : s - k;  // the cancellation-free form of -k + s
+}
+
+/// First u in [lo, maxTan) where the sinusoid is zero.
+inline bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u) {
+  return firstQuadraticRoot(s.v0 - s.v2, s.v1, s.v0 + s.v2, lo, maxTan, u);
+}
+
+/// Records the contact a rotation test found on `poly` as the query's.
+inline void setRotationContact(TraceWork& tw, const CmPolygon& poly, ContactType type, const Vec3& normal,
+                               Real dist, const Vec3& point, std::int32_t modelFeature, int trmFeature) {
+  ContactInfo& c = tw.c;
+  c.type = type;
+  c.normal = normal;
+  c.dist = dist;
+  c.point = point;
+  c.contents = poly.contents;
+  c.material = poly.material;
+  c.modelFeature = modelFeature;
+  c.trmFeature = trmFeature;
+}
 
 /// Box of the arc of `p` turned to `end` about the line through
 /// `rotationOrigin` (p's own circle centre) along `axis`, for an arc below
