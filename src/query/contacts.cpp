@@ -19,14 +19,15 @@ namespace {
 void rotationContacts(const CollisionModel& model, const ContactsQuery& q, QueryWork& work,
                       std::vector<ContactInfo>& out) {
   const RotationQuery rq{q.trm, q.trmAxis, q.start, *q.rotation, q.contentMask, q.placement, false};
-  std::vector<RotationContact> found;
-  const bool modelRotated = collectRotationContacts(model, rq, work, found);
+  bool modelRotated = false;
+  std::vector<RotationContact>& found = collectRotationContacts(model, rq, work, modelRotated);
+  std::vector<std::int32_t>& polygons = scratchOf(work).rotation->listedPolygons;
+  polygons.clear();
   // Stable: equal angles keep the walk's order. A polygon met in two parts
   // (a turn of 180 degrees or more) keeps its first contact.
   std::stable_sort(found.begin(), found.end(), [](const RotationContact& a, const RotationContact& b) {
     return std::fabs(a.contact.angle) < std::fabs(b.contact.angle);
   });
-  std::vector<std::int32_t> polygons;
   for (const RotationContact& f : found) {
     if (int(out.size()) >= q.maxContacts) break;
     if (std::find(polygons.begin(), polygons.end(), f.polygon) != polygons.end()) continue;

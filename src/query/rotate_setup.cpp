@@ -283,19 +283,23 @@ void forEachPart(const RotationFrame& frame, Real total, Real step, Part part) {
 
 }  // namespace
 
-bool collectRotationContacts(const CollisionModel& model, const RotationQuery& q, QueryWork& work,
-                             std::vector<RotationContact>& found) {
+std::vector<RotationContact>& collectRotationContacts(const CollisionModel& model, const RotationQuery& q,
+                                                      QueryWork& work, bool& modelRotated) {
+  QueryScratch& s = scratchOf(work);
+  if (!s.rotation) s.rotation = std::make_unique<RotationWork>();
+  std::vector<RotationContact>& found = s.rotation->found;
   found.clear();
   Real total, step;
   splitAngle(q.rotation.angle, total, step);
-  count(scratchOf(work), &QueryStats::queries);
+  count(s, &QueryStats::queries);
   const RotationFrame frame(q, step);
   forEachPart(frame, total, step, [&](Real a, const Mat3* startM, const Mat3& endM) {
     ContactInfo unused;
     rotatePart(model, q, frame, a, a + step, startM, endM, work, unused, &found);
     return false;
   });
-  return frame.modelRotated;
+  modelRotated = frame.modelRotated;
+  return found;
 }
 
 }  // namespace cmkit::detail

@@ -106,11 +106,12 @@ struct RotationContact {
 };
 
 /// Rotational contacts (rotate_setup.cpp): the rotation walked part by part
-/// in contacts mode, every polygon's earliest contact of each part into
-/// `found` (model frame; cleared first). Returns whether the model's frame
-/// is rotated (for contactToWorld). The query has passed guardRotation.
-bool collectRotationContacts(const CollisionModel& model, const RotationQuery& q, QueryWork& work,
-                             std::vector<RotationContact>& found);
+/// in contacts mode, every polygon's earliest contact of each part into the
+/// scratch's RotationWork::found (model frame; cleared first), returned.
+/// `modelRotated`: whether the model's frame is rotated (for
+/// contactToWorld). The query has passed guardRotation.
+std::vector<RotationContact>& collectRotationContacts(const CollisionModel& model, const RotationQuery& q,
+                                                      QueryWork& work, bool& modelRotated);
 
 /// One part of a rotation, in the model's frame.
 struct RotationWork {
@@ -148,6 +149,11 @@ struct RotationWork {
   /// back to the part's limit after each polygon; null for rotate().
   std::vector<RotationContact>* contactsFound = nullptr;
   Real partStartAngle = 0;  ///< contacts mode: degrees turned at the start of the part (signed)
+  /// Contacts mode's lists, kept with the scratch so that their memory
+  /// serves every query: the contacts found (collectRotationContacts), and
+  /// the polygons already listed when contacts() picks the earliest of each.
+  std::vector<RotationContact> found;
+  std::vector<std::int32_t> listedPolygons;
 
   /// Trace-model edge j's turning parts (made on first use).
   const EdgeTurn& edgeTurn(const TraceWork& tw, int j) {
