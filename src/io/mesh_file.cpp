@@ -163,22 +163,21 @@ std::string fileBytes(const std::string& path, std::size_t limit = std::string::
 
 /// readWithAssimp with what assimp throws turned into errors, after the
 /// checks of PLY and GLB files (mesh_checks.h), on some malformed ones of
-/// which assimp hangs, crashes or takes gigabytes.
+/// which assimp hangs, crashes or takes gigabytes. `bytes` empty: the file
+/// at `path`.
 Result<TriangleMesh> readGuarded(const std::string& path, std::span<const std::byte> bytes,
                                  const MeshLoadOptions& options) {
-  {
-    // A file is read whole for its checks (assimp reads it again): PLY by
-    // its name, binary glTF by its magic whatever its name.
-    const bool ply = lowerExtension(path) == ".ply";
-    const std::string file =
-        bytes.empty() && (ply || fileBytes(path, 4) == "glTF") ? fileBytes(path) : std::string{};
-    const std::string_view text =
-        bytes.empty() ? std::string_view(file)
-                      : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    std::string why = ply ? plyProblem(text) : std::string{};
-    if (why.empty()) why = glbProblem(text);
-    if (!why.empty()) return Error(why, path);
-  }
+  // A PLY file (by its name) or binary glTF (by its magic, whatever its
+  // name) is read whole for its checks and handed to assimp from memory
+  // (both formats stand alone: nothing beside them to read).
+  const bool ply = lowerExtension(path) == ".ply";
+  const std::string file =
+      bytes.empty() && (ply || fileBytes(path, 4) == "glTF") ? fileBytes(path) : std::string{};
+  if (!file.empty()) bytes = std::as_bytes(std::span<const char>(file.data(), file.size()));
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  std::string why = ply ? plyProblem(text) : std::string{};
+  if (why.empty()) why = glbProblem(text);
+  if (!why.empty()) return Error(why, path);
   try {
     return readWithAssimp(path, bytes, options);
   } catch (const std::bad_alloc&) {
