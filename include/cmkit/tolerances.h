@@ -56,6 +56,13 @@ inline constexpr Real kRayAcceptPadding = 1.0f / 65536;
 /// cover the rounding of the float slab test; enough for rays that start
 /// within a few hundred model sizes of the model.
 inline constexpr Real kRayNodePadding = 1.0f / 16384;
+/// cmkit (World): the broad phase pads a query's swept box by this much
+/// before it meets the entities' world boxes. A model's own queries pad the
+/// trace bounds by tol::kBoxEpsilon along the MODEL's axes, so an entity
+/// placed at an angle can be touched up to sqrt(3) * kBoxEpsilon (1.73)
+/// outside a world box around the sweep; 2 covers that and float rounding
+/// of the placed boxes.
+inline constexpr Real kWorldBroadPhasePadding = 2.0f;
 
 // ---- Building models -------------------------------------------------------
 
