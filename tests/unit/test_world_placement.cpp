@@ -5,6 +5,7 @@
 // has moved, and passes through the world model alone.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 
 #include "cmkit/compile.h"
@@ -231,4 +232,28 @@ TEST(WorldDoor, RaysAndContactsNameTheDoor) {
       world.contentsTest({&*small, {}, {0, 0, 50}, contents::kMaskSolid, {}}, work);
   EXPECT_EQ(inside.entity, door);
   EXPECT_NE(inside.result.contents, 0u);
+}
+
+// `cmkit query MAP QUERIES --world`: the same walk names the door.
+TEST(WorldDoor, QueryCommandNamesTheEntityHit) {
+  test::ScratchDir dir("world_query");
+  const auto queries = dir.path() / "walk.txt";
+  std::ofstream(queries) << "translation trm=box:-16,-16,0,16,16,74 start=-200,0,1 end=200,0,1\n"
+                            "pointcontents pos=0,0,-8\n"
+                            "translation trm=box:-16,-16,0,16,16,74 start=-200,0,1 end=0,0,1 origin=1,2,3\n";
+  int rc = 0;
+  const std::string out = test::runCapture(std::string(CMKIT_CLI_PATH) + " query '" + twoHalls().string() +
+                                               "' '" + queries.string() + "' --world 2>/dev/null",
+                                           rc);
+  EXPECT_EQ(rc, 3) << out;  // the third line is an error line
+  EXPECT_NE(out.find("fraction=0.449375004 "), std::string::npos) << out;
+  EXPECT_NE(out.find(" entity=door1\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("contents=3 entity=worldspawn\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("error=model=, origin= and modelaxis= do not apply"), std::string::npos) << out;
+  // Without --world: the world model alone, no entity field.
+  const std::string alone = test::runCapture(std::string(CMKIT_CLI_PATH) + " query '" + twoHalls().string() +
+                                                 "' '" + queries.string() + "' 2>/dev/null",
+                                             rc);
+  EXPECT_EQ(alone.find("entity="), std::string::npos) << alone;
+  EXPECT_NE(alone.find("fraction=1 "), std::string::npos) << alone;
 }
