@@ -21,6 +21,10 @@
 #                    build, then check the bundled lt4 against the original's
 #                    answers (data/reference/lt4): .cm identity, agreement per kind
 #   ./dev.sh docs    API reference of include/cmkit with Doxygen -> build/docs/html
+#   ./dev.sh repro   two builds of this commit in other folders, no ccache:
+#                    their installed files must be identical (10-15 minutes)
+#   ./dev.sh wheel   the Python wheel (pip wheel --no-build-isolation) in
+#                    build/wheel, from the project's CMake build (docs/python.md)
 #
 # Works on a fresh Debian 12 machine; uses sudo for apt-get when not root.
 set -euo pipefail
@@ -29,7 +33,7 @@ cd "$(dirname "$0")"
 PACKAGES=(build-essential cmake ninja-build ccache clang clang-format doxygen
           libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libfmt-dev libstb-dev
           libbullet-dev libembree-dev libassimp-dev pkg-config
-          python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dask python3-distributed
+          python3 python3-dev python3-pip python3-setuptools python3-wheel python3-venv pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dask python3-distributed
           python3-matplotlib)
 
 deps() {
@@ -171,6 +175,16 @@ case "${1:-}" in
     "./build/fuzz/fuzz/fuzz_$target" "build/fuzz/work/$target" "fuzz/corpus/$target" \
       -max_total_time="$seconds" -runs="$runs" "${maxlen[@]}" -artifact_prefix="build/fuzz/work/$target-" \
       -print_final_stats=1
+    ;;
+  wheel)
+    deps
+    python3_deb=/usr/bin/python3
+    CMKIT_BUILD_JOBS=2 "$python3_deb" -m pip wheel --no-build-isolation --no-deps -w build/wheel .
+    ls build/wheel
+    ;;
+  repro)
+    deps
+    tests/install/reproducible_build.sh
     ;;
   fidelity)
     deps

@@ -2,7 +2,8 @@
 # WORK_DIR/prefix, moves that tree to WORK_DIR/moved (so no path of the build
 # or of the first prefix can be used), then, from another working directory,
 # runs the moved cmkit's demo (which must find the installed bundled map) and
-# info on the installed map, and checks the docs and licence are there.
+# info on the installed map, and checks the docs and licence are there and
+# that no installed binary names the source or build tree.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/elsewhere)
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${CMKIT_BUILD_DIR} --prefix ${WORK_DIR}/prefix
@@ -17,6 +18,24 @@ foreach(f IN LISTS installed)
   if(NOT at EQUAL 0)
     message(FATAL_ERROR "cmake --install --prefix put ${f} outside the prefix")
   endif()
+endforeach()
+# No installed program or library names the source or the build tree
+# (builds are reproducible: CMakeLists.txt's prefix maps, data_paths.h). The
+# prefix itself lies inside the build tree here, so the text files that name
+# their prefix (cmkit.pc, the CMake package) are not searched: every file that
+# is not text is.
+find_program(GREP grep REQUIRED)
+foreach(f IN LISTS installed)
+  execute_process(COMMAND ${GREP} -Iq . ${f} RESULT_VARIABLE is_text)
+  if(is_text EQUAL 0)
+    continue()
+  endif()
+  foreach(tree ${CMKIT_SOURCE_DIR} ${CMKIT_BUILD_DIR})
+    execute_process(COMMAND ${GREP} -c -a -F ${tree} ${f} OUTPUT_VARIABLE hits OUTPUT_STRIP_TRAILING_WHITESPACE)
+    if(hits GREATER 0)
+      message(FATAL_ERROR "the installed ${f} names ${tree} (${hits} lines)")
+    endif()
+  endforeach()
 endforeach()
 file(RENAME ${WORK_DIR}/prefix ${WORK_DIR}/moved)
 set(root ${WORK_DIR}/moved)

@@ -41,25 +41,17 @@ struct DemoOptions {
 };
 
 /// The bundled map: in the installed tree (PREFIX/share/cmkit/maps/lt4),
-/// beside the executable's source tree, the source tree it was built from,
-/// or the current directory. Empty when not found.
+/// in the source tree around a build-tree binary, or in the current
+/// directory. Empty when not found.
 std::string findBundledMap() {
-  std::vector<fs::path> candidates;
   std::error_code ec;
-  if (const fs::path share = installedDataDir(); !share.empty())
-    candidates.push_back(share / "maps" / "lt4" / "lt4.map");
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    // build/<preset>/bin/cmkit -> the source tree is three levels up.
-    for (fs::path dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
-      candidates.push_back(dir / kBundledMap);
+  if (const fs::path share = installedDataDir(); !share.empty()) {
+    const fs::path p = share / "maps" / "lt4" / "lt4.map";
+    if (fs::exists(p, ec)) return p.string();
   }
-#ifdef CMKIT_SOURCE_DIR
-  candidates.push_back(fs::path(CMKIT_SOURCE_DIR) / kBundledMap);
-#endif
-  candidates.push_back(fs::current_path(ec) / kBundledMap);
-  for (const fs::path& p : candidates)
-    if (fs::exists(p, ec)) return p.lexically_normal().string();
+  if (const fs::path p = findAboveExecutable(kBundledMap); !p.empty()) return p.string();
+  if (const fs::path p = fs::current_path(ec) / kBundledMap; !ec && fs::exists(p, ec))
+    return p.lexically_normal().string();
   return {};
 }
 

@@ -108,11 +108,10 @@ std::string defaultViewerDir() {
   if (const fs::path share = installedDataDir();
       !share.empty() && fs::exists(share / "viewer" / "index.html"))
     return (share / "viewer").string();
-#ifdef CMKIT_VIEWER_DIST
-  return CMKIT_VIEWER_DIST;
-#else
+  // A build-tree binary: the source tree's viewer/dist above it.
+  if (const fs::path dist = findAboveExecutable(fs::path("viewer") / "dist" / "index.html"); !dist.empty())
+    return dist.parent_path().string();
   return "viewer/dist";
-#endif
 }
 
 const char* contentType(const fs::path& p) {
