@@ -29,4 +29,25 @@ function(cmkit_build_consumers source prefix pcdir work cxx)
   cmkit_run_checked("building the pkg-config API consumer"
     ${cxx} -std=c++20 ${source}/api_queries.cpp ${flags} -o ${work}/consumer_api_pc)
   cmkit_run_checked("the pkg-config API consumer" ${work}/consumer_api_pc)
+  # The C API (include/cmkit/cmkit.h) from C11 with warnings as errors,
+  # linked through `pkg-config --static` (the C++ runtime and the static
+  # library's dependencies come from cmkit.pc): examples/c/drop_box.c.
+  find_program(CC NAMES cc gcc)
+  if(CC)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pcdir} ${PKG_CONFIG} --static --cflags --libs cmkit
+                    OUTPUT_VARIABLE cflags OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "pkg-config --static --cflags --libs cmkit failed (${rc})")
+    endif()
+    separate_arguments(cflags UNIX_COMMAND "${cflags}")
+    cmkit_run_checked("building the C consumer (C11, -Wall -Wextra -Wpedantic -Werror)"
+      ${CC} -std=c11 -Wall -Wextra -Wpedantic -Werror ${source}/../../examples/c/drop_box.c
+      ${cflags} -o ${work}/consumer_c)
+    execute_process(COMMAND ${work}/consumer_c ${source}/../data/maps/two_halls.map RESULT_VARIABLE rc
+                    OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0 OR NOT out MATCHES "dropped: fraction 0\\.49875.*closed door: fraction 0\\.449375.*entity door1")
+      message(FATAL_ERROR "the C consumer failed (${rc}):\n${out}\n${err}")
+    endif()
+    message(STATUS "C consumer:\n${out}")
+  endif()
 endfunction()
