@@ -47,9 +47,10 @@
 //   arguments and of the World's entities and placements: no hidden or
 //   static state, every field of every struct initialised, no threads. The
 //   same inputs give the same bits, on any thread, with any WorldQueryWork
-//   (the scratch holds no answer across calls). The bits may differ between
-//   the float and double builds and between compilers' maths libraries
-//   (std::sqrt is exact; nothing else of the library's is used).
+//   (the scratch holds no answer across calls). The move's own arithmetic
+//   is +, -, *, / and std::sqrt, all correctly rounded, so the bits do not
+//   depend on the maths library; they differ between the float and double
+//   builds (Real).
 // - THREAD SAFETY: as the World's queries: any number of threads may step
 //   players in one World at once, each with its own WorldQueryWork, while
 //   nothing moves the World's entities.
