@@ -4,7 +4,9 @@
 // are tests/data/maps/stairs.map (make_stairs.py) or brushes written in code.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numbers>
 #include <sstream>
@@ -399,6 +401,53 @@ TEST(PlayerMove, RunsAreDeterministic) {
   EXPECT_TRUE(sameBits(first, second));
   EXPECT_TRUE(sameBits(first, third));
   EXPECT_FALSE(first.back().origin == first.front().origin);
+}
+
+/// The "end" array of `cmkit walk --json` output.
+Vec3 jsonEnd(const std::string& json) {
+  const std::size_t at = json.find("\"end\": [");
+  Vec3 v{-1e9f, -1e9f, -1e9f};
+  if (at == std::string::npos) return v;
+  double x = 0, y = 0, z = 0;
+  if (std::sscanf(json.c_str() + at, "\"end\": [%lf, %lf, %lf]", &x, &y, &z) == 3)
+    v = {Real(x), Real(y), Real(z)};
+  return v;
+}
+
+// `cmkit walk` on stairs.map: the same ends as the library's walks above.
+TEST(CmkitWalk, EndsOnTheLandingAndIsHeldByHighRisers) {
+  const std::string cli = CMKIT_CLI_PATH;
+  const std::string map = "'" + (test::testDataDir() / "maps" / "stairs.map").string() + "'";
+  test::ScratchDir scratch("cmkit_walk");
+  const std::string csv = (scratch.path() / "steps.csv").string();
+  int rc = -1;
+  std::string out = test::runCapture(
+      cli + " walk " + map + " --from=-64,64,1 --wish 1,0 --seconds 4 --json --path '" + csv + "'", rc);
+  ASSERT_EQ(rc, 0) << out;
+  Vec3 end = jsonEnd(out);
+  EXPECT_NEAR(end.x, 256 - 16 - kRest, 0.05) << out;
+  EXPECT_NEAR(end.z, 60 + kRest, 0.05) << out;
+  EXPECT_NE(out.find("\"on_ground\": true"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"ground_entity\": \"worldspawn\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"steps\": 240"), std::string::npos) << out;
+  const std::string steps = test::readFile(csv);
+  EXPECT_EQ(std::count(steps.begin(), steps.end(), '\n'), 241);  // a header and 240 steps
+  EXPECT_EQ(steps.rfind("step,time,x,y,z,", 0), 0u);
+
+  out = test::runCapture(cli + " walk " + map + " --from=-64,-64,1 --wish 1,0 --seconds 4 --json", rc);
+  ASSERT_EQ(rc, 0) << out;
+  end = jsonEnd(out);
+  EXPECT_NEAR(end.x, 64 - 16 - kRest, 0.05) << out;
+  EXPECT_NEAR(end.z, kRest, 0.05) << out;
+  // The text form; refused arguments exit with 2.
+  out = test::runCapture(cli + " walk " + map + " --from=-64,64,1 --wish 1,0 --seconds 4", rc);
+  EXPECT_EQ(rc, 0);
+  EXPECT_NE(out.find("end (239.750 64.000 60.250)"), std::string::npos) << out;
+  for (const char* bad : {"--wish 1 --seconds 1", "--wish 1,0 --seconds -1", "--wish 1,0 --seconds nan",
+                          "--wish 1,0 --seconds 1 --shape point", "--wish 1,0,0,0 --seconds 1"}) {
+    test::runCapture(cli + " walk " + map + " --from=0,64,1 " + bad + " 2>/dev/null", rc);
+    EXPECT_EQ(rc, 2) << bad;
+  }
 }
 
 }  // namespace
