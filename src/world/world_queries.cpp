@@ -21,6 +21,7 @@ bool isPoint(const TraceModel* trm) { return trm == nullptr || trm->isPoint(); }
 /// World bounds of the trace model at `position` with orientation `axis`.
 Bounds trmBoundsAt(const TraceModel* trm, const Mat3& axis, const Vec3& position) {
   if (isPoint(trm)) return Bounds::ofPoint(position);
+  if (axis.isIdentity()) return trm->bounds().translated(position);
   return detail::placedBounds(trm->bounds(), {position, axis});
 }
 

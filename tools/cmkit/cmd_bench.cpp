@@ -11,6 +11,7 @@
 #include <map>
 
 #include "bench_report.h"
+#include "bench_world.h"
 #include "cmkit/text_file.h"
 #include "cmkit/tools/query_format.h"
 #include "commands.h"
@@ -40,6 +41,8 @@ struct BenchOptions {
   bool json = false;
   bool stats = false;  ///< --stats
   bool noRotation = false;
+  bool world = false;  ///< --world
+  int rounds = 15;     ///< --rounds (--world)
   SpeedTestOptions test;
 };
 
@@ -304,6 +307,18 @@ int runSuite(const BenchOptions& o) {
 
 int runBench(const BenchOptions& o) {
   if (!o.suite.empty()) return runSuite(o);
+  if (o.world) {
+    WorldBenchOptions w;
+    w.map = o.models;
+    w.materials = o.materials;
+    w.noProc = o.noProc;
+    w.trm = o.trm;
+    w.times = o.test.times;
+    w.length = double(o.test.length);
+    w.seed = o.test.seed;
+    w.rounds = o.rounds;
+    return runWorldBench(w);
+  }
   if (o.models.empty()) {
     fmt::print(stderr, "cmkit bench: give MODELS (a .map, .cm or mesh file) or --suite DIR\n");
     return kExitBadInput;
@@ -386,6 +401,14 @@ void registerBench(CLI::App& app) {
   cmd->add_option("-j,--threads", o->test.threads, "also run on this many threads and compare")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
+  cmd->add_flag(
+      "--world", o->world,
+      "MODELS is a .map: time --times translations (--trm, ends within +-length, --seed) that meet no "
+      "entity on the whole World and on its world model alone, in alternating rounds, and print "
+      "the ratio (docs/world.md, \"Cost\")");
+  cmd->add_option("--rounds", o->rounds, "--world: alternating rounds (the best of each side counts)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--suite", o->suite, "time every NAME.queries.txt of this directory");
   cmd->add_option("--repeat", o->repeat, "suite: passes over each file")
       ->capture_default_str()

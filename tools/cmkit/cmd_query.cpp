@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string_view>
 #include <thread>
 
@@ -24,6 +25,7 @@ struct QueryOptions {
   std::string materials;
   bool noProc = false;       ///< --no-proc
   bool robustEdges = false;  ///< --robust-edges
+  bool world = false;        ///< --world
   MeshCliOptions mesh;       ///< --up, --scale, --contents (mesh files)
   int threads = 1;
 };
@@ -33,10 +35,22 @@ int runQueryCommand(const QueryOptions& o) {
     fmt::print(stderr, "cmkit query: MODELS and QUERIES cannot both be standard input (-)\n");
     return kExitBadInput;
   }
-  auto models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh, o.robustEdges);
-  if (!models) {
-    fmt::print(stderr, "cmkit query: {}\n", models.error().toString());
-    return kExitBadInput;
+  // --world: a World of the map's placed entities; else the models alone.
+  Result<std::vector<ModelPtr>> models = std::vector<ModelPtr>{};
+  std::optional<LoadedWorld> world;
+  if (o.world) {
+    auto loaded = loadWorldForCli(o.models, o.materials, o.noProc, o.robustEdges);
+    if (!loaded) {
+      fmt::print(stderr, "cmkit query: {}\n", loaded.error().toString());
+      return kExitBadInput;
+    }
+    world = std::move(loaded).value();
+  } else {
+    models = loadModelsForCli(o.models, o.materials, o.noProc, o.mesh, o.robustEdges);
+    if (!models) {
+      fmt::print(stderr, "cmkit query: {}\n", models.error().toString());
+      return kExitBadInput;
+    }
   }
   const Result<std::string> text = readCliText(o.queries);
   if (!text) {
@@ -56,8 +70,10 @@ int runQueryCommand(const QueryOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   auto worker = [&](std::size_t first, std::size_t stride) {
     QueryWork work;
+    WorldQueryWork worldWork;
     for (std::size_t i = first; i < lines.size(); i += stride)
-      results[i] = answerQueryLine(models.value(), lines[i], work);
+      results[i] = world ? answerWorldQueryLine(world->world, lines[i], worldWork)
+                         : answerQueryLine(models.value(), lines[i], work);
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker, std::size_t(t), std::size_t(threads));
@@ -106,6 +122,10 @@ void registerQuery(CLI::App& app) {
       "(contacts along a rotation: no dir/depth; each contact gets angle.i=, the degrees turned).\n"
       "Optional keys: trmaxis=9 numbers, mask=names|number, model=NAME|#N, origin=x,y,z,\n"
       "modelaxis=9 numbers. A line that cannot run gives error=REASON and the rest go on.\n\n"
+      "--world (MODELS a .map): each line is answered against the whole world, the world model and\n"
+      "every entity model placed by its origin/angle/rotation keys (docs/world.md); a result with a\n"
+      "hit ends with entity=NAME (worldspawn: the world model; contacts: entity.i=NAME each).\n"
+      "model=, origin= and modelaxis= are errors there.\n\n"
       "MODELS or QUERIES may be - (standard input, not both). A MODELS file that is not named\n"
       "*.map, *.cm or a mesh file is read as a .cm when its first token is CM, else as a .map.\n\n"
       "Exit codes: 0 every line answered; 3 every line written, but some are error=REASON (so that\n"
@@ -123,6 +143,8 @@ void registerQuery(CLI::App& app) {
   addNoProcFlag(cmd, o->noProc);
   addRobustEdgesFlag(cmd, o->robustEdges);
   addMeshOptions(cmd, o->mesh);
+  cmd->add_flag("--world", o->world,
+                "answer against the whole world of the .map (placed entities) and name the entity hit");
   cmd->add_option("-j,--threads", o->threads, "worker threads (results are the same for any count)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

@@ -145,6 +145,20 @@ Result<MaterialTable> materialsForCli(const std::string& materialsDir) {
   return materials;
 }
 
+Result<LoadedWorld> loadWorldForCli(const std::string& path, const std::string& materialsDir, bool noProc,
+                                    bool robustEdges) {
+  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".map") != 0)
+    return Error("a world needs a .map file (its entities place the models)", path);
+  Result<MaterialTable> table = materialsForCli(materialsDir);
+  if (!table) return table.error();
+  LoadMapOptions options;
+  options.useProcFile = !noProc;
+  options.build.robustEdges = robustEdges;
+  // A .cm beside the map is built without robust edges: rebuild for them.
+  options.forceRebuild = robustEdges;
+  return World::loadMap(path, *table, options);
+}
+
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
                                                bool noProc, const MeshCliOptions& mesh, bool robustEdges) {
   Result<MaterialTable> table = materialsForCli(materialsDir);

@@ -16,6 +16,7 @@
 #include "cmkit/model.h"
 #include "cmkit/proc_file.h"
 #include "cmkit/result.h"
+#include "cmkit/world.h"
 
 namespace cmkit::cli {
 
@@ -61,6 +62,13 @@ bool looksLikeCm(std::string_view text);
 Result<std::vector<ModelPtr>> loadModelsForCli(const std::string& path, const std::string& materialsDir,
                                                bool noProc = false, const MeshCliOptions& mesh = {},
                                                bool robustEdges = false);
+
+/// The World of a .map (World::loadMap: NAME.cm beside it when its CRC
+/// matches, else built; NAME.proc prunes the world model unless `noProc`),
+/// for `query --world` and `bench --world`. Another file is an error: the
+/// world needs the map's entities.
+Result<LoadedWorld> loadWorldForCli(const std::string& path, const std::string& materialsDir,
+                                    bool noProc = false, bool robustEdges = false);
 
 /// Adds the --no-proc flag (the same text in every command).
 void addNoProcFlag(CLI::App* cmd, bool& noProc);

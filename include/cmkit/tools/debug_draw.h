@@ -203,6 +203,9 @@ struct TraceRecord {
   /// when the result line is an error or has no trace fields.
   TraceResult result;
   std::string error;  ///< the result's error=..., or why the lines could not be read
+  /// The entity hit (entity=, or entity.0= of a contacts line: world
+  /// queries, cmkit query --world); empty when none.
+  std::string entity;
 };
 
 /// Pairs query lines with result lines. With `queriesText` empty,

@@ -11,6 +11,7 @@
 
 #include "cmkit/model.h"
 #include "cmkit/query.h"
+#include "cmkit/world.h"
 
 namespace cmkit {
 
@@ -70,5 +71,11 @@ bool isQueryLine(std::string_view line);
 /// default) and returns its result line, or "error=<reason>" for a line that
 /// cannot be run (bad syntax, unknown model, degenerate trace model).
 std::string answerQueryLine(std::span<const ModelPtr> models, std::string_view line, QueryWork& work);
+
+/// Runs one query line against a whole World (cmkit query --world): the
+/// closest answer over its entities (world.h), with entity=NAME after the
+/// fields of a result with a hit (after each contact's, numbered, for
+/// contacts). model=, origin= and modelaxis= are errors on such a line.
+std::string answerWorldQueryLine(const World& world, std::string_view line, WorldQueryWork& work);
 
 }  // namespace cmkit

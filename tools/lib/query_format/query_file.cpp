@@ -87,6 +87,10 @@ class ResultWriter {
     const std::string_view name = model_.materialName(index);
     out_ += name.empty() ? std::string_view("-") : name;
   }
+  void entity(const char* key, const std::string& name) {
+    start(key);
+    out_ += name;
+  }
 
  private:
   void start(const char* key) {
@@ -372,6 +376,90 @@ std::string runParsedQuery(std::span<const ModelPtr> models, const ParsedQuery& 
           rotate(m, {trm, q.trmAxis, q.position, q.rotation, q.contentMask, q.placement, false}, work);
       if (r.status != QueryStatus::Ok) return refusedLine(r.status);
       appendTrace(out, m, r);
+      return out;
+    }
+  }
+  return "error=unknown operation";
+}
+
+namespace {
+
+// The name written for a world answer's entity.
+const std::string& entityName(const World& world, EntityId id) { return world.entity(id)->name; }
+
+// The trace fields and, on a hit, entity=NAME (materials named from the hit
+// entity's model).
+void appendWorldTrace(std::string& out, const World& world, const TraceResult& r, EntityId id,
+                      const CollisionModel& fallback) {
+  const CollisionModel& model = id != kNoEntity ? *world.entity(id)->model : fallback;
+  ResultWriter w(out, model);
+  detail::visitTraceFields(w, r);
+  detail::visitContactFields(w, r.contact);
+  if (id != kNoEntity) detail::visitEntityField(w, entityName(world, id));
+}
+
+}  // namespace
+
+std::string answerWorldQueryLine(const World& world, std::string_view line, WorldQueryWork& work) {
+  // Parsed against one model (the world model, or any entity's) for the
+  // line's syntax; model=, origin= and modelaxis= do not apply.
+  const std::vector<EntityId> ids = world.entityIds();
+  if (ids.empty()) return "error=no entities in the world";
+  const ModelPtr model = world.entity(kWorldspawnEntity) ? world.entity(kWorldspawnEntity)->model
+                                                         : world.entity(ids.front())->model;
+  const std::string_view trimmed = detail::trimLine(line);
+  {
+    const Fields f(detail::splitWord(trimmed).second);
+    if (f.has("model") || f.has("origin") || f.has("modelaxis"))
+      return "error=model=, origin= and modelaxis= do not apply to a world query (entities are placed by the "
+             "map)";
+  }
+  const std::span<const ModelPtr> models(&model, 1);
+  auto parsed = parseQueryLine(models, trimmed);
+  if (!parsed) return "error=" + parsed.error().message;
+  const ParsedQuery& q = *parsed;
+  const TraceModel* trm = q.trm ? &*q.trm : nullptr;
+  std::string out;
+  switch (q.op) {
+    case QueryOp::PointContents: {
+      const WorldPointContentsResult r = world.pointContents({q.position, {}}, work);
+      out = "contents=" + std::to_string(r.contents);
+      if (r.entity != kNoEntity) out += " entity=" + entityName(world, r.entity);
+      return out;
+    }
+    case QueryOp::Translation: {
+      const WorldTraceResult r =
+          world.translate({trm, q.trmAxis, q.position, q.end, q.contentMask, {}, false}, work);
+      if (r.trace.status != QueryStatus::Ok) return refusedLine(r.trace.status);
+      appendWorldTrace(out, world, r.trace, r.entity, *model);
+      return out;
+    }
+    case QueryOp::Contents: {
+      const WorldContentsResult r = world.contentsTest({trm, q.trmAxis, q.position, q.contentMask, {}}, work);
+      if (r.result.status != QueryStatus::Ok) return refusedLine(r.result.status);
+      out = "result=" + std::to_string(r.result.contents) + " ";
+      appendWorldTrace(out, world, r.result.trace, r.entity, *model);
+      return out;
+    }
+    case QueryOp::Contacts: {
+      const WorldContactsResult r = world.contacts(contactsQuery(q), work);
+      if (r.status != QueryStatus::Ok) return refusedLine(r.status);
+      out = "count=" + std::to_string(r.contacts.size());
+      for (std::size_t i = 0; i < r.contacts.size(); ++i) {
+        const WorldContact& c = r.contacts[i];
+        out += ' ';
+        ResultWriter w(out, *world.entity(c.entity)->model, "." + std::to_string(i));
+        detail::visitContactFields(w, c.contact);
+        if (q.rotational) detail::visitRotationContactFields(w, c.contact);
+        detail::visitEntityField(w, entityName(world, c.entity));
+      }
+      return out;
+    }
+    case QueryOp::Rotation: {
+      const WorldTraceResult r =
+          world.rotate({trm, q.trmAxis, q.position, q.rotation, q.contentMask, {}, false}, work);
+      if (r.trace.status != QueryStatus::Ok) return refusedLine(r.trace.status);
+      appendWorldTrace(out, world, r.trace, r.entity, *model);
       return out;
     }
   }

@@ -39,4 +39,13 @@ void visitRotationContactFields(Visitor& v, Contact& c) {
   v("angle", c.angle);
 }
 
+/// The field a world query's answer (cmkit query --world) adds after the
+/// trace's, or after each contact's (numbered): the name of the entity hit
+/// ("worldspawn" for the world model). Written only when an entity was hit;
+/// read wherever present (v.entity(key, name)).
+template <typename Visitor, typename Name>
+void visitEntityField(Visitor& v, Name& name) {
+  v.entity("entity", name);
+}
+
 }  // namespace cmkit::detail

@@ -55,6 +55,9 @@ class ResultReader {
     if (const auto v = value(key)) out = Int(detail::parseInt(*v).value_or(0));
   }
   void material(const char*, std::int32_t&) {}  // a name; the index is the model's
+  void entity(const char* key, std::string& out) {
+    if (const auto v = value(key)) out = std::string(*v);
+  }
 
  private:
   std::optional<std::string_view> value(const char* key) const { return f_.get(key + suffix_); }
@@ -118,6 +121,7 @@ void readResult(std::string_view line, TraceRecord& r) {
   ResultReader contact(f, f.has("type") ? "" : ".0");
   detail::visitContactFields(contact, t.contact);
   detail::visitRotationContactFields(contact, t.contact);  // contacts along a rotation only
+  detail::visitEntityField(contact, r.entity);             // world queries only
 }
 
 }  // namespace
