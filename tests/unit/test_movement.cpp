@@ -121,6 +121,22 @@ TEST(PlayerShapes, TheDefaultsAreTheOriginalsBox) {
   EXPECT_FALSE(PlayerShape::fromTraceModel(TraceModel::point()));
 }
 
+// (a) and (b) with an 8-sided cylinder in the same bounds: its flat face
+// meets the risers as the box does.
+TEST(PlayerMove, ACylinderClimbs12UnitRisersAndIsHeldBy24) {
+  const World world = loadStairs();
+  const auto shape = PlayerShape::cylinder(8);
+  ASSERT_TRUE(shape);
+  WorldQueryWork work;
+  const PlayerState up = runPlayer(world, *shape, at({-64, 64, 1}), walk(1, 0), stepsFor(4), kDt, work);
+  EXPECT_TRUE(up.onGround);
+  EXPECT_NEAR(up.origin.z, 60 + kRest, 0.05);
+  EXPECT_NEAR(up.origin.x, 256 - 16 - kRest, 0.05);
+  const PlayerState held = runPlayer(world, *shape, at({-64, -64, 1}), walk(1, 0), stepsFor(4), kDt, work);
+  EXPECT_NEAR(held.origin.z, kRest, 0.05);
+  EXPECT_NEAR(held.origin.x, 64 - 16 - kRest, 0.05);
+}
+
 // (a) Risers of 12 (treads of 16): the player walks up onto the landing at
 // z = 60 and on to the far wall (x = 256 - 16 - 0.25).
 TEST(PlayerMove, ClimbsStairsOf12UnitRisersOntoTheLanding) {
