@@ -195,4 +195,37 @@ inline constexpr int kMaxPatchGridSize = 4096;
 /// huge coordinates cannot make subdivision run away.
 inline constexpr int kMaxPatchGridPoints = 1 << 20;
 
+// ---- Player movement (movement.h) ------------------------------------------
+
+/// cmkit (stepPlayer): the ground is looked for this far below the feet. A
+/// player at rest stands kClipEpsilon (0.25) from its ground along the
+/// normal: 0.25 / 0.7 = 0.36 units above it on the steepest walkable slope;
+/// 1 unit covers that with room for the rounding of a step's moves (the
+/// player is then put down on what was found).
+inline constexpr Real kPlayerGroundProbe = 1.0f;
+/// cmkit (stepPlayer): a velocity slid along a plane keeps this fraction
+/// (1.001, the original's OVERCLIP) of its component into the plane taken
+/// off, leaving it a hair (1e-3 of the speed into it) away from the plane,
+/// so that float rounding never points the next move into it again.
+inline constexpr Real kPlayerOverclip = 1.001f;
+/// cmkit (stepPlayer): two planes whose cross product is shorter than this
+/// (the sine of their angle) are one plane for the crease rule: their
+/// crease has no direction.
+inline constexpr Real kPlayerCreaseSine = 1e-3f;
+/// cmkit (stepPlayer): a stepped move is kept only when it got at least this
+/// much further (units, horizontally) than the move without the step, so
+/// that a wall (where both get equally far) never lifts the player.
+inline constexpr Real kPlayerStepGain = 0.01f;
+/// cmkit (stepPlayer): a player moving away from its ground's plane faster
+/// than this (units/s) has left it (a jump: 320 units/s; the projections of
+/// a walk onto the ground leave rounding far below it).
+inline constexpr Real kPlayerLeaveGroundSpeed = 10.0f;
+/// cmkit (stepPlayer): a player that starts a step in solid is tried lifted
+/// by kPlayerNudgeStep, 2 * kPlayerNudgeStep, ... up to this (units): out
+/// of a floor it sank into or a platform that rose into it by a step's
+/// movement; deeper than this it is stuck.
+inline constexpr Real kPlayerMaxNudge = 8.0f;
+/// cmkit (stepPlayer): the increment of those lifts (units).
+inline constexpr Real kPlayerNudgeStep = 0.5f;
+
 }  // namespace cmkit::tol

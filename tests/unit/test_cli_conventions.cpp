@@ -45,8 +45,8 @@ TEST_F(CliConventions, AnUnknownCommandIsNamedAndExitsWith2) {
 }
 
 TEST(CliExitCodes, EveryCommandsHelpSaysThem) {
-  for (const char* command :
-       {"trm", "compile", "info", "validate", "query", "render", "export", "view", "bench", "soak", "demo"}) {
+  for (const char* command : {"trm", "compile", "info", "validate", "query", "render", "export", "view",
+                              "bench", "soak", "walk", "demo"}) {
     int rc = -1;
     const std::string out = test::runCapture(cli() + " " + command + " --help", rc);
     EXPECT_EQ(rc, 0) << command;

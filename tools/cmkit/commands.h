@@ -37,6 +37,9 @@ void registerBench(CLI::App& app);
 /// `cmkit soak MAP`: random sweeps and a walker, every end checked.
 void registerSoak(CLI::App& app);
 
+/// `cmkit walk MAP`: a player walked through a map's World (movement.h).
+void registerWalk(CLI::App& app);
+
 /// `cmkit demo [MAP]`: compile, speed test and picture of the bundled map.
 void registerDemo(CLI::App& app);
 

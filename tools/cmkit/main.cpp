@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   cmkit::cli::registerView(app);
   cmkit::cli::registerBench(app);
   cmkit::cli::registerSoak(app);
+  cmkit::cli::registerWalk(app);
   cmkit::cli::registerDemo(app);
   // Exit codes: every command's --help ends with the ones it uses.
   app.footer(

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -58,6 +59,23 @@ CLI::Validator finiteVec3() {
         return {};
       },
       "X,Y,Z");
+}
+
+std::optional<Vec3> parseFiniteVec2or3(std::string_view text) {
+  if (std::count(text.begin(), text.end(), ',') == 1) {
+    const std::optional<Vec3> v = parseFiniteVec3(std::string(text) + ",0");
+    return v;
+  }
+  return parseFiniteVec3(text);
+}
+
+CLI::Validator finiteVec2or3() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (!parseFiniteVec2or3(text)) return "expected x,y or x,y,z (finite numbers), got '" + text + "'";
+        return {};
+      },
+      "X,Y[,Z]");
 }
 
 }  // namespace cmkit::cli

@@ -24,4 +24,11 @@ std::optional<Vec3> parseFiniteVec3(std::string_view text);
 /// An option holding "x,y,z" (parseFiniteVec3).
 CLI::Validator finiteVec3();
 
+/// "x,y" or "x,y,z": two or three finite numbers separated by commas (z = 0
+/// when absent).
+std::optional<Vec3> parseFiniteVec2or3(std::string_view text);
+
+/// An option holding "x,y" or "x,y,z" (parseFiniteVec2or3).
+CLI::Validator finiteVec2or3();
+
 }  // namespace cmkit::cli

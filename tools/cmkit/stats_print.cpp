@@ -29,6 +29,8 @@ std::string g(float v) {
   return buf;
 }
 
+}  // namespace
+
 std::string jsonString(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
@@ -55,6 +57,8 @@ std::string jsonString(const std::string& s) {
   }
   return out + "\"";
 }
+
+namespace {
 
 // A float for JSON: finite numbers as %g would lose digits, so use the
 // shortest exact representation; non-finite values as null.

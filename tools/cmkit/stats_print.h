@@ -58,4 +58,8 @@ void printStatsText(std::FILE* out, std::span<const ModelPtr> models, const Stat
 /// The same statistics as one JSON object (for scripts).
 std::string statsJson(std::span<const ModelPtr> models, const StatsContext& context);
 
+/// A JSON string literal of s (quotes, backslashes and control characters
+/// escaped).
+std::string jsonString(const std::string& s);
+
 }  // namespace cmkit::cli
