@@ -3,7 +3,7 @@
  * Loads a map's world (default: tests/data/maps/two_halls.map, two halls
  * joined by a doorway that a func_door named door1 fills), drops a player
  * box onto the floor, walks it into the closed door, opens the door by
- * moving its entity up and walks again.
+ * moving its entity up and walks again; then a player walks through.
  *
  *   drop_box [MAP]
  */
@@ -27,9 +27,10 @@ int main(int argc, char** argv) {
   int ok = check(cmkit_load_map(path, &world), "cmkit_load_map") &&
            check(cmkit_trace_model_box(-16, -16, 0, 16, 16, 74, &player), "cmkit_trace_model_box");
   if (ok) {
-    /* Dropped from 100 units above the floor (z = 0): it stops 0.25 units
-     * above it, after (100 - 0.25) / 200 of the move. */
-    const float top[3] = {-200, 0, 100}, below[3] = {-200, 0, -100};
+    /* Dropped from 40 units above the floor (z = 0; the box is 74 high and
+     * the ceiling at 128): it stops 0.25 units above the floor, after
+     * (40 - 0.25) / 100 of the move. */
+    const float top[3] = {-200, 0, 40}, below[3] = {-200, 0, -60};
     cmkit_trace_t trace;
     ok = check(cmkit_translate(world, player, NULL, top, below, CMKIT_MASK_PLAYER_SOLID, &trace), "drop");
     if (ok)
@@ -58,6 +59,18 @@ int main(int argc, char** argv) {
         printf("open door: fraction %.6f, end x %.2f, entity %s\n", trace.fraction, trace.end[0],
                trace.entity == CMKIT_NO_ENTITY ? "(none)" : cmkit_world_entity_name(world, trace.entity));
     }
+
+    /* A player (the engine's box, gravity, steps) walks 3 seconds along +x
+     * through the open doorway. */
+    cmkit_player_t* walker = NULL;
+    const float feet[3] = {-200, 0, 1}, east[3] = {1, 0, 0};
+    cmkit_player_state_t state;
+    ok = ok && check(cmkit_player_create(NULL, feet, &walker), "cmkit_player_create") &&
+         check(cmkit_player_step(world, walker, east, 0, 180, &state), "cmkit_player_step");
+    if (ok)
+      printf("player: end %.2f %.2f %.2f after %lld steps, %s\n", state.origin[0], state.origin[1], state.origin[2],
+             (long long)state.steps, state.on_ground ? "on the ground" : "in the air");
+    cmkit_player_free(walker);
   }
   cmkit_trace_model_free(player);
   cmkit_world_free(world);

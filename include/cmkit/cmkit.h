@@ -232,6 +232,54 @@ cmkit_status cmkit_point_contents_batch(const cmkit_world_t* world, const float*
 cmkit_status cmkit_cast_ray_batch(const cmkit_world_t* world, const float* starts, const float* ends,
                                   size_t n, uint32_t mask, int threads, cmkit_ray_hit_t* out);
 
+/* ---- the player move (docs/movement.md) ---- */
+
+/** A player walking through a world: its shape and its state between steps
+ *  (opaque; cmkit_player_state reads the state). */
+typedef struct cmkit_player cmkit_player_t;
+
+/** What the player wants (cmkit_player_step's `buttons`, or-ed). */
+typedef enum cmkit_player_button {
+  CMKIT_PLAYER_JUMP = 1,   /**< jump (a new press on the ground jumps) */
+  CMKIT_PLAYER_CROUCH = 2, /**< crouch */
+  CMKIT_PLAYER_RUN = 4     /**< run instead of walk */
+} cmkit_player_button;
+
+/** A player's state after its last step. */
+typedef struct cmkit_player_state {
+  float origin[3];              /**< the feet: bottom centre of the shape */
+  float velocity[3];            /**< units per second */
+  float ground_normal[3];       /**< the ground's normal (on_ground), else zero */
+  cmkit_entity_t ground_entity; /**< the entity stood on, CMKIT_NO_ENTITY in the air */
+  int32_t on_ground;            /**< 1: on walkable ground */
+  int32_t crouched;             /**< 1: the crouched shape is in use */
+  int32_t stuck;                /**< 1: the step started in solid and could not get free */
+  int64_t steps;                /**< steps taken */
+} cmkit_player_state_t;
+
+/** A player standing at `origin` (its feet): the engine's box (32 x 32 x 74,
+ *  38 crouched) when `shape` is NULL, else that trace model (origin at its
+ *  feet; crouching keeps it). Doom 3's parameters: gravity 1066, steps up
+ *  to 16 units, jumps 48 high, walks 140 units/s. */
+cmkit_status cmkit_player_create(const cmkit_trace_model_t* shape, const float origin[3],
+                                 cmkit_player_t** out);
+/** Frees a player (NULL: nothing). */
+void cmkit_player_free(cmkit_player_t* player);
+/** Moves the player to `origin`, at rest (a respawn, a teleport). */
+cmkit_status cmkit_player_set_origin(cmkit_player_t* player, const float origin[3]);
+/** Runs `steps` steps of 1/60 s through the world, wishing to walk along
+ *  `wish` (world space, z ignored, its length the fraction of full speed,
+ *  at most 1) with `buttons` (cmkit_player_button bits) held; the state
+ *  after the last step goes to `out` (may be NULL). Deterministic: the
+ *  same calls give the same bits. A player stands on moving entities:
+ *  move them with cmkit_world_set_placement between calls and the next
+ *  step carries it along. Several threads may step different players
+ *  through one world at once. */
+cmkit_status cmkit_player_step(const cmkit_world_t* world, cmkit_player_t* player, const float wish[3],
+                               uint32_t buttons, int32_t steps, cmkit_player_state_t* out);
+/** The player's state after its last step. */
+cmkit_status cmkit_player_state(const cmkit_player_t* player, cmkit_player_state_t* out);
+
 #ifdef __cplusplus
 }
 #endif

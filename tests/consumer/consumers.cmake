@@ -45,7 +45,7 @@ function(cmkit_build_consumers source prefix pcdir work cxx)
       ${cflags} -o ${work}/consumer_c)
     execute_process(COMMAND ${work}/consumer_c ${source}/../data/maps/two_halls.map RESULT_VARIABLE rc
                     OUTPUT_VARIABLE out ERROR_VARIABLE err)
-    if(NOT rc EQUAL 0 OR NOT out MATCHES "dropped: fraction 0\\.49875.*closed door: fraction 0\\.449375.*entity door1")
+    if(NOT rc EQUAL 0 OR NOT out MATCHES "dropped: fraction 0\\.39750.*closed door: fraction 0\\.449375.*entity door1")
       message(FATAL_ERROR "the C consumer failed (${rc}):\n${out}\n${err}")
     endif()
     message(STATUS "C consumer:\n${out}")

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cmkit/cmkit.h"
+#include "cmkit/movement.h"
 #include "cmkit/version.h"
 #include "cmkit/world.h"
 #include "test_support.h"
@@ -114,11 +115,11 @@ TEST(CApi, ErrorsAreStatusesWithAMessageOfTheCallingThread) {
 
 TEST(CApi, TheDoorStopsTheBoxUntilItMoves) {
   CWorld w;
-  // Dropped from 100 above the floor (z = 0): stops 0.25 above it.
-  const float top[3] = {-200, 0, 100}, below[3] = {-200, 0, -100};
+  // Dropped from 40 above the floor (z = 0; the ceiling is at 128): stops 0.25 above it.
+  const float top[3] = {-200, 0, 40}, below[3] = {-200, 0, -60};
   cmkit_trace_t t;
   ASSERT_EQ(cmkit_translate(w.world, w.box, nullptr, top, below, CMKIT_MASK_PLAYER_SOLID, &t), CMKIT_OK);
-  EXPECT_FLOAT_EQ(t.fraction, (100.0f - 0.25f) / 200.0f);
+  EXPECT_FLOAT_EQ(t.fraction, (40.0f - 0.25f) / 100.0f);
   EXPECT_FLOAT_EQ(t.end[2], 0.25f);
   EXPECT_EQ(t.normal[2], 1.0f);
   EXPECT_EQ(t.entity, 0);
@@ -262,4 +263,51 @@ TEST(CApi, BatchesEqualSingleCallsAtAnyThreadCount) {
   EXPECT_EQ(cmkit_translate_batch(w.world, w.box, nullptr, nullptr, ends.data(), n, CMKIT_MASK_SOLID, 1,
                                   single.data()),
             CMKIT_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(CApi, PlayerClimbsTheStairsAsTheLibrarysMoveDoes) {
+  const std::string stairs = (test::testDataDir() / "maps" / "stairs.map").string();
+  cmkit_world_t* world = nullptr;
+  ASSERT_EQ(cmkit_load_map(stairs.c_str(), &world), CMKIT_OK) << cmkit_last_error();
+  cmkit_player_t* player = nullptr;
+  const float feet[3] = {-64, 64, 1}, east[3] = {1, 0, 0};
+  ASSERT_EQ(cmkit_player_create(nullptr, feet, &player), CMKIT_OK);
+  cmkit_player_state_t state;
+  // Two calls of 120 steps are one run of 240.
+  ASSERT_EQ(cmkit_player_step(world, player, east, 0, 120, nullptr), CMKIT_OK);
+  ASSERT_EQ(cmkit_player_step(world, player, east, 0, 120, &state), CMKIT_OK);
+  EXPECT_EQ(state.steps, 240);
+  EXPECT_NEAR(state.origin[0], 239.75f, 0.05f);  // on the landing (tests/unit/test_movement.cpp)
+  EXPECT_NEAR(state.origin[2], 60.25f, 0.05f);
+  EXPECT_EQ(state.on_ground, 1);
+  EXPECT_EQ(state.ground_entity, 0);
+
+  Result<LoadedWorld> loaded = World::loadMap(stairs, MaterialTable{});
+  ASSERT_TRUE(loaded);
+  WorldQueryWork work;
+  PlayerState start;
+  start.origin = Vec3(-64, 64, 1);
+  PlayerInput input;
+  input.wishDir = Vec3(1, 0, 0);
+  const PlayerState expected =
+      runPlayer(loaded->world, PlayerShape::standard(), start, input, 240, move::kTimeStep, work);
+  EXPECT_EQ(state.origin[0], float(expected.origin.x));
+  EXPECT_EQ(state.origin[2], float(expected.origin.z));
+  EXPECT_EQ(state.velocity[0], float(expected.velocity.x));
+
+  // Held by the 24-unit risers; a teleport starts at rest.
+  const float held[3] = {-64, -64, 1};
+  ASSERT_EQ(cmkit_player_set_origin(player, held), CMKIT_OK);
+  ASSERT_EQ(cmkit_player_step(world, player, east, CMKIT_PLAYER_RUN, 240, &state), CMKIT_OK);
+  EXPECT_NEAR(state.origin[0], 47.75f, 0.05f);
+  EXPECT_NEAR(state.origin[2], 0.25f, 0.05f);
+  EXPECT_EQ(cmkit_player_step(world, player, east, 0, -1, &state), CMKIT_ERROR_INVALID_ARGUMENT);
+  cmkit_trace_model_t* point = nullptr;
+  ASSERT_EQ(cmkit_trace_model_from_spec("point", &point), CMKIT_OK);
+  cmkit_player_t* bad = nullptr;
+  EXPECT_EQ(cmkit_player_create(point, feet, &bad), CMKIT_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(bad, nullptr);
+  cmkit_trace_model_free(point);
+  cmkit_player_free(player);
+  cmkit_world_free(world);
 }
