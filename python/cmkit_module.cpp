@@ -4,7 +4,8 @@
 // what is here and adds the Models sequence. The rest of the module:
 // module_support (errors, numpy conversions, the wrapped objects),
 // trace_model_bindings.cpp (TraceModel), model_bindings.cpp (Model, loading
-// and saving), query_bindings.cpp (the Model's batch queries).
+// and saving), query_bindings.cpp (the Model's batch queries and what the
+// World's share with them: query_support.h), world_bindings.cpp (World).
 #include <pybind11/eval.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -72,4 +73,5 @@ class Error(Exception):
 
   bindTraceModel(m);
   bindModel(m);
+  bindWorld(m);
 }

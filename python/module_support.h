@@ -2,7 +2,8 @@
 // share: cmkit.Error and the unwrapping of the library's Results, numpy
 // conversions in (vectors, matrices, masks) and out, the wrapped trace model
 // and model, and the binding functions each file defines (cmkit_module.cpp
-// calls them in order).
+// calls them in order). query_support.h adds what the Model's and the World's
+// queries share.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -70,6 +71,9 @@ struct PyTraceModel {
 struct TrmArg {
   std::optional<cmkit::TraceModel> parsed;
   const cmkit::TraceModel* trm = nullptr;
+  // The trace model (nullptr: a point): `parsed` when a spec was parsed, so
+  // a TrmArg copied or moved out of trmArg() never points into the original.
+  const cmkit::TraceModel* get() const { return parsed ? &*parsed : trm; }
 };
 // The argument as a trace model (module_support.cpp).
 TrmArg trmArg(const py::object& object);
@@ -97,5 +101,7 @@ void bindModel(py::module_& m);
 // The Model's query methods: translate, rotate, cast_rays, point_contents,
 // contents, contacts (query_bindings.cpp).
 void addQueryMethods(PyModelClass& cls);
+// The World class: its queries, entities and walk; loading (world_bindings.cpp).
+void bindWorld(py::module_& m);
 
 }  // namespace cmkit_python

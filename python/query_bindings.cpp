@@ -1,7 +1,8 @@
-// query_bindings.cpp: the query methods of cmkit.Model. Each converts its
-// numpy input with the GIL held, runs the C++ batch (cmkit/batch.h) without
-// it (the progress hook takes it back; Ctrl-C cancels), and builds its dict
-// of numpy arrays with the GIL again.
+// query_bindings.cpp: the query methods of cmkit.Model, and what they share
+// with cmkit.World's (query_support.h): each converts its numpy input with
+// the GIL held, runs the C++ batch (cmkit/batch.h) without it (the progress
+// hook takes it back; Ctrl-C cancels), and builds its dict of numpy arrays
+// with the GIL again.
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
@@ -13,64 +14,143 @@
 #include "cmkit/batch.h"
 #include "cmkit/query.h"
 #include "module_support.h"
+#include "query_support.h"
 
 namespace cmkit_python {
 
-namespace {
+// ---- running a batch ----------------------------------------------------
 
-cmkit::Placement placementOf(const py::object& origin, const py::object& axis) {
-  cmkit::Placement p;
-  if (!origin.is_none()) p.origin = vector3(origin, "origin");
-  p.axis = matrix(axis, "model_axis");
-  return p;
+Hook::Hook(int threads, py::object cb) : callback(std::move(cb)) {
+  if (threads < 0) throw py::value_error("threads must be 0 (all cores) or more");
+  options.threads = threads;
+  options.progress = [this](std::size_t done, std::size_t total) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) return false;  // the exception stays set
+    if (callback.is_none()) return true;
+    try {
+      const py::object r = callback(done, total);
+      return r.is_none() || r.cast<bool>();
+    } catch (py::error_already_set& e) {
+      e.restore();  // re-raised when the batch returns
+      return false;
+    }
+  };
 }
+
+// ---- the arguments of each kind -----------------------------------------
+
+namespace {
 
 // The fields every trace-model query shares, from the Python arguments.
 template <class Query>
-void setTraceModelQuery(Query& q, const TrmArg& t, const py::object& axis, std::int64_t mask,
-                        const py::object& origin, const py::object& modelAxis) {
-  q.trm = t.trm;
+void setTraceModelQuery(Query& q, const TrmArg& t, const py::object& axis, std::int64_t mask) {
+  q.trm = t.get();
   q.trmAxis = matrix(axis, "axis");
   q.contentMask = maskOf(mask);
-  q.placement = placementOf(origin, modelAxis);
 }
 
-// Batch options with the progress hook: the Python callable (if any) is
-// called with the GIL; Ctrl-C (a pending signal) cancels the batch.
-struct Hook {
-  py::object callback;
-  cmkit::BatchOptions options;
-
-  Hook(int threads, py::object cb) : callback(std::move(cb)) {
-    if (threads < 0) throw py::value_error("threads must be 0 (all cores) or more");
-    options.threads = threads;
-    options.progress = [this](std::size_t done, std::size_t total) {
-      py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() != 0) return false;  // the exception stays set
-      if (callback.is_none()) return true;
-      try {
-        const py::object r = callback(done, total);
-        return r.is_none() || r.cast<bool>();
-      } catch (py::error_already_set& e) {
-        e.restore();  // re-raised when the batch returns
-        return false;
-      }
-    };
+// The rotations of origins (N, 3), unit axes (N, 3) and angles (N,) degrees
+// (each may be given once for all), checked.
+std::vector<cmkit::Rotation> rotationsOf(const py::object& origins, const py::object& axes,
+                                         const py::object& angles) {
+  const auto o = vectors(origins, "origins"), a = vectors(axes, "axes");
+  const auto deg = py::array_t<Real, py::array::c_style | py::array::forcecast>::ensure(angles);
+  if (!deg || deg.ndim() > 1) throw py::value_error("angles must be a number or an array of shape (N,)");
+  const std::size_t numAngles = deg.ndim() == 0 ? 1 : std::size_t(deg.shape(0));
+  std::size_t n = unwrap(cmkit::batchSize(o.size(), a.size(), "origins and axes"));
+  n = unwrap(cmkit::batchSize(n, numAngles, "rotations (origins, axes) and angles"));
+  std::vector<cmkit::Rotation> rotations(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Real angle = deg.data()[numAngles == 1 ? 0 : i];
+    const Vec3 ax = a[a.size() == 1 ? 0 : i];
+    if (!std::isfinite(angle)) throw py::value_error("angles[" + std::to_string(i) + "] is not finite");
+    const Real len = ax.length();
+    if (!(std::abs(len - 1) < Real(1e-3)))
+      throw py::value_error("axes[" + std::to_string(i) + "] must be a unit vector");
+    rotations[i] = cmkit::Rotation(o[o.size() == 1 ? 0 : i], ax, angle);
   }
-};
-
-// Runs a batch without the GIL; a Python exception from the hook (or a
-// signal) wins over the batch's "cancelled" error.
-template <class F>
-void runBatch(F&& run) {
-  cmkit::Status s = cmkit::Ok{};
-  {
-    py::gil_scoped_release release;
-    s = run();
-  }
-  if (PyErr_Occurred()) throw py::error_already_set();
-  if (!s.ok()) raise(s.error());
+  return rotations;
 }
+
+}  // namespace
+
+TranslationArgs::TranslationArgs(const py::object& trmObject, const py::object& startsObject,
+                                 const py::object& endsObject, std::int64_t mask, const py::object& axis,
+                                 bool startSolid)
+    : trm(trmArg(trmObject)), starts(vectors(startsObject, "starts")), ends(vectors(endsObject, "ends")) {
+  setTraceModelQuery(batch.query, trm, axis, mask);
+  batch.query.detectStartSolid = startSolid;
+  batch.starts = starts;
+  batch.ends = ends;
+  size = unwrap(cmkit::batchSize(starts.size(), ends.size(), "starts and ends"));
+}
+
+RotationArgs::RotationArgs(const py::object& trmObject, const py::object& startsObject,
+                           const py::object& origins, const py::object& axes, const py::object& angles,
+                           std::int64_t mask, const py::object& axis, bool startSolid)
+    : trm(trmArg(trmObject)),
+      starts(vectors(startsObject, "starts")),
+      rotations(rotationsOf(origins, axes, angles)) {
+  setTraceModelQuery(batch.query, trm, axis, mask);
+  batch.query.detectStartSolid = startSolid;
+  batch.starts = starts;
+  batch.rotations = rotations;
+  size = unwrap(cmkit::batchSize(starts.size(), rotations.size(), "starts and rotations"));
+}
+
+RayArgs::RayArgs(const py::object& origins, const py::object& endsObject, std::int64_t mask)
+    : starts(vectors(origins, "origins")), ends(vectors(endsObject, "ends")) {
+  batch.query.contentMask = maskOf(mask);
+  batch.starts = starts;
+  batch.ends = ends;
+  size = unwrap(cmkit::batchSize(starts.size(), ends.size(), "origins and ends"));
+}
+
+PointArgs::PointArgs(const py::object& pointsObject) : points(vectors(pointsObject, "points")) {
+  batch.points = points;
+  size = points.size();
+}
+
+ContentsArgs::ContentsArgs(const py::object& trmObject, const py::object& positionsObject, std::int64_t mask,
+                           const py::object& axis)
+    : trm(trmArg(trmObject)), positions(vectors(positionsObject, "positions")) {
+  setTraceModelQuery(batch.query, trm, axis, mask);
+  batch.positions = positions;
+  size = positions.size();
+}
+
+ContactsArgs::ContactsArgs(const py::object& trmObject, const py::object& startsObject,
+                           const py::object& dirsObject, double depth, int maxContacts,
+                           const py::object& origins, const py::object& axes, const py::object& angles,
+                           std::int64_t mask, const py::object& axis)
+    : trm(trmArg(trmObject)), starts(vectors(startsObject, "starts")) {
+  if (!std::isfinite(depth) || depth < 0) throw py::value_error("depth must be finite and not negative");
+  if (maxContacts < 1 || maxContacts > 1024) throw py::value_error("max_contacts must be 1..1024");
+  const int rotationArgs = int(!origins.is_none()) + int(!axes.is_none()) + int(!angles.is_none());
+  if (rotationArgs != 0 && rotationArgs != 3)
+    throw py::value_error("a rotation needs origins, axes and angles (all three)");
+  if (rotationArgs == 0 && dirsObject.is_none())
+    throw py::value_error("contacts need dirs (or origins, axes and angles)");
+  // Along rotations: dirs may be left out (no translation); dirs with a
+  // depth beside them is a query the library refuses (STATUS_MIXED_MOTION).
+  if (!dirsObject.is_none()) dirs = vectors(dirsObject, "dirs");
+  if (rotationArgs == 3) rotations = rotationsOf(origins, axes, angles);
+  setTraceModelQuery(batch.query, trm, axis, mask);
+  batch.query.depth = Real(depth);
+  batch.query.maxContacts = maxContacts;
+  batch.starts = starts;
+  batch.dirs = dirs;
+  batch.rotations = rotations;
+  size = starts.size();
+  if (!dirs.empty() || rotations.empty())
+    size = unwrap(cmkit::batchSize(size, dirs.size(), "starts and dirs"));
+  if (!rotations.empty())
+    size = unwrap(cmkit::batchSize(size, rotations.size(), "starts, dirs and rotations"));
+}
+
+// ---- the answers --------------------------------------------------------
+
+namespace {
 
 // The fields of a contact, for rows n of (n, m) arrays.
 struct ContactArrays {
@@ -113,13 +193,7 @@ struct ContactArrays {
   }
 };
 
-// The (N,) uint8 array of the results' QueryStatus values (STATUS_*).
-template <class R>
-py::array_t<std::uint8_t> statusArray(const std::vector<R>& results) {
-  auto status = py::array_t<std::uint8_t>(py::ssize_t(results.size()));
-  for (std::size_t i = 0; i < results.size(); ++i) status.mutable_data()[i] = std::uint8_t(results[i].status);
-  return status;
-}
+}  // namespace
 
 py::dict traceArrays(const std::vector<cmkit::TraceResult>& results) {
   const std::size_t n = results.size();
@@ -146,79 +220,8 @@ py::dict traceArrays(const std::vector<cmkit::TraceResult>& results) {
   return d;
 }
 
-py::dict translateBatch(PyModel& self, const py::object& trm, const py::object& starts,
-                        const py::object& ends, std::int64_t mask, const py::object& axis, bool startSolid,
-                        const py::object& origin, const py::object& modelAxis, int threads,
-                        const py::object& progress) {
-  const TrmArg t = trmArg(trm);
-  const auto s = vectors(starts, "starts"), e = vectors(ends, "ends");
-  cmkit::TranslationBatch b;
-  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
-  b.query.detectStartSolid = startSolid;
-  b.starts = s;
-  b.ends = e;
-  const auto n = unwrap(cmkit::batchSize(s.size(), e.size(), "starts and ends"));
-  std::vector<cmkit::TraceResult> out(n);
-  Hook hook(threads, progress);
-  runBatch([&] { return cmkit::translateBatch(*self.model, b, out, hook.options); });
-  return traceArrays(out);
-}
-
-// The rotations of origins (N, 3), unit axes (N, 3) and angles (N,) degrees
-// (each may be given once for all), checked.
-std::vector<cmkit::Rotation> rotationsOf(const py::object& origins, const py::object& axes,
-                                         const py::object& angles) {
-  const auto o = vectors(origins, "origins"), a = vectors(axes, "axes");
-  const auto deg = py::array_t<Real, py::array::c_style | py::array::forcecast>::ensure(angles);
-  if (!deg || deg.ndim() > 1) throw py::value_error("angles must be a number or an array of shape (N,)");
-  const std::size_t numAngles = deg.ndim() == 0 ? 1 : std::size_t(deg.shape(0));
-  std::size_t n = unwrap(cmkit::batchSize(o.size(), a.size(), "origins and axes"));
-  n = unwrap(cmkit::batchSize(n, numAngles, "rotations (origins, axes) and angles"));
-  std::vector<cmkit::Rotation> rotations(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Real angle = deg.data()[numAngles == 1 ? 0 : i];
-    const Vec3 ax = a[a.size() == 1 ? 0 : i];
-    if (!std::isfinite(angle)) throw py::value_error("angles[" + std::to_string(i) + "] is not finite");
-    const Real len = ax.length();
-    if (!(std::abs(len - 1) < Real(1e-3)))
-      throw py::value_error("axes[" + std::to_string(i) + "] must be a unit vector");
-    rotations[i] = cmkit::Rotation(o[o.size() == 1 ? 0 : i], ax, angle);
-  }
-  return rotations;
-}
-
-py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& starts,
-                     const py::object& origins, const py::object& axes, const py::object& angles,
-                     std::int64_t mask, const py::object& axis, bool startSolid, const py::object& origin,
-                     const py::object& modelAxis, int threads, const py::object& progress) {
-  const TrmArg t = trmArg(trm);
-  const auto s = vectors(starts, "starts");
-  const std::vector<cmkit::Rotation> rotations = rotationsOf(origins, axes, angles);
-  const std::size_t n = rotations.size();
-  cmkit::RotationBatch b;
-  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
-  b.query.detectStartSolid = startSolid;
-  b.starts = s;
-  b.rotations = rotations;
-  std::vector<cmkit::TraceResult> out(unwrap(cmkit::batchSize(s.size(), n, "starts and rotations")));
-  Hook hook(threads, progress);
-  runBatch([&] { return cmkit::rotateBatch(*self.model, b, out, hook.options); });
-  return traceArrays(out);
-}
-
-py::dict castRays(PyModel& self, const py::object& starts, const py::object& ends, std::int64_t mask,
-                  const py::object& origin, const py::object& modelAxis, int threads,
-                  const py::object& progress) {
-  const auto s = vectors(starts, "origins"), e = vectors(ends, "ends");
-  cmkit::RayBatch b;
-  b.query.contentMask = maskOf(mask);
-  b.query.placement = placementOf(origin, modelAxis);
-  b.starts = s;
-  b.ends = e;
-  const std::size_t n = unwrap(cmkit::batchSize(s.size(), e.size(), "origins and ends"));
-  std::vector<cmkit::RayHit> out(n);
-  Hook hook(threads, progress);
-  runBatch([&] { return cmkit::castRayBatch(self.rayIndex(), b, out, hook.options); });
+py::dict rayArrays(const std::vector<cmkit::RayHit>& hits) {
+  const std::size_t n = hits.size();
   auto fraction = py::array_t<Real>(py::ssize_t(n));
   auto point = py::array_t<Real>({py::ssize_t(n), py::ssize_t(3)});
   auto normal = py::array_t<Real>({py::ssize_t(n), py::ssize_t(3)});
@@ -228,7 +231,7 @@ py::dict castRays(PyModel& self, const py::object& starts, const py::object& end
   auto material = py::array_t<std::int32_t>(py::ssize_t(n));
   auto hit = py::array_t<bool>(py::ssize_t(n));
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& h = out[i];
+    const auto& h = hits[i];
     fraction.mutable_data()[i] = h.fraction;
     put(point.mutable_data() + 3 * i, h.point);
     put(normal.mutable_data() + 3 * i, h.normal);
@@ -250,86 +253,40 @@ py::dict castRays(PyModel& self, const py::object& starts, const py::object& end
   return d;
 }
 
-py::dict pointContents(PyModel& self, const py::object& points, const py::object& origin,
-                       const py::object& modelAxis, int threads, const py::object& progress) {
-  const auto p = vectors(points, "points");
-  cmkit::PointContentsBatch b;
-  b.query.placement = placementOf(origin, modelAxis);
-  b.points = p;
-  std::vector<cmkit::PointContentsResult> out(p.size());
-  Hook hook(threads, progress);
-  runBatch([&] { return cmkit::pointContentsBatch(*self.model, b, out, hook.options); });
-  auto contents = py::array_t<std::uint32_t>(py::ssize_t(out.size()));
-  for (std::size_t i = 0; i < out.size(); ++i) contents.mutable_data()[i] = out[i].contents;
+py::dict pointContentsArrays(const std::vector<std::uint32_t>& contents,
+                             const std::vector<cmkit::QueryStatus>& status) {
+  auto c = py::array_t<std::uint32_t>(py::ssize_t(contents.size()));
+  auto s = py::array_t<std::uint8_t>(py::ssize_t(status.size()));
+  for (std::size_t i = 0; i < contents.size(); ++i) c.mutable_data()[i] = contents[i];
+  for (std::size_t i = 0; i < status.size(); ++i) s.mutable_data()[i] = std::uint8_t(status[i]);
   py::dict d;
-  d["contents"] = contents;
-  d["status"] = statusArray(out);
+  d["contents"] = c;
+  d["status"] = s;
   return d;
 }
 
-py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& positions, std::int64_t mask,
-                       const py::object& axis, const py::object& origin, const py::object& modelAxis,
-                       int threads, const py::object& progress) {
-  const TrmArg t = trmArg(trm);
-  const auto p = vectors(positions, "positions");
-  cmkit::ContentsBatch b;
-  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
-  b.positions = p;
-  std::vector<cmkit::ContentsResult> out(p.size());
-  Hook hook(threads, progress);
-  runBatch([&] { return cmkit::contentsBatch(*self.model, b, out, hook.options); });
-  std::vector<cmkit::TraceResult> traces(out.size());
-  auto contents = py::array_t<std::uint32_t>(py::ssize_t(out.size()));
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    traces[i] = out[i].trace;
-    contents.mutable_data()[i] = out[i].contents;
+py::dict contentsArrays(const std::vector<cmkit::ContentsResult>& results) {
+  std::vector<cmkit::TraceResult> traces(results.size());
+  auto contents = py::array_t<std::uint32_t>(py::ssize_t(results.size()));
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    traces[i] = results[i].trace;
+    contents.mutable_data()[i] = results[i].contents;
   }
   py::dict d = traceArrays(traces);
   d["contact_contents"] = d["contents"];
   d["contents"] = contents;
-  d["status"] = statusArray(out);
+  d["status"] = statusArray(results);
   return d;
 }
 
-py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& starts, const py::object& dirs,
-                       double depth, int maxContacts, const py::object& origins, const py::object& axes,
-                       const py::object& angles, std::int64_t mask, const py::object& axis,
-                       const py::object& origin, const py::object& modelAxis, int threads,
-                       const py::object& progress) {
-  const TrmArg t = trmArg(trm);
-  const auto s = vectors(starts, "starts");
-  if (!std::isfinite(depth) || depth < 0) throw py::value_error("depth must be finite and not negative");
-  if (maxContacts < 1 || maxContacts > 1024) throw py::value_error("max_contacts must be 1..1024");
-  const int rotationArgs = int(!origins.is_none()) + int(!axes.is_none()) + int(!angles.is_none());
-  if (rotationArgs != 0 && rotationArgs != 3)
-    throw py::value_error("a rotation needs origins, axes and angles (all three)");
-  if (rotationArgs == 0 && dirs.is_none())
-    throw py::value_error("contacts need dirs (or origins, axes and angles)");
-  // Along rotations: dirs may be left out (no translation); dirs with a
-  // depth beside them is a query the library refuses (STATUS_MIXED_MOTION).
-  const std::vector<Vec3> dv = dirs.is_none() ? std::vector<Vec3>{} : vectors(dirs, "dirs");
-  const std::vector<cmkit::Rotation> rotations =
-      rotationArgs == 3 ? rotationsOf(origins, axes, angles) : std::vector<cmkit::Rotation>{};
-  cmkit::ContactsBatch b;
-  setTraceModelQuery(b.query, t, axis, mask, origin, modelAxis);
-  b.query.depth = Real(depth);
-  b.query.maxContacts = maxContacts;
-  b.starts = s;
-  b.dirs = dv;
-  b.rotations = rotations;
-  std::size_t n = s.size();
-  if (!dv.empty() || rotations.empty()) n = unwrap(cmkit::batchSize(n, dv.size(), "starts and dirs"));
-  if (!rotations.empty()) n = unwrap(cmkit::batchSize(n, rotations.size(), "starts, dirs and rotations"));
-  std::vector<cmkit::ContactsResult> out(n);
-  Hook hook(threads, progress);
-  runBatch([&] { return cmkit::contactsBatch(*self.model, b, out, hook.options); });
-  const std::size_t m = std::size_t(maxContacts);
+py::dict contactsArrays(const std::vector<cmkit::ContactsResult>& results, int maxContacts) {
+  const std::size_t n = results.size(), m = std::size_t(maxContacts);
   auto count = py::array_t<std::int32_t>(py::ssize_t(n));
   ContactArrays arrays({py::ssize_t(n), py::ssize_t(m)});
   auto angle = py::array_t<Real>({py::ssize_t(n), py::ssize_t(m)});
   const cmkit::ContactInfo none;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& list = out[i].contacts;
+    const auto& list = results[i].contacts;
     count.mutable_data()[i] = std::int32_t(list.size());
     for (std::size_t k = 0; k < m; ++k) {
       const cmkit::ContactInfo& c = k < list.size() ? list[k] : none;
@@ -339,22 +296,111 @@ py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& s
   }
   py::dict d;
   d["count"] = count;
-  d["status"] = statusArray(out);
+  d["status"] = statusArray(results);
   arrays.into(d);
   d["angle"] = angle;
   return d;
+}
+
+const char* const kBatchNote =
+    "\n\nEvery batch method takes threads= (0: all cores; results are identical at any count) and "
+    "progress= (a callable(done, total) called now and then on the calling thread; return False "
+    "to cancel: cmkit.Error is raised). The GIL is released while it runs; Ctrl-C cancels it. "
+    "Coordinates are float32 (float64 input is rounded).";
+
+// ---- cmkit.Model's methods ----------------------------------------------
+
+namespace {
+
+cmkit::Placement placementOf(const py::object& origin, const py::object& axis) {
+  cmkit::Placement p;
+  if (!origin.is_none()) p.origin = vector3(origin, "origin");
+  p.axis = matrix(axis, "model_axis");
+  return p;
+}
+
+py::dict translateBatch(PyModel& self, const py::object& trm, const py::object& starts,
+                        const py::object& ends, std::int64_t mask, const py::object& axis, bool startSolid,
+                        const py::object& origin, const py::object& modelAxis, int threads,
+                        const py::object& progress) {
+  TranslationArgs a(trm, starts, ends, mask, axis, startSolid);
+  a.batch.query.placement = placementOf(origin, modelAxis);
+  std::vector<cmkit::TraceResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] { return cmkit::translateBatch(*self.model, a.batch, out, hook.options); });
+  return traceArrays(out);
+}
+
+py::dict rotateBatch(PyModel& self, const py::object& trm, const py::object& starts,
+                     const py::object& origins, const py::object& axes, const py::object& angles,
+                     std::int64_t mask, const py::object& axis, bool startSolid, const py::object& origin,
+                     const py::object& modelAxis, int threads, const py::object& progress) {
+  RotationArgs a(trm, starts, origins, axes, angles, mask, axis, startSolid);
+  a.batch.query.placement = placementOf(origin, modelAxis);
+  std::vector<cmkit::TraceResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] { return cmkit::rotateBatch(*self.model, a.batch, out, hook.options); });
+  return traceArrays(out);
+}
+
+py::dict castRays(PyModel& self, const py::object& starts, const py::object& ends, std::int64_t mask,
+                  const py::object& origin, const py::object& modelAxis, int threads,
+                  const py::object& progress) {
+  RayArgs a(starts, ends, mask);
+  a.batch.query.placement = placementOf(origin, modelAxis);
+  std::vector<cmkit::RayHit> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] { return cmkit::castRayBatch(self.rayIndex(), a.batch, out, hook.options); });
+  return rayArrays(out);
+}
+
+py::dict pointContents(PyModel& self, const py::object& points, const py::object& origin,
+                       const py::object& modelAxis, int threads, const py::object& progress) {
+  PointArgs a(points);
+  a.batch.query.placement = placementOf(origin, modelAxis);
+  std::vector<cmkit::PointContentsResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] { return cmkit::pointContentsBatch(*self.model, a.batch, out, hook.options); });
+  std::vector<std::uint32_t> contents(out.size());
+  std::vector<cmkit::QueryStatus> status(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    contents[i] = out[i].contents;
+    status[i] = out[i].status;
+  }
+  return pointContentsArrays(contents, status);
+}
+
+py::dict contentsBatch(PyModel& self, const py::object& trm, const py::object& positions, std::int64_t mask,
+                       const py::object& axis, const py::object& origin, const py::object& modelAxis,
+                       int threads, const py::object& progress) {
+  ContentsArgs a(trm, positions, mask, axis);
+  a.batch.query.placement = placementOf(origin, modelAxis);
+  std::vector<cmkit::ContentsResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] { return cmkit::contentsBatch(*self.model, a.batch, out, hook.options); });
+  return contentsArrays(out);
+}
+
+py::dict contactsBatch(PyModel& self, const py::object& trm, const py::object& starts, const py::object& dirs,
+                       double depth, int maxContacts, const py::object& origins, const py::object& axes,
+                       const py::object& angles, std::int64_t mask, const py::object& axis,
+                       const py::object& origin, const py::object& modelAxis, int threads,
+                       const py::object& progress) {
+  ContactsArgs a(trm, starts, dirs, depth, maxContacts, origins, axes, angles, mask, axis);
+  a.batch.query.placement = placementOf(origin, modelAxis);
+  std::vector<cmkit::ContactsResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] { return cmkit::contactsBatch(*self.model, a.batch, out, hook.options); });
+  return contactsArrays(out, maxContacts);
 }
 
 }  // namespace
 
 void addQueryMethods(PyModelClass& cls) {
   namespace c = cmkit::contents;
-  const char* batchNote =
-      "\n\nEvery batch method takes threads= (0: all cores; results are identical at any count) and "
-      "progress= (a callable(done, total) called now and then on the calling thread; return False "
-      "to cancel: cmkit.Error is raised). The GIL is released while it runs; Ctrl-C cancels it. "
-      "Coordinates are float32 (float64 input is rounded). origin=/model_axis= place the model in "
-      "the world (default: where it was built).";
+  const std::string batchNote =
+      std::string(kBatchNote) +
+      " origin=/model_axis= place the model in the world (default: where it was built).";
 
   cls.def("translate", &translateBatch, py::arg("trm"), py::arg("starts"), py::arg("ends"), py::kw_only(),
           py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("start_solid") = false,

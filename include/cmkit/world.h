@@ -188,7 +188,9 @@ class World;
 
 /// What loading a map into a World did.
 struct WorldLoadReport {
-  LoadMapResult models;       ///< how the models were made (.cm or built, .proc, warnings)
+  /// loadMap: how the models were made (.cm or built, .proc, warnings);
+  /// fromMap: left empty.
+  LoadMapResult models;
   int entitiesPlaced = 0;     ///< entities in the world, worldspawn included
   int noclipSkipped = 0;      ///< entities with primitives left out for `noclipmodel` "1"
   int meshModelsSkipped = 0;  ///< entities without primitives whose `model` key names a file
@@ -203,7 +205,8 @@ class World {
   /// An empty world (no world model; entities added by the caller).
   World();
   ~World();
-  /// Moves the world (entity ids stay).
+  /// Moves the world (entity ids stay). A moved-from World may only be
+  /// destroyed or assigned to.
   World(World&&) noexcept;
   /// Moves the world (entity ids stay).
   World& operator=(World&&) noexcept;

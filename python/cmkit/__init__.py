@@ -11,6 +11,14 @@ Load a map's collision models and ask many questions at once, numpy in, numpy ou
     r = world.translate(player, starts, ends)   # starts, ends: (N, 3)
     r["fraction"], r["endpos"], r["normal"]
 
+A map's entities placed where its keys say, queried as one, with a player
+that walks through them::
+
+    world = cmkit.load_world("tests/data/maps/two_halls.map")
+    r = world.translate(player, starts, ends)   # the same dict, plus r["entity"]
+    world.set_transform("door1", origin=(0, 0, 176))
+    world.walk((-64, 0, 1), (1, 0), 2.0)["end"]
+
 Every batch method runs on all cores (threads=) with the GIL released, and
 gives the same bits at any thread count. See docs/python.md.
 """
@@ -39,6 +47,7 @@ from ._cmkit import (  # noqa: F401  (re-exported)
     Error,
     Model,
     TraceModel,
+    World,
     content_names,
     status_name,
 )
@@ -49,8 +58,8 @@ __all__ = [
     "MASK_ALL", "MASK_MONSTER_SOLID", "MASK_OPAQUE", "MASK_PLAYER_SOLID", "MASK_SOLID", "MASK_WATER",
     "STATUS_BAD_MODEL_AXIS", "STATUS_BAD_ROTATION_AXIS", "STATUS_BAD_TRM_AXIS", "STATUS_MIXED_MOTION",
     "STATUS_NON_FINITE", "STATUS_OK", "STATUS_OUT_OF_RANGE",
-    "Error", "Model", "Models", "TraceModel", "content_names", "load_cm", "load_map", "parse_cm",
-    "status_name",
+    "Error", "Model", "Models", "TraceModel", "World", "content_names", "load_cm", "load_map", "load_world",
+    "parse_cm", "status_name",
 ]
 
 
@@ -140,3 +149,16 @@ def parse_cm(text, name="<text>"):
     """Models from .cm text; `name` is used in error messages."""
     models, crc = _cmkit._parse_cm(text, name)
     return Models(models, crc, {"from_cm": True})
+
+
+def load_world(path, *, force_rebuild=False, use_proc=True):
+    """Loads a .map file as a World: its collision models placed as its entities.
+
+    The models are made as load_map makes them (NAME.cm beside the map when
+    its CRC matches, force_rebuild=True always builds; NAME.proc prunes the
+    world model unless use_proc=False; the built-in material rules). Entity
+    0 is the world model; then every entity with brushes or patches, placed
+    by its origin / rotation / angle keys. Raises cmkit.Error
+    ("file:line:column: message") for a missing or malformed file.
+    """
+    return _cmkit._load_world(str(path), force_rebuild, use_proc)

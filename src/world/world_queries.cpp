@@ -66,10 +66,12 @@ void gather(const WorldData& d, const Overlaps& overlaps, std::uint32_t mask, co
   s.candidates.resize(kept);
 }
 
-/// The broad phase's test for a swept box.
-auto boxTest(const Bounds& sweep) {
+/// The broad phase for a swept box: the entities whose boxes meet it padded.
+void gatherBox(const WorldData& d, const Bounds& sweep, std::uint32_t mask, const EntityFilter& filter,
+               WorldScratch& s) {
   const Bounds padded = sweep.expanded(tol::kWorldBroadPhasePadding);
-  return [padded](const Bounds& b) { return padded.intersects(b); };
+  gather(
+      d, [&padded](const Bounds& b) { return padded.intersects(b); }, mask, filter, s);
 }
 
 WorldScratch& scratchOf(WorldQueryWork& work) { return detail::WorldWorkAccess::of(work); }
@@ -88,7 +90,7 @@ WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork&
   WorldScratch& s = scratchOf(work);
   Bounds sweep = trmBoundsAt(g.trm, g.trmAxis, g.start);
   sweep.addBounds(trmBoundsAt(g.trm, g.trmAxis, g.end));
-  gather(*data_, boxTest(sweep), g.contentMask, filter, s);
+  gatherBox(*data_, sweep, g.contentMask, filter, s);
 
   TranslationQuery q = query;
   bool asked = false, startSolid = false;
@@ -129,7 +131,7 @@ WorldTraceResult World::rotate(const RotationQuery& query, WorldQueryWork& work,
     return out;
   }
   WorldScratch& s = scratchOf(work);
-  gather(*data_, boxTest(turnBounds(g.trm, g.trmAxis, g.start, g.rotation.origin)), g.contentMask, filter, s);
+  gatherBox(*data_, turnBounds(g.trm, g.trmAxis, g.start, g.rotation.origin), g.contentMask, filter, s);
 
   RotationQuery q = query;
   bool asked = false, startSolid = false;
@@ -173,7 +175,7 @@ WorldContentsResult World::contentsTest(const ContentsQuery& query, WorldQueryWo
     return out;
   }
   WorldScratch& s = scratchOf(work);
-  gather(*data_, boxTest(trmBoundsAt(g.trm, g.trmAxis, g.position)), g.contentMask, filter, s);
+  gatherBox(*data_, trmBoundsAt(g.trm, g.trmAxis, g.position), g.contentMask, filter, s);
 
   ContentsQuery q = query;
   std::uint32_t all = 0;
@@ -208,7 +210,7 @@ WorldPointContentsResult World::pointContents(const PointContentsQuery& query, W
     return out;
   }
   WorldScratch& s = scratchOf(work);
-  gather(*data_, boxTest(Bounds::ofPoint(g.point)), 0, filter, s);
+  gatherBox(*data_, Bounds::ofPoint(g.point), 0, filter, s);
   PointContentsQuery q = query;
   for (const EntityId id : s.candidates) {
     const WorldEntity& e = data_->slot(id)->entity;
@@ -237,7 +239,7 @@ WorldContactsResult World::contacts(const ContactsQuery& query, WorldQueryWork& 
     sweep = trmBoundsAt(g.trm, g.trmAxis, g.start);
     sweep.addBounds(trmBoundsAt(g.trm, g.trmAxis, g.start + g.dir * g.depth));
   }
-  gather(*data_, boxTest(sweep), g.contentMask, filter, s);
+  gatherBox(*data_, sweep, g.contentMask, filter, s);
   ContactsQuery q = query;
   for (const EntityId id : s.candidates) {
     const WorldEntity& e = data_->slot(id)->entity;

@@ -1,0 +1,470 @@
+// world_bindings.cpp: cmkit.World (cmkit/world.h: a map's placed entities
+// queried as one, and the player move of cmkit/movement.h) and
+// cmkit._load_world. The queries take the arguments of cmkit.Model's and give
+// its dicts (query_support.h), plus the entity hit. A shared mutex orders
+// set_transform (the one writer) against queries and walks, which run
+// without the GIL: a writer waits for the running queries, queries wait for
+// it; every lock is taken with the GIL released, so a progress callback that
+// needs the GIL never waits on a thread that holds it.
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <shared_mutex>
+#include <string>
+#include <vector>
+
+#include "cmkit/materials.h"
+#include "cmkit/movement.h"
+#include "cmkit/world.h"
+#include "module_support.h"
+#include "query_support.h"
+
+namespace cmkit_python {
+
+namespace {
+
+struct PyWorld {
+  cmkit::World world;
+  cmkit::WorldLoadReport report;
+  std::string path;
+  std::shared_mutex mutex;  // shared: queries, walks, reads; exclusive: set_transform
+};
+using PyWorldClass = py::class_<PyWorld, std::shared_ptr<PyWorld>>;
+
+// Runs `read` (plain C++, no Python objects) under the shared lock with the
+// GIL released.
+template <class F>
+auto readLocked(PyWorld& w, F&& read) {
+  py::gil_scoped_release release;
+  const std::shared_lock lock(w.mutex);
+  return read();
+}
+
+std::shared_ptr<PyWorld> loadWorld(const std::string& path, bool forceRebuild, bool useProc) {
+  cmkit::LoadMapOptions options;
+  options.forceRebuild = forceRebuild;
+  options.useProcFile = useProc;
+  std::optional<cmkit::Result<cmkit::LoadedWorld>> r;
+  {
+    py::gil_scoped_release release;
+    r.emplace(cmkit::World::loadMap(path, cmkit::MaterialTable{}, options));
+  }
+  cmkit::LoadedWorld loaded = unwrap(std::move(*r));
+  auto w = std::make_shared<PyWorld>();
+  w->world = std::move(loaded.world);
+  w->report = std::move(loaded.report);
+  w->path = path;
+  return w;
+}
+
+// An entity named by its id (int) or name (str, the first of that name);
+// KeyError when there is none.
+cmkit::EntityId entityOf(PyWorld& w, const py::handle& nameOrId) {
+  if (py::isinstance<py::int_>(nameOrId)) {
+    const auto id = nameOrId.cast<std::int64_t>();
+    const bool live = id >= 0 && id < std::int64_t(INT32_MAX) &&
+                      readLocked(w, [&] { return w.world.entity(cmkit::EntityId(id)) != nullptr; });
+    if (!live) throw py::key_error("no entity with id " + std::to_string(id));
+    return cmkit::EntityId(id);
+  }
+  if (py::isinstance<py::str>(nameOrId)) {
+    const auto name = nameOrId.cast<std::string>();
+    const cmkit::EntityId id = readLocked(w, [&] { return w.world.find(name); });
+    if (id == cmkit::kNoEntity) throw py::key_error("no entity named '" + name + "'");
+    return id;
+  }
+  throw py::type_error("an entity is given by its id (int) or name (str), not " +
+                       std::string(py::str(nameOrId.get_type().attr("__name__"))));
+}
+
+// The (N,) int32 array of the results' entities (-1: none).
+template <class R>
+py::array_t<std::int32_t> entityArray(const std::vector<R>& results) {
+  auto a = py::array_t<std::int32_t>(py::ssize_t(results.size()));
+  for (std::size_t i = 0; i < results.size(); ++i) a.mutable_data()[i] = results[i].entity;
+  return a;
+}
+
+std::vector<cmkit::TraceResult> tracesOf(const std::vector<cmkit::WorldTraceResult>& out) {
+  std::vector<cmkit::TraceResult> traces(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) traces[i] = out[i].trace;
+  return traces;
+}
+
+// ---- the queries ----------------------------------------------------------
+
+py::dict translateWorld(PyWorld& self, const py::object& trm, const py::object& starts,
+                        const py::object& ends, std::int64_t mask, const py::object& axis, bool startSolid,
+                        int threads, const py::object& progress) {
+  TranslationArgs a(trm, starts, ends, mask, axis, startSolid);
+  std::vector<cmkit::WorldTraceResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] {
+    const std::shared_lock lock(self.mutex);
+    return cmkit::translateBatch(self.world, a.batch, out, hook.options);
+  });
+  py::dict d = traceArrays(tracesOf(out));
+  d["entity"] = entityArray(out);
+  return d;
+}
+
+py::dict rotateWorld(PyWorld& self, const py::object& trm, const py::object& starts,
+                     const py::object& origins, const py::object& axes, const py::object& angles,
+                     std::int64_t mask, const py::object& axis, bool startSolid, int threads,
+                     const py::object& progress) {
+  RotationArgs a(trm, starts, origins, axes, angles, mask, axis, startSolid);
+  std::vector<cmkit::WorldTraceResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] {
+    const std::shared_lock lock(self.mutex);
+    return cmkit::rotateBatch(self.world, a.batch, out, hook.options);
+  });
+  py::dict d = traceArrays(tracesOf(out));
+  d["entity"] = entityArray(out);
+  return d;
+}
+
+py::dict castRaysWorld(PyWorld& self, const py::object& starts, const py::object& ends, std::int64_t mask,
+                       int threads, const py::object& progress) {
+  RayArgs a(starts, ends, mask);
+  std::vector<cmkit::WorldRayHit> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] {
+    const std::shared_lock lock(self.mutex);
+    return cmkit::castRayBatch(self.world, a.batch, out, hook.options);
+  });
+  std::vector<cmkit::RayHit> hits(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) hits[i] = out[i].hit;
+  py::dict d = rayArrays(hits);
+  d["entity"] = entityArray(out);
+  return d;
+}
+
+py::dict pointContentsWorld(PyWorld& self, const py::object& points, int threads,
+                            const py::object& progress) {
+  PointArgs a(points);
+  std::vector<cmkit::WorldPointContentsResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] {
+    const std::shared_lock lock(self.mutex);
+    return cmkit::pointContentsBatch(self.world, a.batch, out, hook.options);
+  });
+  std::vector<std::uint32_t> contents(out.size());
+  std::vector<cmkit::QueryStatus> status(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    contents[i] = out[i].contents;
+    status[i] = out[i].status;
+  }
+  py::dict d = pointContentsArrays(contents, status);
+  d["entity"] = entityArray(out);
+  return d;
+}
+
+py::dict contentsWorld(PyWorld& self, const py::object& trm, const py::object& positions, std::int64_t mask,
+                       const py::object& axis, int threads, const py::object& progress) {
+  ContentsArgs a(trm, positions, mask, axis);
+  std::vector<cmkit::WorldContentsResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] {
+    const std::shared_lock lock(self.mutex);
+    return cmkit::contentsBatch(self.world, a.batch, out, hook.options);
+  });
+  std::vector<cmkit::ContentsResult> results(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) results[i] = out[i].result;
+  py::dict d = contentsArrays(results);
+  d["entity"] = entityArray(out);
+  return d;
+}
+
+py::dict contactsWorld(PyWorld& self, const py::object& trm, const py::object& starts, const py::object& dirs,
+                       double depth, int maxContacts, const py::object& origins, const py::object& axes,
+                       const py::object& angles, std::int64_t mask, const py::object& axis, int threads,
+                       const py::object& progress) {
+  ContactsArgs a(trm, starts, dirs, depth, maxContacts, origins, axes, angles, mask, axis);
+  std::vector<cmkit::WorldContactsResult> out(a.size);
+  Hook hook(threads, progress);
+  runBatch([&] {
+    const std::shared_lock lock(self.mutex);
+    return cmkit::contactsBatch(self.world, a.batch, out, hook.options);
+  });
+  const std::size_t m = std::size_t(maxContacts);
+  std::vector<cmkit::ContactsResult> results(out.size());
+  auto entity = py::array_t<std::int32_t>({py::ssize_t(out.size()), py::ssize_t(m)});
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    results[i].status = out[i].status;
+    for (std::size_t k = 0; k < m; ++k)
+      entity.mutable_data()[i * m + k] =
+          k < out[i].contacts.size() ? out[i].contacts[k].entity : cmkit::kNoEntity;
+    for (const cmkit::WorldContact& c : out[i].contacts) results[i].contacts.push_back(c.contact);
+  }
+  py::dict d = contactsArrays(results, maxContacts);
+  d["entity"] = entity;
+  return d;
+}
+
+// ---- the entities ---------------------------------------------------------
+
+void setTransform(PyWorld& self, const py::object& nameOrId, const py::object& origin,
+                  const py::object& axis) {
+  const cmkit::EntityId id = entityOf(self, nameOrId);
+  cmkit::Placement p;
+  p.origin = vector3(origin, "origin");
+  p.axis = matrix(axis, "axis");
+  cmkit::Status s = cmkit::Ok{};
+  {
+    py::gil_scoped_release release;
+    const std::unique_lock lock(self.mutex);
+    s = self.world.setPlacement(id, p);
+  }
+  // The entity was found above and Python removes none: what is left to
+  // refuse is the axis (not a rotation).
+  if (!s.ok()) throw py::value_error("axis: " + s.error().message);
+}
+
+py::tuple transformOf(PyWorld& self, const py::object& nameOrId) {
+  const cmkit::EntityId id = entityOf(self, nameOrId);
+  const cmkit::Placement p = readLocked(self, [&] { return self.world.entity(id)->placement; });
+  auto origin = py::array_t<Real>(py::ssize_t(3));
+  put(origin.mutable_data(), p.origin);
+  auto axis = py::array_t<Real>({py::ssize_t(3), py::ssize_t(3)});
+  for (int k = 0; k < 3; ++k) put(axis.mutable_data() + 3 * k, p.axis.rows[k]);
+  return py::make_tuple(origin, axis);
+}
+
+py::list entityNames(PyWorld& self) {
+  const auto names = readLocked(self, [&] {
+    std::vector<std::optional<std::string>> out(std::size_t(self.world.idLimit()));
+    for (cmkit::EntityId id = 0; id < self.world.idLimit(); ++id)
+      if (const cmkit::WorldEntity* e = self.world.entity(id)) out[std::size_t(id)] = e->name;
+    return out;
+  });
+  py::list list;
+  for (const auto& n : names) list.append(n ? py::object(py::str(*n)) : py::object(py::none()));
+  return list;
+}
+
+py::dict loadInfo(const PyWorld& self) {
+  const cmkit::WorldLoadReport& r = self.report;
+  py::dict d;
+  d["path"] = self.path;
+  d["from_cm"] = r.models.fromCmFile;
+  d["cm_path"] = r.models.cmPath;
+  d["crc"] = r.models.geometryCrc;
+  d["proc_path"] = r.models.procPath;
+  d["proc_polygons_removed"] = r.models.procPolygonsRemoved;
+  d["warnings"] = r.models.warnings;
+  d["entities_placed"] = r.entitiesPlaced;
+  d["noclip_skipped"] = r.noclipSkipped;
+  d["mesh_models_skipped"] = r.meshModelsSkipped;
+  return d;
+}
+
+// ---- the player move ------------------------------------------------------
+
+// The longest walk: an hour of steps (as `cmkit walk`).
+constexpr double kMaxWalkSeconds = 3600;
+
+// A wished direction of 2 or 3 finite numbers (z ignored by the move).
+Vec3 wishOf(const py::object& object) {
+  const auto a = FloatArray::ensure(object);
+  if (!a || a.ndim() != 1 || (a.shape(0) != 2 && a.shape(0) != 3))
+    throw py::value_error("wish must be 2 or 3 numbers (dx, dy[, dz])");
+  const Vec3 v{a.data()[0], a.data()[1], a.shape(0) == 3 ? a.data()[2] : Real(0)};
+  if (!v.isFinite()) throw py::value_error("wish is not finite");
+  return v;
+}
+
+cmkit::PlayerShape shapeOf(const py::object& object) {
+  if (object.is_none()) return cmkit::PlayerShape::standard();
+  if (!py::isinstance<py::str>(object) && !py::isinstance<PyTraceModel>(object))
+    throw py::type_error(
+        "shape must be a cmkit.TraceModel, a trace-model spec string or None (the player box)");
+  const TrmArg t = trmArg(object);
+  return unwrap(cmkit::PlayerShape::fromTraceModel(*t.get()));
+}
+
+py::dict walk(PyWorld& self, const py::object& start, const py::object& wish, double seconds,
+              const py::object& shapeObject, bool run, bool crouch, const std::optional<double>& jumpAt) {
+  cmkit::PlayerState first;
+  first.origin = vector3(start, "start");
+  cmkit::PlayerInput input;
+  input.wishDir = wishOf(wish);
+  input.run = run;
+  input.crouch = crouch;
+  if (!std::isfinite(seconds) || seconds < 0 || seconds > kMaxWalkSeconds)
+    throw py::value_error("seconds must be finite, 0..3600");
+  const cmkit::PlayerShape shape = shapeOf(shapeObject);
+  const Real dt = cmkit::move::kTimeStep;
+  const int steps = int(std::llround(seconds / double(dt)));
+  int jumpStep = -1;
+  if (jumpAt) {
+    const double t = *jumpAt;
+    if (!std::isfinite(t) || t < 0) throw py::value_error("jump_at must be finite and not negative");
+    jumpStep = int(std::llround(std::min(t, kMaxWalkSeconds) / double(dt)));
+  }
+
+  std::vector<cmkit::PlayerState> path;
+  path.reserve(std::size_t(steps));
+  cmkit::PlayerState end;
+  {
+    py::gil_scoped_release release;
+    const std::shared_lock lock(self.mutex);
+    cmkit::WorldQueryWork work;
+    if (jumpStep < 0 || jumpStep >= steps) {
+      end = cmkit::runPlayer(self.world, shape, first, input, steps, dt, work, {}, &path);
+    } else {  // jump pressed for the one step jumpStep (as `cmkit walk --jump-at`)
+      end = cmkit::runPlayer(self.world, shape, first, input, jumpStep, dt, work, {}, &path);
+      input.jump = true;
+      end = cmkit::runPlayer(self.world, shape, end, input, 1, dt, work, {}, &path);
+      input.jump = false;
+      end = cmkit::runPlayer(self.world, shape, end, input, steps - jumpStep - 1, dt, work, {}, &path);
+    }
+  }
+
+  auto origins = py::array_t<Real>({py::ssize_t(path.size()), py::ssize_t(3)});
+  int stuckSteps = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    put(origins.mutable_data() + 3 * i, path[i].origin);
+    stuckSteps += path[i].stuck ? 1 : 0;
+  }
+  auto origin = py::array_t<Real>(py::ssize_t(3));
+  put(origin.mutable_data(), end.origin);
+  auto velocity = py::array_t<Real>(py::ssize_t(3));
+  put(velocity.mutable_data(), end.velocity);
+  const std::optional<std::string> ground = readLocked(self, [&]() -> std::optional<std::string> {
+    const cmkit::WorldEntity* e = end.onGround ? self.world.entity(end.groundEntity) : nullptr;
+    if (!e) return std::nullopt;
+    return e->name;
+  });
+  py::dict d;
+  d["end"] = origin;
+  d["velocity"] = velocity;
+  d["path"] = origins;
+  d["on_ground"] = end.onGround;
+  d["ground_entity"] = ground ? py::object(py::str(*ground)) : py::object(py::none());
+  d["ground_entity_id"] = end.onGround ? end.groundEntity : cmkit::kNoEntity;
+  d["crouched"] = end.crouched;
+  d["stuck"] = end.stuck;
+  d["stuck_steps"] = stuckSteps;
+  d["steps"] = steps;
+  return d;
+}
+
+}  // namespace
+
+void bindWorld(py::module_& m) {
+  namespace c = cmkit::contents;
+  PyWorldClass cls(m, "World", R"(A map's collision models placed as its entities, queried as one.
+
+Entity 0 is the world model ('worldspawn'); then every entity with brushes or patches, placed by
+its origin / rotation / angle keys. The query methods take the arguments of cmkit.Model's (less
+origin= and model_axis=: each entity has its own placement) and return the same dicts plus
+'entity', the id of the entity whose answer was kept (-1: none). set_transform() moves an
+entity; walk() walks a player through the world. Load with cmkit.load_world(path).)");
+  const std::string note =
+      std::string(kBatchNote) +
+      " The answer is the closest entity's (ties: the lowest id); 'entity' (N,) int32 is "
+      "its id (-1: none), and 'material' and 'polygon' index that entity's model "
+      "(world.model(id)). See cmkit.Model's method of the same name.";
+  cls.def("translate", &translateWorld, py::arg("trm"), py::arg("starts"), py::arg("ends"), py::kw_only(),
+          py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("start_solid") = false,
+          py::arg("threads") = 0, py::arg("progress") = py::none(),
+          ("Moves a trace model from starts (N, 3) to ends (N, 3) through the world: the fields of "
+           "Model.translate and entity (N,)." +
+           note)
+              .c_str())
+      .def("rotate", &rotateWorld, py::arg("trm"), py::arg("starts"), py::arg("origins"), py::arg("axes"),
+           py::arg("angles"), py::kw_only(), py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(),
+           py::arg("start_solid") = false, py::arg("threads") = 0, py::arg("progress") = py::none(),
+           ("Turns a trace model through the world (arguments as Model.rotate): the fields of "
+            "Model.rotate and entity (N,)." +
+            note)
+               .c_str())
+      .def("cast_rays", &castRaysWorld, py::arg("origins"), py::arg("ends"), py::kw_only(),
+           py::arg("mask") = c::kMaskSolid, py::arg("threads") = 0, py::arg("progress") = py::none(),
+           ("Casts rays (segments origins -> ends) through the world (each entity's ray index): the "
+            "fields of Model.cast_rays and entity (N,)." +
+            note)
+               .c_str())
+      .def("point_contents", &pointContentsWorld, py::arg("points"), py::kw_only(), py::arg("threads") = 0,
+           py::arg("progress") = py::none(),
+           ("The contents of the brushes containing each point, over the world: contents (N,) (the OR "
+            "over the entities), status (N,) and entity (N,) (the lowest id with contents; -1: none)." +
+            note)
+               .c_str())
+      .def("contents", &contentsWorld, py::arg("trm"), py::arg("positions"), py::kw_only(),
+           py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("threads") = 0,
+           py::arg("progress") = py::none(),
+           ("Position tests over the world: the fields of Model.contents (contents: the OR over the "
+            "entities; the trace fields: the lowest-id entity overlapped) and entity (N,) (that entity; "
+            "-1: free)." +
+            note)
+               .c_str())
+      .def("contacts", &contactsWorld, py::arg("trm"), py::arg("starts"), py::arg("dirs") = py::none(),
+           py::arg("depth") = 0.0, py::kw_only(), py::arg("max_contacts") = 16,
+           py::arg("origins") = py::none(), py::arg("axes") = py::none(), py::arg("angles") = py::none(),
+           py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("threads") = 0,
+           py::arg("progress") = py::none(),
+           ("Every contact of a move or turn over the world (arguments as Model.contacts): its fields, "
+            "and entity (N, max_contacts) int32, each contact's entity (-1 past count[i]); contacts in "
+            "entity-id order (along rotations: by the angle, then the id), at most max_contacts in all." +
+            note)
+               .c_str())
+      .def("set_transform", &setTransform, py::arg("entity"), py::arg("origin"), py::arg("axis") = py::none(),
+           R"(Moves an entity (its id or name) to origin (3,) turned by axis (3x3, rows = axes; None:
+identity): world = origin + local * axis. A writer: it waits for queries and walks running in
+other threads and they wait for it (never call it from a progress callback). KeyError for an
+unknown entity, ValueError for an axis that is not a rotation.)")
+      .def("transform", &transformOf, py::arg("entity"),
+           "(origin (3,), axis (3, 3)): where an entity (its id or name) is placed. KeyError when unknown.")
+      .def(
+          "find", [](PyWorld& self, const std::string& name) { return entityOf(self, py::str(name)); },
+          py::arg("name"), "The id of the first entity (lowest id) named exactly `name`; KeyError when none.")
+      .def(
+          "model",
+          [](PyWorld& self, const py::object& nameOrId) {
+            const cmkit::EntityId id = entityOf(self, nameOrId);
+            return std::make_shared<PyModel>(readLocked(self, [&] { return self.world.entity(id)->model; }));
+          },
+          py::arg("entity"),
+          "The cmkit.Model of an entity (its id or name), in the entity's own frame (place it with "
+          "origin=/model_axis= from transform()). KeyError when unknown.")
+      .def_property_readonly("entity_names", &entityNames,
+                             "Entity names, indexed by entity id ('worldspawn' first; '#N' for map entity N "
+                             "without a name); None for an id no longer in use (none in a loaded world).")
+      .def_property_readonly("info", &loadInfo,
+                             "How the world was loaded: path, from_cm, cm_path, crc, proc_path, "
+                             "proc_polygons_removed, warnings, entities_placed, noclip_skipped, "
+                             "mesh_models_skipped.")
+      .def("__len__", [](PyWorld& self) { return readLocked(self, [&] { return self.world.size(); }); })
+      .def("__repr__",
+           [](PyWorld& self) {
+             return "<cmkit.World '" + self.path + "', " +
+                    std::to_string(readLocked(self, [&] { return self.world.size(); })) + " entities>";
+           })
+      .def("walk", &walk, py::arg("start"), py::arg("wish"), py::arg("seconds"), py::kw_only(),
+           py::arg("shape") = py::none(), py::arg("run") = false, py::arg("crouch") = false,
+           py::arg("jump_at") = py::none(),
+           R"(Walks a player (cmkit/movement.h, Doom 3's player physics) from start (3,), its feet (the
+bottom centre of its shape), wishing to go along wish (dx, dy[, dz]; z ignored; length = fraction
+of full speed, at most 1) for `seconds` (at most 3600) in steps of 1/60 s. The world does not
+change during the walk.
+
+shape: None (the original's box, 32 x 32 x 74, crouched 38), a TraceModel or spec string whose
+origin is at the feet (crouching keeps it). run: 220 units/s instead of 140. crouch: crouched the
+whole walk. jump_at: press jump once, at this time (seconds).
+
+Returns a dict: end (3,), velocity (3,), path (steps, 3) (the feet after each step), on_ground,
+ground_entity (the name of the entity stood on, or None), ground_entity_id (-1: none), crouched,
+stuck (the last step started in solid and could not be freed), stuck_steps, steps. The GIL is
+released while it walks.)");
+
+  m.def("_load_world", &loadWorld, py::arg("path"), py::arg("force_rebuild"), py::arg("use_proc"));
+}
+
+}  // namespace cmkit_python
