@@ -14,11 +14,14 @@
 // (it straddles all the planes there) and then the side of the new plane it
 // lies on. The lists end as the original's do: same items, same order.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <ranges>
 
 #include "compile/builder.h"
 #include "util/assert.h"
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
@@ -37,6 +40,7 @@ struct ModelBuilder::GrowingLists {
   /// grows depth first: they are splitNode's callers).
   std::vector<int> ancestors;
   std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
+  std::vector<Item> stay, back;                   ///< scratch of splitItems
   /// Per node, compact for the walks up the tree: whether it may hold
   /// items (set when it gets one, updated when it loses some).
   std::vector<char> filled;
@@ -59,6 +63,92 @@ namespace {
 /// item that straddles stays above it); false for bounds beyond or touching.
 bool straddles(const Bounds& b, int axis, Real dist) {
   return !(b.min[axis] >= dist) && !(b.max[axis] <= dist);
+}
+
+/// t of a splitter candidate at `dist` in a node spanning lo..hi: how far
+/// it is from the middle (twice that), as the original computes it.
+inline Real splitterT(Real lo, Real hi, Real dist) { return std::fabs((hi - dist) - (dist - lo)); }
+
+/// The original's search, one candidate at a time in list order (each list
+/// from its head, the end of its array; an item's min before its max): the
+/// first candidate strictly inside lo..hi with the least t below `size`.
+template <class Item>
+bool firstMostCentred(const std::vector<const std::vector<Item>*>& sources, int type, Real lo, Real hi,
+                      Real size, Real& bestDist) {
+  Real bestt = size;
+  bestDist = 0;
+  for (const std::vector<Item>* items : sources) {
+    for (auto it = items->rbegin(); it != items->rend(); ++it) {
+      for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
+        const Real t = splitterT(lo, hi, dist);
+        const bool better = (dist < hi) & (dist > lo) & (t < bestt);
+        bestt = better ? t : bestt;
+        bestDist = better ? dist : bestDist;
+      }
+    }
+  }
+  return bestt < size;
+}
+
+/// The splitter firstMostCentred finds. With float lanes, four items at a
+/// time in any order: per lane the least t, the plane that gave it first and
+/// whether another plane gave the same t; only the position in list order
+/// tells apart two planes with the least t, so then (rarely) the search in
+/// list order decides.
+template <class Item>
+bool mostCentredSplitter(const std::vector<const std::vector<Item>*>& sources, int type, Real lo, Real hi,
+                         Real size, Real& bestDist) {
+#ifdef CMKIT_FLOAT_LANES
+  using simd::F4;
+  const F4 loV = F4::all(lo), hiV = F4::all(hi), sizeV = F4::all(size);
+  F4 best = sizeV, bestD = F4::zero(), tied = F4::zero();
+  auto candidates = [&](F4 d) {
+    const F4 t = simd::abs((hiV - d) - (d - loV));
+    const F4 inside = (d < hiV) & (d > loV);
+    const F4 less = inside & (t < best);
+    const F4 same = inside & (t == best) & simd::differentBits(d, bestD) & (best < sizeV);
+    tied = simd::andNot(less, tied | same);
+    best = simd::select(less, t, best);
+    bestD = simd::select(less, d, bestD);
+  };
+  for (const std::vector<Item>* items : sources) {
+    const Item* it = items->data();
+    const std::size_t n = items->size();
+    std::size_t k = 0;
+    for (; k + 4 <= n; k += 4) {
+      const Bounds& a = it[k].bounds;
+      const Bounds& b = it[k + 1].bounds;
+      const Bounds& c = it[k + 2].bounds;
+      const Bounds& e = it[k + 3].bounds;
+      candidates(F4::lanes(a.min[type], b.min[type], c.min[type], e.min[type]));
+      candidates(F4::lanes(a.max[type], b.max[type], c.max[type], e.max[type]));
+    }
+    for (; k < n; ++k) {  // the rest in lane 0 (lo in the others is never inside)
+      candidates(F4::lanes(it[k].bounds.min[type], lo, lo, lo));
+      candidates(F4::lanes(it[k].bounds.max[type], lo, lo, lo));
+    }
+  }
+  const float least = simd::lowest(best);
+  if (!(least < size)) {
+    bestDist = 0;
+    return false;
+  }
+  alignas(16) float bests[4], dists[4], ties[4];  // (ties: masks, 0 where clear)
+  best.store(bests);
+  bestD.store(dists);
+  tied.store(ties);
+  bool first = true;
+  bool unique = true;
+  for (int j = 0; j < 4; ++j) {
+    if (bests[j] != least) continue;
+    unique = unique && ties[j] == 0 &&
+             (first || std::bit_cast<std::uint32_t>(dists[j]) == std::bit_cast<std::uint32_t>(bestDist));
+    if (first) bestDist = dists[j];
+    first = false;
+  }
+  if (unique) return true;
+#endif
+  return firstMostCentred(sources, type, lo, hi, size, bestDist);
 }
 
 }  // namespace
@@ -143,23 +233,11 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
     }
     // The most centred splitter (dhewm3: not truncated to an integer): the
     // first bounds plane strictly inside the node with the least t, each
-    // list from its head (the end of its array). Without branches: which
-    // candidate wins is unpredictable.
-    const Real lo = bounds.min[type];
-    const Real hi = bounds.max[type];
-    Real bestt = size[i];
+    // list from its head (the end of its array).
     Real bestDist = 0;
-    for (const std::vector<GrowingLists::Item>* items : lists.sources) {
-      for (auto it = items->rbegin(); it != items->rend(); ++it) {
-        for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
-          const Real t = std::fabs((hi - dist) - (dist - lo));
-          const bool better = (dist < hi) & (dist > lo) & (t < bestt);
-          bestt = better ? t : bestt;
-          bestDist = better ? dist : bestDist;
-        }
-      }
-    }
-    if (bestt < size[i]) {
+    const bool found =
+        mostCentredSplitter(lists.sources, type, bounds.min[type], bounds.max[type], size[i], bestDist);
+    if (found) {
       planeType = type;
       planeDist = bestDist;
       if (forceSplit) return true;
@@ -219,38 +297,37 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
     GrowingLists::Lists& all = lists.of(kind);
     std::vector<GrowingLists::Item> items = std::move(all[static_cast<std::size_t>(splitNum)]);
     if (items.empty()) continue;
-    std::size_t numStay = 0;
-    std::size_t numBack = 0;
-    for (const GrowingLists::Item& it : items) {
+    // One pass without branches (which side an item is on is unpredictable):
+    // every item written to all three places, kept by the count of its own.
+    // The front items go to the start of the same array (never ahead of the
+    // one read).
+    const std::size_t n = items.size();
+    if (lists.stay.size() < n) lists.stay.resize(n);
+    if (lists.back.size() < n) lists.back.resize(n);
+    std::size_t numStay = 0, numFront = 0, numBack = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const GrowingLists::Item& it = items[i];
       const bool inside = straddles(it.bounds, axis, dist);
       CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
+      const bool inFront = !inside & (it.bounds.min[axis] >= dist);
+      lists.stay[numStay] = it;
+      lists.back[numBack] = it;
+      items[numFront] = it;  // (last: may be the item itself)
       numStay += inside ? 1 : 0;
-      numBack += !inside && !(it.bounds.min[axis] >= dist) ? 1 : 0;
-    }
-    std::vector<GrowingLists::Item> stay;
-    std::vector<GrowingLists::Item> backItems;
-    stay.reserve(numStay);
-    backItems.reserve(numBack);
-    std::size_t numFront = 0;
-    for (const GrowingLists::Item& it : items) {
-      if (straddles(it.bounds, axis, dist)) {
-        stay.push_back(it);
-      } else if (it.bounds.min[axis] >= dist) {
-        items[numFront++] = it;
-      } else {
-        backItems.push_back(it);
-      }
+      numFront += inFront ? 1 : 0;
+      numBack += !inside & !inFront ? 1 : 0;
     }
     // Each side prepends its items as the list is walked from its head (the
     // end of the array): in reverse array order.
     items.resize(numFront);
     std::reverse(items.begin(), items.end());
-    std::reverse(backItems.begin(), backItems.end());
-    lists.filled[front] = lists.filled[front] || !items.empty();
-    lists.filled[back] = lists.filled[back] || !backItems.empty();
+    lists.filled[front] = lists.filled[front] || numFront != 0;
+    lists.filled[back] = lists.filled[back] || numBack != 0;
     all[front] = std::move(items);
-    all[back] = std::move(backItems);
-    all[static_cast<std::size_t>(splitNum)] = std::move(stay);
+    const auto backEnd = lists.back.begin() + static_cast<std::ptrdiff_t>(numBack);
+    all[back].assign(std::make_reverse_iterator(backEnd), std::make_reverse_iterator(lists.back.begin()));
+    all[static_cast<std::size_t>(splitNum)].assign(lists.stay.begin(),
+                                                   lists.stay.begin() + static_cast<std::ptrdiff_t>(numStay));
   }
   lists.filled[static_cast<std::size_t>(splitNum)] =
       !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
