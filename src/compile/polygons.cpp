@@ -28,6 +28,19 @@ int combineCells(const int k[3], int hashSize) {
   return static_cast<int>(key & static_cast<std::uint32_t>(hashSize - 1));
 }
 
+/// std::floor without the library call the baseline instruction set makes
+/// of it (no rounding instruction before SSE4.1), with the same value for
+/// every input: truncation, one less below zero; 0 and -0 are their own
+/// floor (truncation would lose the sign); from 2^23 in magnitude on, and
+/// for infinities and NaN, std::floor itself.
+Real floorOf(Real x) {
+  constexpr Real kTruncatable = Real(8388608);  // 2^23
+  if (!(std::fabs(x) < kTruncatable)) return std::floor(x);
+  if (x == 0) return x;
+  const Real t = static_cast<Real>(static_cast<long long>(x));
+  return t > x ? t - 1 : t;
+}
+
 std::uint64_t edgeKey(int v0, int v1) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v0)) << 32) | static_cast<std::uint32_t>(v1);
 }
@@ -54,7 +67,7 @@ void ModelBuilder::clearHash(const Bounds& bounds) {
 bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   Vec3 vert;
   for (int i = 0; i < 3; ++i) {
-    const Real r = std::floor(v[i] + Real(0.5));
+    const Real r = floorOf(v[i] + Real(0.5));
     vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
   }
   const double lo = tol::kVertexHashOffset - tol::kVertexHashSpread;
