@@ -17,6 +17,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <ranges>
 
 #include "compile/builder.h"
@@ -35,10 +36,19 @@ struct ModelBuilder::GrowingLists {
   using Lists = std::vector<std::vector<Item>>;
   Lists polygons;
   Lists brushes;
-  std::vector<int> path;  ///< pushItemsDown's path from the split node up
+  /// pushItemsDown's path: the nodes below its node down to the split
+  /// node, top down, and the child off the path at each node from its node
+  /// down (above the split).
+  std::vector<int> path, offPath;
   /// The nodes above the one splitNode is at, from the root down (the tree
   /// grows depth first: they are splitNode's callers).
   std::vector<int> ancestors;
+  /// The places in `ancestors` of those that held items when they became
+  /// ancestors, in the same order. Only these may hold items: an ancestor
+  /// never gets any (splits give items to their new children, and
+  /// pushItemsDown to nodes off the path, which are not above the split
+  /// node), so the walks up the tree skip the others.
+  std::vector<std::size_t> filledAncestors;
   std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
   std::vector<Item> stay, back;                   ///< scratch of splitItems
   /// Per node, compact for the walks up the tree: whether it may hold
@@ -111,17 +121,24 @@ bool mostCentredSplitter(const std::vector<const std::vector<Item>*>& sources, i
     best = simd::select(less, t, best);
     bestD = simd::select(less, d, bestD);
   };
+  // An item's bounds from coordinate `type` of min on: lane 0 is min[type],
+  // lane 3 max[type] (the bounds are six floats; these 16 bytes lie within).
+  static_assert(sizeof(Bounds) == 6 * sizeof(float));
+  const std::size_t offset = static_cast<std::size_t>(type) * sizeof(float);
+  auto row = [offset](const Item& item) {
+    alignas(16) float f[4];
+    std::memcpy(f, reinterpret_cast<const char*>(&item.bounds) + offset, sizeof f);
+    return F4::load(f);
+  };
   for (const std::vector<Item>* items : sources) {
     const Item* it = items->data();
     const std::size_t n = items->size();
     std::size_t k = 0;
     for (; k + 4 <= n; k += 4) {
-      const Bounds& a = it[k].bounds;
-      const Bounds& b = it[k + 1].bounds;
-      const Bounds& c = it[k + 2].bounds;
-      const Bounds& e = it[k + 3].bounds;
-      candidates(F4::lanes(a.min[type], b.min[type], c.min[type], e.min[type]));
-      candidates(F4::lanes(a.max[type], b.max[type], c.max[type], e.max[type]));
+      F4 mins = row(it[k]), r1 = row(it[k + 1]), r2 = row(it[k + 2]), maxs = row(it[k + 3]);
+      simd::transpose(mins, r1, r2, maxs);
+      candidates(mins);
+      candidates(maxs);
     }
     for (; k < n; ++k) {  // the rest in lane 0 (lo in the others is never inside)
       candidates(F4::lanes(it[k].bounds.min[type], lo, lo, lo));
@@ -228,7 +245,8 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
           if (!items.empty()) lists.sources.push_back(&items);
         };
         addSource(nodeNum);
-        for (auto n = lists.ancestors.rbegin(); n != lists.ancestors.rend(); ++n) addSource(*n);
+        for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a)
+          addSource(lists.ancestors[*a]);
       }
     }
     // The most centred splitter (dhewm3: not truncated to an integer): the
@@ -276,15 +294,21 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   // The new split can leave items of this node and of every ancestor no
   // longer inside all children.
   splitItems(lists, nodeNum);
-  lists.path.assign(1, nodeNum);
-  for (auto n = lists.ancestors.rbegin(); n != lists.ancestors.rend(); ++n) {
-    pushItemsDown(lists, *n, nodeNum);
-    lists.path.push_back(*n);
+  // The nearest ancestor first.
+  for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a) {
+    const int ancestor = lists.ancestors[*a];
+    if (!lists.filled[static_cast<std::size_t>(ancestor)]) continue;
+    lists.path.assign(lists.ancestors.begin() + static_cast<std::ptrdiff_t>(*a + 1), lists.ancestors.end());
+    lists.path.push_back(nodeNum);
+    pushItemsDown(lists, ancestor, nodeNum);
   }
+  const bool filled = lists.filled[static_cast<std::size_t>(nodeNum)] != 0;
+  if (filled) lists.filledAncestors.push_back(lists.ancestors.size());
   lists.ancestors.push_back(nodeNum);
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
   lists.ancestors.pop_back();
+  if (filled) lists.filledAncestors.pop_back();
 }
 
 void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
@@ -338,7 +362,14 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
   const BNode& split = node(splitNum);
   const int axis = split.planeType;
   const Real dist = split.planeDist;
-  // lists.path: the nodes below nodeNum down to the split node, bottom up.
+  // lists.path: the nodes below nodeNum down to the split node, top down.
+  lists.offPath.clear();
+  for (std::size_t k = 0, above = static_cast<std::size_t>(nodeNum); k < lists.path.size(); ++k) {
+    const BNode& at = node(static_cast<int>(above));
+    const int below = lists.path[k];
+    lists.offPath.push_back(at.children[0] == below ? at.children[1] : at.children[0]);
+    above = static_cast<std::size_t>(below);
+  }
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Lists& all = lists.of(kind);
     if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
@@ -360,22 +391,14 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       if (items.size() + count > items.capacity())
         items.reserve(std::max(items.size() + count, 2 * items.capacity()));
     };
-    // (By index from the end, not std::ranges::reverse_view: clang with GCC
-    // 12's library cannot compile that view.)
-    int above = nodeNum;
-    for (std::size_t k = lists.path.size(); k-- > 0;) {
-      const int below = lists.path[k];
-      const BNode& at = node(above);
-      reserveMore(at.children[0] == below ? at.children[1] : at.children[0], numLeaving);
-      above = below;
-    }
+    for (const int offPath : lists.offPath) reserveMore(offPath, numLeaving);
     reserveMore(split.children[0], numFront);
     reserveMore(split.children[1], numLeaving - numFront);
     // In list order, from the end of the array (the original filters each
     // item as it meets it); the items that stay keep their order.
     std::size_t kept = here.size();
     for (std::size_t i = here.size(); i-- > 0;) {
-      const GrowingLists::Item it = here[i];
+      const GrowingLists::Item& it = here[i];
       const bool inside = straddles(it.bounds, axis, dist);
       CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, it.bounds));
       if (inside) {
@@ -384,13 +407,7 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       }
       // Through each node above the split, the child off the path, then the
       // side of the split it lies on.
-      int n = nodeNum;
-      for (auto below = lists.path.rbegin(); below != lists.path.rend(); ++below) {
-        const BNode& at = node(n);
-        const int offPath = at.children[0] == *below ? at.children[1] : at.children[0];
-        lists.add(all, offPath, it);
-        n = *below;
-      }
+      for (const int offPath : lists.offPath) lists.add(all, offPath, it);
       const int side = it.bounds.min[axis] >= dist ? split.children[0] : split.children[1];
       lists.add(all, side, it);
       // the reference moves to one node; the others are new
