@@ -431,6 +431,7 @@ class ModelBuilder {
   WindingList list_;
   std::vector<Winding> outList_;
   std::vector<Winding> tmpList_;
+  Winding reversed_;  ///< scratch of polygonFromWinding: a two-sided polygon's back
 };
 
 }  // namespace cmkit::detail

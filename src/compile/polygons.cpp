@@ -230,9 +230,9 @@ void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int materi
   }
   createPolygon(*out, plane, material, primitiveNum);
   if (info.twoSided) {
-    Winding reversed = *out;
-    reversed.reverse();
-    createPolygon(reversed, plane.flipped(), material, primitiveNum);
+    reversed_ = *out;  // (keeps the room of the last one)
+    reversed_.reverse();
+    createPolygon(reversed_, plane.flipped(), material, primitiveNum);
   }
 }
 
