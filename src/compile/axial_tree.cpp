@@ -239,6 +239,7 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
       // candidates from the brushes, then the polygons, of this node and its ancestors
       lists.sources.clear();
       for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
+        if (all == &lists.brushes && brushes_.empty()) continue;  // (a mesh: no brush lists to read)
         auto addSource = [&](int n) {
           if (!lists.filled[static_cast<std::size_t>(n)]) return;
           const auto& items = (*all)[static_cast<std::size_t>(n)];

@@ -58,6 +58,7 @@ void ModelBuilder::prepareVertexHash() {
 
 void ModelBuilder::clearHash(const Bounds& bounds) {
   hashMin_ = bounds.min;
+  recentVertices_.fill(RecentVertex{});
   vertexHashHead_.assign(kVertexHashSize, kNone);
   vertexHashNodes_.clear();
   edgeHashHead_.clear();
@@ -65,11 +66,30 @@ void ModelBuilder::clearHash(const Bounds& bounds) {
 }
 
 bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
+  // The points of the last few lookups (a polygon's closing edge and a
+  // two-sided polygon's back meet them again) and what they gave: a lookup's
+  // answer depends only on the vertices that match its point, so it stays
+  // the same until a new vertex matches it (findOrAddVertex drops such
+  // entries).
+  for (const RecentVertex& r : recentVertices_) {
+    if (r.vertexNum != kNone && r.point.x == v.x && r.point.y == v.y && r.point.z == v.z) {
+      vertexNum = r.vertexNum;
+      return true;
+    }
+  }
+  // Coordinates this close to an integer snap to it.
   Vec3 vert;
   for (int i = 0; i < 3; ++i) {
     const Real r = floorOf(v[i] + Real(0.5));
     vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
   }
+  const bool found = findOrAddVertex(vert, vertexNum);
+  recentVertices_[recentNext_] = {v, vert, vertexNum};
+  recentNext_ = (recentNext_ + 1) % recentVertices_.size();
+  return found;
+}
+
+bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
   const double lo = tol::kVertexHashOffset - tol::kVertexHashSpread;
   const double hi = tol::kVertexHashOffset + tol::kVertexHashSpread;
   int kMid[3];
@@ -131,6 +151,13 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   vertices_.push_back(vert);
   vertexHashNodes_.push_back({vert, hashHead(midKey)});
   hashHead(midKey) = vertexNum;
+  // Recent lookups whose point the new vertex matches may now give it.
+  for (RecentVertex& r : recentVertices_) {
+    if (r.vertexNum != kNone && std::fabs(r.welded[2] - vert[2]) < tol::kVertexEpsilon &&
+        std::fabs(r.welded[0] - vert[0]) < tol::kVertexEpsilon &&
+        std::fabs(r.welded[1] - vert[1]) < tol::kVertexEpsilon)
+      r.vertexNum = kNone;
+  }
   return false;
 }
 
