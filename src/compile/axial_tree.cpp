@@ -340,7 +340,7 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
       items[numFront] = it;  // (last: may be the item itself)
       numStay += inside ? 1 : 0;
       numFront += inFront ? 1 : 0;
-      numBack += !inside & !inFront ? 1 : 0;
+      numBack += (!inside & !inFront) ? 1 : 0;
     }
     // Each side prepends its items as the list is walked from its head (the
     // end of the array): in reverse array order.
