@@ -14,11 +14,15 @@
 // (it straddles all the planes there) and then the side of the new plane it
 // lies on. The lists end as the original's do: same items, same order.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <ranges>
 
 #include "compile/builder.h"
 #include "util/assert.h"
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
@@ -32,11 +36,21 @@ struct ModelBuilder::GrowingLists {
   using Lists = std::vector<std::vector<Item>>;
   Lists polygons;
   Lists brushes;
-  std::vector<int> path;  ///< pushItemsDown's path from the split node up
+  /// pushItemsDown's path: the nodes below its node down to the split
+  /// node, top down, and the child off the path at each node from its node
+  /// down (above the split).
+  std::vector<int> path, offPath;
   /// The nodes above the one splitNode is at, from the root down (the tree
   /// grows depth first: they are splitNode's callers).
   std::vector<int> ancestors;
+  /// The places in `ancestors` of those that held items when they became
+  /// ancestors, in the same order. Only these may hold items: an ancestor
+  /// never gets any (splits give items to their new children, and
+  /// pushItemsDown to nodes off the path, which are not above the split
+  /// node), so the walks up the tree skip the others.
+  std::vector<std::size_t> filledAncestors;
   std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
+  std::vector<Item> stay, back;                   ///< scratch of splitItems
   /// Per node, compact for the walks up the tree: whether it may hold
   /// items (set when it gets one, updated when it loses some).
   std::vector<char> filled;
@@ -59,6 +73,99 @@ namespace {
 /// item that straddles stays above it); false for bounds beyond or touching.
 bool straddles(const Bounds& b, int axis, Real dist) {
   return !(b.min[axis] >= dist) && !(b.max[axis] <= dist);
+}
+
+/// t of a splitter candidate at `dist` in a node spanning lo..hi: how far
+/// it is from the middle (twice that), as the original computes it.
+inline Real splitterT(Real lo, Real hi, Real dist) { return std::fabs((hi - dist) - (dist - lo)); }
+
+/// The original's search, one candidate at a time in list order (each list
+/// from its head, the end of its array; an item's min before its max): the
+/// first candidate strictly inside lo..hi with the least t below `size`.
+template <class Item>
+bool firstMostCentred(const std::vector<const std::vector<Item>*>& sources, int type, Real lo, Real hi,
+                      Real size, Real& bestDist) {
+  Real bestt = size;
+  bestDist = 0;
+  for (const std::vector<Item>* items : sources) {
+    for (auto it = items->rbegin(); it != items->rend(); ++it) {
+      for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
+        const Real t = splitterT(lo, hi, dist);
+        const bool better = (dist < hi) & (dist > lo) & (t < bestt);
+        bestt = better ? t : bestt;
+        bestDist = better ? dist : bestDist;
+      }
+    }
+  }
+  return bestt < size;
+}
+
+/// The splitter firstMostCentred finds. With float lanes, four items at a
+/// time in any order: per lane the least t, the plane that gave it first and
+/// whether another plane gave the same t; only the position in list order
+/// tells apart two planes with the least t, so then (rarely) the search in
+/// list order decides.
+template <class Item>
+bool mostCentredSplitter(const std::vector<const std::vector<Item>*>& sources, int type, Real lo, Real hi,
+                         Real size, Real& bestDist) {
+#ifdef CMKIT_FLOAT_LANES
+  using simd::F4;
+  const F4 loV = F4::all(lo), hiV = F4::all(hi), sizeV = F4::all(size);
+  F4 best = sizeV, bestD = F4::zero(), tied = F4::zero();
+  auto candidates = [&](F4 d) {
+    const F4 t = simd::abs((hiV - d) - (d - loV));
+    const F4 inside = (d < hiV) & (d > loV);
+    const F4 less = inside & (t < best);
+    const F4 same = inside & (t == best) & simd::differentBits(d, bestD) & (best < sizeV);
+    tied = simd::andNot(less, tied | same);
+    best = simd::select(less, t, best);
+    bestD = simd::select(less, d, bestD);
+  };
+  // An item's bounds from coordinate `type` of min on: lane 0 is min[type],
+  // lane 3 max[type] (the bounds are six floats; these 16 bytes lie within).
+  static_assert(sizeof(Bounds) == 6 * sizeof(float));
+  const std::size_t offset = static_cast<std::size_t>(type) * sizeof(float);
+  auto row = [offset](const Item& item) {
+    alignas(16) float f[4];
+    std::memcpy(f, reinterpret_cast<const char*>(&item.bounds) + offset, sizeof f);
+    return F4::load(f);
+  };
+  for (const std::vector<Item>* items : sources) {
+    const Item* it = items->data();
+    const std::size_t n = items->size();
+    std::size_t k = 0;
+    for (; k + 4 <= n; k += 4) {
+      F4 mins = row(it[k]), r1 = row(it[k + 1]), r2 = row(it[k + 2]), maxs = row(it[k + 3]);
+      simd::transpose(mins, r1, r2, maxs);
+      candidates(mins);
+      candidates(maxs);
+    }
+    for (; k < n; ++k) {  // the rest in lane 0 (lo in the others is never inside)
+      candidates(F4::lanes(it[k].bounds.min[type], lo, lo, lo));
+      candidates(F4::lanes(it[k].bounds.max[type], lo, lo, lo));
+    }
+  }
+  const float least = simd::lowest(best);
+  if (!(least < size)) {
+    bestDist = 0;
+    return false;
+  }
+  alignas(16) float bests[4], dists[4], ties[4];  // (ties: masks, 0 where clear)
+  best.store(bests);
+  bestD.store(dists);
+  tied.store(ties);
+  bool first = true;
+  bool unique = true;
+  for (int j = 0; j < 4; ++j) {
+    if (bests[j] != least) continue;
+    unique = unique && ties[j] == 0 &&
+             (first || std::bit_cast<std::uint32_t>(dists[j]) == std::bit_cast<std::uint32_t>(bestDist));
+    if (first) bestDist = dists[j];
+    first = false;
+  }
+  if (unique) return true;
+#endif
+  return firstMostCentred(sources, type, lo, hi, size, bestDist);
 }
 
 }  // namespace
@@ -132,34 +239,24 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
       // candidates from the brushes, then the polygons, of this node and its ancestors
       lists.sources.clear();
       for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
+        if (all == &lists.brushes && brushes_.empty()) continue;  // (a mesh: no brush lists to read)
         auto addSource = [&](int n) {
           if (!lists.filled[static_cast<std::size_t>(n)]) return;
           const auto& items = (*all)[static_cast<std::size_t>(n)];
           if (!items.empty()) lists.sources.push_back(&items);
         };
         addSource(nodeNum);
-        for (auto n = lists.ancestors.rbegin(); n != lists.ancestors.rend(); ++n) addSource(*n);
+        for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a)
+          addSource(lists.ancestors[*a]);
       }
     }
     // The most centred splitter (dhewm3: not truncated to an integer): the
     // first bounds plane strictly inside the node with the least t, each
-    // list from its head (the end of its array). Without branches: which
-    // candidate wins is unpredictable.
-    const Real lo = bounds.min[type];
-    const Real hi = bounds.max[type];
-    Real bestt = size[i];
+    // list from its head (the end of its array).
     Real bestDist = 0;
-    for (const std::vector<GrowingLists::Item>* items : lists.sources) {
-      for (auto it = items->rbegin(); it != items->rend(); ++it) {
-        for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
-          const Real t = std::fabs((hi - dist) - (dist - lo));
-          const bool better = (dist < hi) & (dist > lo) & (t < bestt);
-          bestt = better ? t : bestt;
-          bestDist = better ? dist : bestDist;
-        }
-      }
-    }
-    if (bestt < size[i]) {
+    const bool found =
+        mostCentredSplitter(lists.sources, type, bounds.min[type], bounds.max[type], size[i], bestDist);
+    if (found) {
       planeType = type;
       planeDist = bestDist;
       if (forceSplit) return true;
@@ -198,15 +295,21 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   // The new split can leave items of this node and of every ancestor no
   // longer inside all children.
   splitItems(lists, nodeNum);
-  lists.path.assign(1, nodeNum);
-  for (auto n = lists.ancestors.rbegin(); n != lists.ancestors.rend(); ++n) {
-    pushItemsDown(lists, *n, nodeNum);
-    lists.path.push_back(*n);
+  // The nearest ancestor first.
+  for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a) {
+    const int ancestor = lists.ancestors[*a];
+    if (!lists.filled[static_cast<std::size_t>(ancestor)]) continue;
+    lists.path.assign(lists.ancestors.begin() + static_cast<std::ptrdiff_t>(*a + 1), lists.ancestors.end());
+    lists.path.push_back(nodeNum);
+    pushItemsDown(lists, ancestor, nodeNum);
   }
+  const bool filled = lists.filled[static_cast<std::size_t>(nodeNum)] != 0;
+  if (filled) lists.filledAncestors.push_back(lists.ancestors.size());
   lists.ancestors.push_back(nodeNum);
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
   lists.ancestors.pop_back();
+  if (filled) lists.filledAncestors.pop_back();
 }
 
 void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
@@ -219,38 +322,37 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
     GrowingLists::Lists& all = lists.of(kind);
     std::vector<GrowingLists::Item> items = std::move(all[static_cast<std::size_t>(splitNum)]);
     if (items.empty()) continue;
-    std::size_t numStay = 0;
-    std::size_t numBack = 0;
-    for (const GrowingLists::Item& it : items) {
+    // One pass without branches (which side an item is on is unpredictable):
+    // every item written to all three places, kept by the count of its own.
+    // The front items go to the start of the same array (never ahead of the
+    // one read).
+    const std::size_t n = items.size();
+    if (lists.stay.size() < n) lists.stay.resize(n);
+    if (lists.back.size() < n) lists.back.resize(n);
+    std::size_t numStay = 0, numFront = 0, numBack = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const GrowingLists::Item& it = items[i];
       const bool inside = straddles(it.bounds, axis, dist);
       CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
+      const bool inFront = !inside & (it.bounds.min[axis] >= dist);
+      lists.stay[numStay] = it;
+      lists.back[numBack] = it;
+      items[numFront] = it;  // (last: may be the item itself)
       numStay += inside ? 1 : 0;
-      numBack += !inside && !(it.bounds.min[axis] >= dist) ? 1 : 0;
-    }
-    std::vector<GrowingLists::Item> stay;
-    std::vector<GrowingLists::Item> backItems;
-    stay.reserve(numStay);
-    backItems.reserve(numBack);
-    std::size_t numFront = 0;
-    for (const GrowingLists::Item& it : items) {
-      if (straddles(it.bounds, axis, dist)) {
-        stay.push_back(it);
-      } else if (it.bounds.min[axis] >= dist) {
-        items[numFront++] = it;
-      } else {
-        backItems.push_back(it);
-      }
+      numFront += inFront ? 1 : 0;
+      numBack += (!inside & !inFront) ? 1 : 0;
     }
     // Each side prepends its items as the list is walked from its head (the
     // end of the array): in reverse array order.
     items.resize(numFront);
     std::reverse(items.begin(), items.end());
-    std::reverse(backItems.begin(), backItems.end());
-    lists.filled[front] = lists.filled[front] || !items.empty();
-    lists.filled[back] = lists.filled[back] || !backItems.empty();
+    lists.filled[front] = lists.filled[front] || numFront != 0;
+    lists.filled[back] = lists.filled[back] || numBack != 0;
     all[front] = std::move(items);
-    all[back] = std::move(backItems);
-    all[static_cast<std::size_t>(splitNum)] = std::move(stay);
+    const auto backEnd = lists.back.begin() + static_cast<std::ptrdiff_t>(numBack);
+    all[back].assign(std::make_reverse_iterator(backEnd), std::make_reverse_iterator(lists.back.begin()));
+    all[static_cast<std::size_t>(splitNum)].assign(lists.stay.begin(),
+                                                   lists.stay.begin() + static_cast<std::ptrdiff_t>(numStay));
   }
   lists.filled[static_cast<std::size_t>(splitNum)] =
       !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
@@ -261,7 +363,14 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
   const BNode& split = node(splitNum);
   const int axis = split.planeType;
   const Real dist = split.planeDist;
-  // lists.path: the nodes below nodeNum down to the split node, bottom up.
+  // lists.path: the nodes below nodeNum down to the split node, top down.
+  lists.offPath.clear();
+  for (std::size_t k = 0, above = static_cast<std::size_t>(nodeNum); k < lists.path.size(); ++k) {
+    const BNode& at = node(static_cast<int>(above));
+    const int below = lists.path[k];
+    lists.offPath.push_back(at.children[0] == below ? at.children[1] : at.children[0]);
+    above = static_cast<std::size_t>(below);
+  }
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Lists& all = lists.of(kind);
     if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
@@ -283,22 +392,14 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       if (items.size() + count > items.capacity())
         items.reserve(std::max(items.size() + count, 2 * items.capacity()));
     };
-    // (By index from the end, not std::ranges::reverse_view: clang with GCC
-    // 12's library cannot compile that view.)
-    int above = nodeNum;
-    for (std::size_t k = lists.path.size(); k-- > 0;) {
-      const int below = lists.path[k];
-      const BNode& at = node(above);
-      reserveMore(at.children[0] == below ? at.children[1] : at.children[0], numLeaving);
-      above = below;
-    }
+    for (const int offPath : lists.offPath) reserveMore(offPath, numLeaving);
     reserveMore(split.children[0], numFront);
     reserveMore(split.children[1], numLeaving - numFront);
     // In list order, from the end of the array (the original filters each
     // item as it meets it); the items that stay keep their order.
     std::size_t kept = here.size();
     for (std::size_t i = here.size(); i-- > 0;) {
-      const GrowingLists::Item it = here[i];
+      const GrowingLists::Item& it = here[i];
       const bool inside = straddles(it.bounds, axis, dist);
       CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, it.bounds));
       if (inside) {
@@ -307,13 +408,7 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       }
       // Through each node above the split, the child off the path, then the
       // side of the split it lies on.
-      int n = nodeNum;
-      for (auto below = lists.path.rbegin(); below != lists.path.rend(); ++below) {
-        const BNode& at = node(n);
-        const int offPath = at.children[0] == *below ? at.children[1] : at.children[0];
-        lists.add(all, offPath, it);
-        n = *below;
-      }
+      for (const int offPath : lists.offPath) lists.add(all, offPath, it);
       const int side = it.bounds.min[axis] >= dist ? split.children[0] : split.children[1];
       lists.add(all, side, it);
       // the reference moves to one node; the others are new

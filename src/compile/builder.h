@@ -9,6 +9,7 @@
 // flatten everything into the arrays of a CollisionModel.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -137,6 +138,11 @@ class PooledLists {
     head_.clear();
     pool_.clear();
   }
+  /// Room for keys 0 .. numKeys - 1 and numItems items without growing.
+  void reserve(std::size_t numKeys, std::size_t numItems) {
+    if (head_.size() < numKeys) head_.resize(numKeys, kNone);
+    pool_.reserve(numItems);
+  }
   void add(int key, int item) {
     const auto k = static_cast<std::size_t>(key);
     if (head_.size() <= k) head_.resize(k + 1, kNone);
@@ -211,7 +217,11 @@ class ModelBuilder {
   /// The vertex welding hash, over the bounds of the brushes (or a default box).
   void prepareVertexHash();
   void clearHash(const Bounds& bounds);
+  /// The welded vertex of v (true: an existing one).
   bool getVertex(const Vec3& v, int& vertexNum);
+  /// getVertex of a snapped point without the recent lookups: the hash
+  /// search, a new vertex if none matches.
+  bool findOrAddVertex(const Vec3& vert, int& vertexNum);
   bool getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1num);
   void createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum);
   void polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum);
@@ -403,6 +413,15 @@ class ModelBuilder {
   const VertexHashNode& hashNode(int vertexNum) const {
     return vertexHashNodes_[static_cast<std::size_t>(vertexNum)];
   }
+  /// A recent getVertex: its point, the point welded (snapped), its vertex
+  /// (kNone: no entry, or dropped since).
+  struct RecentVertex {
+    Vec3 point;
+    Vec3 welded;
+    int vertexNum = kNone;
+  };
+  std::array<RecentVertex, 8> recentVertices_{};
+  std::size_t recentNext_ = 0;
   IntHashMap edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
 
@@ -431,6 +450,7 @@ class ModelBuilder {
   WindingList list_;
   std::vector<Winding> outList_;
   std::vector<Winding> tmpList_;
+  Winding reversed_;  ///< scratch of polygonFromWinding: a two-sided polygon's back
 };
 
 }  // namespace cmkit::detail

@@ -8,6 +8,9 @@ namespace cmkit::detail {
 
 const Winding* ModelBuilder::windingOutsideBrushes(const Winding& w, const Plane& plane,
                                                    std::uint32_t contents, int primitiveNum) {
+  // No brush chops anything (a mesh, or an entity of patches only): the
+  // list would end as the winding alone.
+  if (brushes_.empty()) return &w;
   WindingList& list = list_;
   list.bounds = w.bounds();
   list.origin = (list.bounds.max - list.bounds.min) * Real(0.5);

@@ -24,6 +24,12 @@ void ModelBuilder::markInternalEdges() {
       }
     }
   }
+  // Two-sided polygons mark no edges (findInternalPolygonEdges): a model of
+  // them only needs no walk.
+  bool anyOneSided = false;
+  for (const BPolygon& p : polygons_)
+    anyOneSided = anyOneSided || (!p.freed && !materials_[p.material].info.twoSided);
+  if (!anyOneSided) return;
   ++checkCount_;
   findInternalEdges(0);
 }

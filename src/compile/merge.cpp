@@ -44,6 +44,11 @@ void ModelBuilder::mergePolygons() {
 void ModelBuilder::prepareMergeIndex() {
   edgeUsers_.clear();
   polygonNodes_.clear();
+  std::size_t numUses = 0;
+  for (const BPolygon& p : polygons_) numUses += p.freed ? 0 : p.edges.size();
+  // (merged polygons add their uses and nodes later: a little more room)
+  edgeUsers_.reserve(edges_.size(), numUses + numUses / 4);
+  polygonNodes_.reserve(polygons_.size(), polygonRefs_.size() + polygonRefs_.size() / 4);
   for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
     if (polygon(p).freed) continue;
     for (const int e : polygon(p).edges) edgeUsers_.add(std::abs(e), p);

@@ -28,6 +28,19 @@ int combineCells(const int k[3], int hashSize) {
   return static_cast<int>(key & static_cast<std::uint32_t>(hashSize - 1));
 }
 
+/// std::floor without the library call the baseline instruction set makes
+/// of it (no rounding instruction before SSE4.1), with the same value for
+/// every input: truncation, one less below zero; 0 and -0 are their own
+/// floor (truncation would lose the sign); from 2^23 in magnitude on, and
+/// for infinities and NaN, std::floor itself.
+Real floorOf(Real x) {
+  constexpr Real kTruncatable = Real(8388608);  // 2^23
+  if (!(std::fabs(x) < kTruncatable)) return std::floor(x);
+  if (x == 0) return x;
+  const Real t = static_cast<Real>(static_cast<long long>(x));
+  return t > x ? t - 1 : t;
+}
+
 std::uint64_t edgeKey(int v0, int v1) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v0)) << 32) | static_cast<std::uint32_t>(v1);
 }
@@ -45,6 +58,7 @@ void ModelBuilder::prepareVertexHash() {
 
 void ModelBuilder::clearHash(const Bounds& bounds) {
   hashMin_ = bounds.min;
+  recentVertices_.fill(RecentVertex{});
   vertexHashHead_.assign(kVertexHashSize, kNone);
   vertexHashNodes_.clear();
   edgeHashHead_.clear();
@@ -52,11 +66,30 @@ void ModelBuilder::clearHash(const Bounds& bounds) {
 }
 
 bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
+  // The points of the last few lookups (a polygon's closing edge and a
+  // two-sided polygon's back meet them again) and what they gave: a lookup's
+  // answer depends only on the vertices that match its point, so it stays
+  // the same until a new vertex matches it (findOrAddVertex drops such
+  // entries).
+  for (const RecentVertex& r : recentVertices_) {
+    if (r.vertexNum != kNone && r.point.x == v.x && r.point.y == v.y && r.point.z == v.z) {
+      vertexNum = r.vertexNum;
+      return true;
+    }
+  }
+  // Coordinates this close to an integer snap to it.
   Vec3 vert;
   for (int i = 0; i < 3; ++i) {
-    const Real r = std::floor(v[i] + Real(0.5));
+    const Real r = floorOf(v[i] + Real(0.5));
     vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
   }
+  const bool found = findOrAddVertex(vert, vertexNum);
+  recentVertices_[recentNext_] = {v, vert, vertexNum};
+  recentNext_ = (recentNext_ + 1) % recentVertices_.size();
+  return found;
+}
+
+bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
   const double lo = tol::kVertexHashOffset - tol::kVertexHashSpread;
   const double hi = tol::kVertexHashOffset + tol::kVertexHashSpread;
   int kMid[3];
@@ -118,6 +151,13 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   vertices_.push_back(vert);
   vertexHashNodes_.push_back({vert, hashHead(midKey)});
   hashHead(midKey) = vertexNum;
+  // Recent lookups whose point the new vertex matches may now give it.
+  for (RecentVertex& r : recentVertices_) {
+    if (r.vertexNum != kNone && std::fabs(r.welded[2] - vert[2]) < tol::kVertexEpsilon &&
+        std::fabs(r.welded[0] - vert[0]) < tol::kVertexEpsilon &&
+        std::fabs(r.welded[1] - vert[1]) < tol::kVertexEpsilon)
+      r.vertexNum = kNone;
+  }
   return false;
 }
 
@@ -217,9 +257,9 @@ void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int materi
   }
   createPolygon(*out, plane, material, primitiveNum);
   if (info.twoSided) {
-    Winding reversed = *out;
-    reversed.reverse();
-    createPolygon(reversed, plane.flipped(), material, primitiveNum);
+    reversed_ = *out;  // (keeps the room of the last one)
+    reversed_.reverse();
+    createPolygon(reversed_, plane.flipped(), material, primitiveNum);
   }
 }
 

@@ -38,6 +38,7 @@ void ModelBuilder::convertMeshSurfaces() {
   polygons_.reserve(2 * numTriangles);
   polygonRefs_.reserve(2 * numTriangles);
   int zeroNormals = 0;
+  Winding w;  // (one for all triangles: its points keep their room)
   for (const MeshSurface& s : mesh.surfaces) {
     const int material = materials_.find(s.material);
     const MaterialInfo& info = materials_[material].info;
@@ -55,7 +56,7 @@ void ModelBuilder::convertMeshSurfaces() {
       }
       plane.fixDegeneracies(0);  // the original's Normalize fixes degenerate normals
       plane.fitThroughPoint(a);
-      Winding w;
+      w.clear();
       w.add(a);
       w.add(b);
       w.add(c);

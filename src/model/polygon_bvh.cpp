@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "util/assert.h"
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
@@ -21,23 +22,59 @@ constexpr std::size_t kBinSets = 2;
 /// splits) they halve the set by count, which bounds the depth.
 constexpr std::size_t kMaxCostDepth = 40;
 
+/// A polygon while the hierarchy is made (32 bytes: the builder's passes
+/// over a large model's items are bound by memory). Its box's corners each
+/// begin four floats, loaded as lanes (the fourth, contents or polygon, is
+/// never used as a float).
+struct Item {
+  float min[3];
+  std::uint32_t contents;
+  float max[3];
+  std::int32_t polygon;
+  /// The centre of the box along axis k.
+  float centre(std::size_t k) const { return (min[k] + max[k]) * 0.5f; }
+};
+
+/// Bounds of item boxes or of their centres (lanes 0 to 2; the fourth
+/// is never read). Adding keeps the first of equal values, as std::min and
+/// std::max do.
 struct Box {
-  std::array<float, 3> min{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                           std::numeric_limits<float>::max()};
-  std::array<float, 3> max{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
-                           -std::numeric_limits<float>::max()};
-  void add(const Box& b) {
+  alignas(16) float min[4] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                              std::numeric_limits<float>::max(), 0};
+  alignas(16) float max[4] = {-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                              -std::numeric_limits<float>::max(), 0};
+#ifdef CMKIT_SIMD_SSE2
+  // simd::min(next, held) is next only where next < held: std::min(held, next).
+  void add(simd::F4 lo, simd::F4 hi) {
+    simd::min(lo, simd::F4::load(min)).store(min);
+    simd::max(hi, simd::F4::load(max)).store(max);
+  }
+  void add(const Box& b) { add(simd::F4::load(b.min), simd::F4::load(b.max)); }
+  /// An item's corners with 0 in the fourth lane (its integer there, read
+  /// as a float, would often be denormal: slow in arithmetic).
+  static simd::F4 corner(const float* p) {
+    const simd::F4 xyz = simd::F4::lanes(1, 1, 1, 0) == simd::F4::all(1);
+    return simd::F4::loadUnaligned(p) & xyz;
+  }
+  void addBox(const Item& it) { add(corner(it.min), corner(it.max)); }
+  void addCentre(const Item& it) {
+    const simd::F4 c = (corner(it.min) + corner(it.max)) * simd::F4::all(0.5f);
+    add(c, c);
+  }
+#else
+  void add(const float* lo, const float* hi) {
     for (int k = 0; k < 3; ++k) {
-      min[k] = std::min(min[k], b.min[k]);
-      max[k] = std::max(max[k], b.max[k]);
+      min[k] = std::min(min[k], lo[k]);
+      max[k] = std::max(max[k], hi[k]);
     }
   }
-  void add(const std::array<float, 3>& p) {
-    for (int k = 0; k < 3; ++k) {
-      min[k] = std::min(min[k], p[k]);
-      max[k] = std::max(max[k], p[k]);
-    }
+  void add(const Box& b) { add(b.min, b.max); }
+  void addBox(const Item& it) { add(it.min, it.max); }
+  void addCentre(const Item& it) {
+    const float c[3] = {it.centre(0), it.centre(1), it.centre(2)};
+    add(c, c);
   }
+#endif
   bool valid() const { return min[0] <= max[0]; }
   /// Half the surface area (the cost heuristic's weight).
   float halfArea() const {
@@ -47,15 +84,33 @@ struct Box {
   }
 };
 
-/// A polygon while the hierarchy is made (32 bytes: the builder's passes
-/// over a large model's items are bound by memory).
-struct Item {
+/// What a node needs of a range of items, gathered while they are binned:
+/// their boxes' bounds and contents (the node's lanes) and their centres'
+/// bounds (the range's next split).
+struct Summary {
   Box box;
-  std::uint32_t contents;
-  std::int32_t polygon;
-  /// The centre of the box along axis k.
-  float centre(std::size_t k) const { return (box.min[k] + box.max[k]) * 0.5f; }
-  std::array<float, 3> centre() const { return {centre(0), centre(1), centre(2)}; }
+  Box centres;
+  std::uint32_t contents = 0;
+  void add(const Item& it) {
+    box.addBox(it);
+    centres.addCentre(it);
+    contents |= it.contents;
+  }
+  void add(const Summary& s) {
+    box.add(s.box);
+    centres.add(s.centres);
+    contents |= s.contents;
+  }
+  /// True when a bound is 0: folded in another order its sign (0 or -0)
+  /// could differ (std::min keeps the first of equal values; any other
+  /// equal values have the same bits).
+  bool hasZero() const {
+    for (const Box* b : {&box, &centres}) {
+      for (int k = 0; k < 3; ++k)
+        if (b->min[k] == 0 || b->max[k] == 0) return true;
+    }
+    return false;
+  }
 };
 
 class Builder {
@@ -66,8 +121,8 @@ class Builder {
       const CmPolygon& p = m.polygons[i];
       Item item;
       for (int k = 0; k < 3; ++k) {
-        item.box.min[k] = float(p.bounds.min[k]);
-        item.box.max[k] = float(p.bounds.max[k]);
+        item.min[k] = float(p.bounds.min[k]);
+        item.max[k] = float(p.bounds.max[k]);
       }
       item.polygon = std::int32_t(i);
       item.contents = p.contents;
@@ -79,7 +134,8 @@ class Builder {
     if (items_.empty()) return;
     out_.nodes.reserve(items_.size() / 2 + 1);
     out_.leaves.reserve(items_.size() / 2 + 1);
-    (void)node(0, items_.size(), 1);
+    const Range all{0, items_.size()};
+    (void)node(all, summaryOf(all), 1);
   }
 
  private:
@@ -88,21 +144,17 @@ class Builder {
     std::size_t size() const { return end - first; }
   };
 
-  /// The bounds of r's items, and their contents OR'ed.
-  Box boundsOf(Range r, std::uint32_t& contents) const {
-    Box b;
-    contents = 0;
-    for (std::size_t i = r.first; i < r.end; ++i) {
-      b.add(items_[i].box);
-      contents |= items_[i].contents;
-    }
-    return b;
+  /// The summary of r's items, folded in their order.
+  Summary summaryOf(Range r) const {
+    Summary sum;
+    for (std::size_t i = r.first; i < r.end; ++i) sum.add(items_[i]);
+    return sum;
   }
 
-  /// Splits r in two non-empty ranges (r.size() > 1).
-  std::size_t split(Range r, std::size_t depth) {
-    Box centres;
-    for (std::size_t i = r.first; i < r.end; ++i) centres.add(items_[i].centre());
+  /// Splits r (summary `sum`) in two non-empty ranges (r.size() > 1):
+  /// returns where the second starts, with the summaries of both.
+  std::size_t split(Range r, const Summary& sum, std::size_t depth, Summary& left, Summary& right) {
+    const Box& centres = sum.centres;
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (centres.max[k] - centres.min[k] > centres.max[axis] - centres.min[axis]) axis = k;
@@ -114,16 +166,17 @@ class Builder {
       };
       // Neighbouring items mostly fall in the same bin: two sets of bins
       // (even and odd items) halve the chains of updates to one bin in
-      // memory. (Bounds and counts are the same in any order.)
-      std::array<std::array<Box, kBins>, kBinSets> binSets;
+      // memory. (Bounds and counts are the same in any order.) Each bin
+      // also gathers what the two sides' summaries need.
+      std::array<std::array<Summary, kBins>, kBinSets> binSets;
       std::array<std::array<std::uint32_t, kBins>, kBinSets> countSets{};
       for (std::size_t i = r.first; i < r.end; ++i) {
         const std::size_t set = i % kBinSets;
         const auto b = std::size_t(binOf(items_[i]));
-        binSets[set][b].add(items_[i].box);
+        binSets[set][b].add(items_[i]);
         ++countSets[set][b];
       }
-      std::array<Box, kBins>& bins = binSets[0];
+      std::array<Summary, kBins>& bins = binSets[0];
       std::array<std::size_t, kBins> counts{};
       for (std::size_t b = 0; b < std::size_t(kBins); ++b) {
         for (std::size_t set = 1; set < kBinSets; ++set) bins[b].add(binSets[set][b]);
@@ -131,22 +184,22 @@ class Builder {
       }
       // Cost of splitting after bin s: area(left) * count(left) + area(right) * count(right).
       std::array<float, kBins> rightCost{};
-      Box right;
+      Box rightBox;
       std::size_t rightCount = 0;
       for (int s = kBins - 1; s > 0; --s) {
-        right.add(bins[std::size_t(s)]);
+        rightBox.add(bins[std::size_t(s)].box);
         rightCount += counts[std::size_t(s)];
-        rightCost[std::size_t(s)] = right.halfArea() * float(rightCount);
+        rightCost[std::size_t(s)] = rightBox.halfArea() * float(rightCount);
       }
-      Box left;
+      Box leftBox;
       std::size_t leftCount = 0;
       int best = -1;
       float bestCost = std::numeric_limits<float>::max();
       for (int s = 0; s + 1 < kBins; ++s) {
-        left.add(bins[std::size_t(s)]);
+        leftBox.add(bins[std::size_t(s)].box);
         leftCount += counts[std::size_t(s)];
         if (leftCount == 0 || leftCount == r.size()) continue;
-        const float cost = left.halfArea() * float(leftCount) + rightCost[std::size_t(s + 1)];
+        const float cost = leftBox.halfArea() * float(leftCount) + rightCost[std::size_t(s + 1)];
         if (cost < bestCost) {
           bestCost = cost;
           best = s;
@@ -156,7 +209,14 @@ class Builder {
         const auto mid =
             std::partition(items_.begin() + std::ptrdiff_t(r.first), items_.begin() + std::ptrdiff_t(r.end),
                            [&](const Item& it) { return binOf(it) <= best; });
-        return std::size_t(mid - items_.begin());
+        const std::size_t m = std::size_t(mid - items_.begin());
+        left = Summary{};
+        right = Summary{};
+        for (int s = 0; s < kBins; ++s) (s <= best ? left : right).add(bins[std::size_t(s)]);
+        // (a bound of 0 folded in the items' order, as before bins)
+        if (left.hasZero()) left = summaryOf({r.first, m});
+        if (right.hasZero()) right = summaryOf({m, r.end});
+        return m;
       }
     }
     // All centres at one place (or too deep): halve by count, in polygon order along the axis.
@@ -166,6 +226,8 @@ class Builder {
                        const float ca = a.centre(std::size_t(axis)), cb = b.centre(std::size_t(axis));
                        return ca < cb || (ca == cb && a.polygon < b.polygon);
                      });
+    left = summaryOf({r.first, mid});
+    right = summaryOf({mid, r.end});
     return mid;
   }
 
@@ -203,28 +265,34 @@ class Builder {
     return number;
   }
 
-  /// An inner node of the items of r (more than kLanes): its number.
-  std::size_t node(std::size_t first, std::size_t end, std::size_t depth) {
+  /// An inner node of the items of r (more than kLanes; summary `sum`): its number.
+  std::size_t node(Range r, const Summary& sum, std::size_t depth) {
     out_.depth = std::max(out_.depth, depth);
     // Up to kLanes children: split the largest child until there are
     // kLanes or every child fits a leaf.
-    std::array<Range, kLanes> children{};
+    struct Child {
+      Range range;
+      Summary sum;
+    };
+    std::array<Child, kLanes> children{};
     std::size_t numChildren = 1;
-    children[0] = {first, end};
+    children[0] = {r, sum};
     while (numChildren < kLanes) {
       std::size_t widest = kLanes;
       for (std::size_t c = 0; c < numChildren; ++c)
-        if (children[c].size() > kLanes && (widest == kLanes || children[c].size() > children[widest].size()))
+        if (children[c].range.size() > kLanes &&
+            (widest == kLanes || children[c].range.size() > children[widest].range.size()))
           widest = c;
       if (widest == kLanes) break;
-      const Range r = children[widest];
-      const std::size_t mid = split(r, depth);
-      children[widest] = {r.first, mid};
-      children[numChildren++] = {mid, r.end};
+      const Child whole = children[widest];
+      Summary left, right;
+      const std::size_t mid = split(whole.range, whole.sum, depth, left, right);
+      children[widest] = {{whole.range.first, mid}, left};
+      children[numChildren++] = {{mid, whole.range.end}, right};
     }
     // Children in the order of their items (the near-far order is the walk's).
     std::sort(children.begin(), children.begin() + std::ptrdiff_t(numChildren),
-              [](const Range& a, const Range& b) { return a.first < b.first; });
+              [](const Child& a, const Child& b) { return a.range.first < b.range.first; });
     const std::size_t number = out_.nodes.size();
     out_.nodes.emplace_back();
     for (std::size_t j = 0; j < kLanes; ++j) {
@@ -232,10 +300,11 @@ class Builder {
       std::int32_t child = 0;
       std::uint32_t contents = 0;
       if (j < numChildren) {
-        box = boundsOf(children[j], contents);
-        child = children[j].size() <= kLanes
-                    ? ~std::int32_t(leaf(children[j]))
-                    : std::int32_t(node(children[j].first, children[j].end, depth + 1));
+        const Child& c = children[j];
+        box = c.sum.box;
+        contents = c.sum.contents;
+        child = c.range.size() <= kLanes ? ~std::int32_t(leaf(c.range))
+                                         : std::int32_t(node(c.range, c.sum, depth + 1));
       }
       BvhNode& n = out_.nodes[number];  // (node() may have moved the array)
       for (std::size_t k = 0; k < 3; ++k) {

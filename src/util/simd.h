@@ -46,6 +46,8 @@ struct F4 {
   static F4 all(float x) { return {_mm_set1_ps(x)}; }
   /// 0 in every lane.
   static F4 zero() { return {_mm_setzero_ps()}; }
+  /// Lanes 0..3 set to a, b, c, d.
+  static F4 lanes(float a, float b, float c, float d) { return {_mm_setr_ps(a, b, c, d)}; }
   /// Stores the lanes to 16-byte aligned memory.
   void store(float* p) const { _mm_store_ps(p, v); }
 };
@@ -72,6 +74,16 @@ inline F4 operator<(F4 a, F4 b) { return {_mm_cmplt_ps(a.v, b.v)}; }
 inline F4 operator<=(F4 a, F4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
 inline F4 operator>(F4 a, F4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
 inline F4 operator>=(F4 a, F4 b) { return {_mm_cmpge_ps(a.v, b.v)}; }
+inline F4 operator==(F4 a, F4 b) { return {_mm_cmpeq_ps(a.v, b.v)}; }
+/// A mask of the lanes whose bits differ (-0 and 0 differ; NaNs by their bits).
+inline F4 differentBits(F4 a, F4 b) {
+  const __m128i same = _mm_cmpeq_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v));
+  return {_mm_castsi128_ps(_mm_xor_si128(same, _mm_set1_epi32(-1)))};
+}
+/// Lane by lane: mask ? a : b (mask lanes all set or all clear).
+inline F4 select(F4 mask, F4 a, F4 b) {
+  return {_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v))};
+}
 
 /// One bit per lane (bit j: lane j's sign bit, i.e. lane j of a mask is set).
 inline unsigned bits(F4 mask) { return unsigned(_mm_movemask_ps(mask.v)); }
