@@ -274,6 +274,7 @@ class World {
   std::unique_ptr<detail::WorldData> data_;
 };
 
+/// A world loaded from a map, with its report (World::loadMap, World::fromMap).
 struct LoadedWorld {
   World world;             ///< the world
   WorldLoadReport report;  ///< what was placed and skipped
