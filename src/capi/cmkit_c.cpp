@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <new>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -171,6 +172,17 @@ cmkit::Result<cmkit::World> worldFromCm(const std::string& path, const cmkit::Ma
     if (!id) return id.error();
   }
   return world;
+}
+
+// Runs a world batch (`run` fills a span of n answers) and hands answer i to
+// fill(i, answer): the batch functions' common tail.
+template <class Answer, class Run, class Fill>
+cmkit_status runWorldBatch(std::size_t n, Run&& run, Fill&& fill) {
+  std::vector<Answer> answers(n);
+  const cmkit::Status st = run(std::span<Answer>(answers));
+  if (!st) return failWith(st.error());
+  for (std::size_t i = 0; i < n; ++i) fill(i, answers[i]);
+  return CMKIT_OK;
 }
 
 }  // namespace
@@ -458,11 +470,12 @@ cmkit_status cmkit_translate_batch(const cmkit_world_t* world, const cmkit_trace
     batch.query.detectStartSolid = true;
     batch.starts = s;
     batch.ends = e;
-    std::vector<cmkit::WorldTraceResult> results(n);
-    cmkit::Status st = cmkit::translateBatch(world->world, batch, results, batchOptions(threads));
-    if (!st) return failWith(st.error());
-    for (size_t i = 0; i < n; ++i) fillTrace(results[i], &out[i]);
-    return CMKIT_OK;
+    return runWorldBatch<cmkit::WorldTraceResult>(
+        n,
+        [&](auto answers) {
+          return cmkit::translateBatch(world->world, batch, answers, batchOptions(threads));
+        },
+        [&](std::size_t i, const cmkit::WorldTraceResult& r) { fillTrace(r, &out[i]); });
   });
 }
 
@@ -476,14 +489,15 @@ cmkit_status cmkit_point_contents_batch(const cmkit_world_t* world, const float*
     const std::vector<Vec3> p = vectors(points, n);
     cmkit::PointContentsBatch batch;
     batch.points = p;
-    std::vector<cmkit::WorldPointContentsResult> results(n);
-    cmkit::Status st = cmkit::pointContentsBatch(world->world, batch, results, batchOptions(threads));
-    if (!st) return failWith(st.error());
-    for (size_t i = 0; i < n; ++i) {
-      contents[i] = results[i].contents;
-      if (entities != nullptr) entities[i] = results[i].entity;
-    }
-    return CMKIT_OK;
+    return runWorldBatch<cmkit::WorldPointContentsResult>(
+        n,
+        [&](auto answers) {
+          return cmkit::pointContentsBatch(world->world, batch, answers, batchOptions(threads));
+        },
+        [&](std::size_t i, const cmkit::WorldPointContentsResult& r) {
+          contents[i] = r.contents;
+          if (entities != nullptr) entities[i] = r.entity;
+        });
   });
 }
 
@@ -500,11 +514,12 @@ cmkit_status cmkit_cast_ray_batch(const cmkit_world_t* world, const float* start
     batch.query.contentMask = mask;
     batch.starts = s;
     batch.ends = e;
-    std::vector<cmkit::WorldRayHit> results(n);
-    cmkit::Status st = cmkit::castRayBatch(world->world, batch, results, batchOptions(threads));
-    if (!st) return failWith(st.error());
-    for (size_t i = 0; i < n; ++i) fillRay(results[i], &out[i]);
-    return CMKIT_OK;
+    return runWorldBatch<cmkit::WorldRayHit>(
+        n,
+        [&](auto answers) {
+          return cmkit::castRayBatch(world->world, batch, answers, batchOptions(threads));
+        },
+        [&](std::size_t i, const cmkit::WorldRayHit& r) { fillRay(r, &out[i]); });
   });
 }
 
