@@ -15,9 +15,12 @@ work=${2:-${TMPDIR:-/tmp}/cmkit-repro}
 jobs=${CMKIT_BUILD_JOBS:-2}
 rm -rf "$work"
 mkdir -p "$work/a" "$work/second/folder"
+# One snapshot of the tree for both builds (the tree may change while the
+# first one builds).
+(cd "$src" && git ls-files -z | xargs -0 tar cf -) >"$work/tree.tar"
 for dest in "$work/a/cmkit" "$work/second/folder/cmkit-copy"; do
   mkdir -p "$dest"
-  (cd "$src" && git ls-files -z | xargs -0 tar cf -) | (cd "$dest" && tar xf -)
+  (cd "$dest" && tar xf "$work/tree.tar")
   echo "== building in $dest"
   CCACHE_DISABLE=1 cmake -S "$dest" -B "$dest/build/release" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMKIT_BUILD_TESTS=OFF -DCMKIT_BUILD_BENCH=OFF -DCMKIT_BUILD_FUZZ=OFF -DCMKIT_BUILD_EXAMPLES=OFF \
