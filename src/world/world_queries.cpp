@@ -76,6 +76,27 @@ void gatherBox(const WorldData& d, const Bounds& sweep, std::uint32_t mask, cons
 
 WorldScratch& scratchOf(WorldQueryWork& work) { return detail::WorldWorkAccess::of(work); }
 
+/// Asks every candidate (ascending ids) with `ask(entity)`, a single-model
+/// translation or rotation at the entity's placement, and keeps in `out`
+/// the smallest fraction (equal fractions: the lowest id) and the OR of
+/// startSolid. False when no entity was asked (`out` then untouched but
+/// for startSolid).
+template <class Ask>
+bool keepClosest(const WorldData& d, const WorldScratch& s, WorldTraceResult& out, const Ask& ask) {
+  bool asked = false, startSolid = false;
+  for (const EntityId id : s.candidates) {
+    const TraceResult r = ask(d.slot(id)->entity);
+    startSolid = startSolid || r.startSolid;
+    if (!asked || r.fraction < out.trace.fraction) {
+      out.trace = r;
+      out.entity = id;
+      asked = true;
+    }
+  }
+  out.trace.startSolid = startSolid;
+  return asked;
+}
+
 }  // namespace
 
 WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork& work,
@@ -93,18 +114,10 @@ WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork&
   gatherBox(*data_, sweep, g.contentMask, filter, s);
 
   TranslationQuery q = query;
-  bool asked = false, startSolid = false;
-  for (const EntityId id : s.candidates) {
-    const WorldEntity& e = data_->slot(id)->entity;
+  const bool asked = keepClosest(*data_, s, out, [&](const WorldEntity& e) {
     q.placement = e.placement;
-    const TraceResult r = cmkit::translate(*e.model, q, s.model);
-    startSolid = startSolid || r.startSolid;
-    if (!asked || r.fraction < out.trace.fraction) {
-      out.trace = r;
-      out.entity = id;
-      asked = true;
-    }
-  }
+    return cmkit::translate(*e.model, q, s.model);
+  });
   if (!asked) {
     // Nothing near: the miss every model gives (translate(), query.cpp's rules).
     out.trace.fraction = 1;
@@ -117,7 +130,6 @@ WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork&
     }
   }
   if (!(out.trace.fraction < 1)) out.entity = kNoEntity;
-  out.trace.startSolid = startSolid;
   return out;
 }
 
@@ -134,18 +146,10 @@ WorldTraceResult World::rotate(const RotationQuery& query, WorldQueryWork& work,
   gatherBox(*data_, turnBounds(g.trm, g.trmAxis, g.start, g.rotation.origin), g.contentMask, filter, s);
 
   RotationQuery q = query;
-  bool asked = false, startSolid = false;
-  for (const EntityId id : s.candidates) {
-    const WorldEntity& e = data_->slot(id)->entity;
+  const bool asked = keepClosest(*data_, s, out, [&](const WorldEntity& e) {
     q.placement = e.placement;
-    const TraceResult r = cmkit::rotate(*e.model, q, s.model);
-    startSolid = startSolid || r.startSolid;
-    if (!asked || r.fraction < out.trace.fraction) {
-      out.trace = r;
-      out.entity = id;
-      asked = true;
-    }
-  }
+    return cmkit::rotate(*e.model, q, s.model);
+  });
   if (!asked) {
     // Nothing near: the miss every model gives (rotate()'s rules).
     const bool point = isPoint(g.trm);
@@ -160,7 +164,6 @@ WorldTraceResult World::rotate(const RotationQuery& query, WorldQueryWork& work,
     }
   }
   if (!(out.trace.fraction < 1)) out.entity = kNoEntity;
-  out.trace.startSolid = startSolid;
   return out;
 }
 
