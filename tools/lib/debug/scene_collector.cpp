@@ -7,6 +7,10 @@ namespace {
 /// Colour of exported edges (dark, to show on the coloured polygons).
 constexpr Rgba kEdgeColor{24, 24, 28, 255};
 
+/// A named function, not a lambda: Clang 14 writes a lambda's source path into
+/// the debug information unmapped by -ffile-prefix-map (installed_tree).
+bool isEdgeGroup(const Group& g) { return g.kind == GroupKind::Edges; }
+
 GroupKind groupKindOf(DrawKind kind) {
   switch (kind) {
     case DrawKind::Polygon:
@@ -111,7 +115,7 @@ std::vector<Group> collectScene(std::span<const ModelPtr> models, std::span<cons
   }
   drawTraceRecords(collector, traces);
   std::vector<Group> groups = std::move(collector.groups());
-  if (!options.edges) std::erase_if(groups, [](const Group& g) { return g.kind == GroupKind::Edges; });
+  if (!options.edges) std::erase_if(groups, isEdgeGroup);
   return groups;
 }
 
