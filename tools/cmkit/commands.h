@@ -40,6 +40,9 @@ void registerSoak(CLI::App& app);
 /// `cmkit walk MAP`: a player walked through a map's World (movement.h).
 void registerWalk(CLI::App& app);
 
+/// `cmkit audit MAP`: reachability of a player and the map's faults (audit.h).
+void registerAudit(CLI::App& app);
+
 /// `cmkit demo [MAP]`: compile, speed test and picture of the bundled map.
 void registerDemo(CLI::App& app);
 

@@ -28,11 +28,13 @@ int main(int argc, char** argv) {
   cmkit::cli::registerBench(app);
   cmkit::cli::registerSoak(app);
   cmkit::cli::registerWalk(app);
+  cmkit::cli::registerAudit(app);
   cmkit::cli::registerDemo(app);
   // Exit codes: every command's --help ends with the ones it uses.
   app.footer(
       "Exit codes (every command): 0 success; 1 the work ran but a check failed (validate: violations;\n"
-      "soak: a must-hold check; demo, bench: threaded results differ from the single-thread ones);\n"
+      "soak: a must-hold check; audit: a finding of high severity; demo, bench: threaded results differ\n"
+      "from the single-thread ones);\n"
       "2 bad input or arguments (an unreadable or malformed file with file:line, an unknown option);\n"
       "3 query only: every result line written, but some are error=REASON.");
   // An unknown command is named as such (CLI11 alone would say that a
