@@ -29,7 +29,9 @@
 //               jumps) ends within kAuditStuckFraction * grid of it. High.
 //     Tunnel    a step of a move ended with the player inside solid (the
 //               next step's position test found it in solid, or the move's
-//               end overlaps solid). High.
+//               end overlaps solid). High when the player there overlaps a
+//               brush deeper than 0.01 units (penetration()); low when it
+//               overlaps polygons only (a one-sided patch).
 //     Embedded  a spot's trace model overlaps solid where the map puts it
 //               (a player start: lifted by up to tol::kPlayerMaxNudge it is
 //               still in solid, as the player would be). Player starts high,

@@ -50,7 +50,7 @@ std::vector<AuditFinding> merge(std::vector<RawFinding> raw, const audit_detail:
   std::vector<AuditFinding> out;
   for (RawFinding& r : raw) {
     auto near = std::find_if(out.begin(), out.end(), [&](const AuditFinding& f) {
-      return (f.position - r.position).length() < kAuditClusterRadius;
+      return f.severity == r.severity && (f.position - r.position).length() < kAuditClusterRadius;
     });
     if (near != out.end()) {
       ++near->merged;

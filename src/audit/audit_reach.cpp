@@ -45,6 +45,9 @@ constexpr Real kFallSlack = 1;
 /// A run that gets less than this fraction of a grid step away was blocked.
 constexpr Real kBlockedFraction = Real(0.5);
 
+/// A tunnel's end overlapping a brush by at most this (units) is a precision
+/// case, not a brush entered (the soak's kPrecisionDepth).
+constexpr Real kTunnelDepth = Real(0.01);
 /// How far (units) around a start in solid a free start is looked for.
 constexpr Real kStartSearchRadius = 64;
 
@@ -52,12 +55,13 @@ enum class MoveMode { Run, Crouch, Jump };
 
 /// How one move ended.
 struct MoveEnd {
-  Vec3 position;          ///< where it came to rest
-  bool crouched = false;  ///< crouched at rest
-  bool fellOut = false;   ///< left the world (fallOutAt)
-  Vec3 fallOutAt;         ///< where it was when it left
-  bool tunnel = false;    ///< a step ended in solid (tunnelAt)
-  Vec3 tunnelAt;          ///< that step's end
+  Vec3 position;             ///< where it came to rest
+  bool crouched = false;     ///< crouched at rest
+  bool fellOut = false;      ///< left the world (fallOutAt)
+  Vec3 fallOutAt;            ///< where it was when it left
+  bool tunnel = false;       ///< a step ended in solid (tunnelAt)
+  Vec3 tunnelAt;             ///< that step's end
+  bool tunnelBrush = false;  ///< tunnelAt overlaps a brush (not polygons only)
   bool usable() const { return !fellOut && !tunnel; }
 };
 
@@ -115,6 +119,26 @@ class Mover {
     }
     fall(s, still, end, work, false);
     return end;
+  }
+
+  /// Whether the standing player at `at` overlaps a brush of some entity
+  /// deeper than kTunnelDepth (penetration(), brushes only), rather than
+  /// polygons only (a patch, one-sided, that the move crossed or touched).
+  bool overlapsBrush(const Vec3& at, WorldQueryWork& work) const {
+    const TraceModel& trm = ctx_.shape.standing;
+    const Bounds box = trm.bounds().translated(at).expanded(1);
+    for (EntityId id : ctx_.world.entityIds()) {
+      const WorldEntity* e = ctx_.world.entity(id);
+      if ((e->contents & ctx_.shape.contentMask) == 0 || !e->bounds.intersects(box)) continue;
+      PenetrationQuery q;
+      q.trm = &trm;
+      q.position = at;
+      q.contentMask = ctx_.shape.contentMask;
+      q.placement = e->placement;
+      const PenetrationResult r = penetration(*e->model, q, work.modelWork());
+      if (r.stuck && r.depth > kTunnelDepth) return true;
+    }
+    return false;
   }
 
  private:
@@ -194,18 +218,22 @@ class Mover {
 /// when blocked a crouched run and a jump).
 CellMoves movesOf(const Mover& mover, const SearchCell& cell, Real grid, WorldQueryWork& work) {
   CellMoves out;
+  auto classified = [&](MoveEnd e) {
+    if (e.tunnel) e.tunnelBrush = mover.overlapsBrush(e.tunnelAt, work);
+    return e;
+  };
   const Vec3 centre = cellCentre(cell.position, grid);
   const Real stuckRadius = kAuditStuckFraction * grid;
   bool leaves = false;
   for (const auto& d : kDirections) {
     const Vec3 target{centre.x + Real(d[0]) * grid, centre.y + Real(d[1]) * grid, cell.position.z};
-    MoveEnd e = mover.run(cell, target, MoveMode::Run, work);
+    MoveEnd e = classified(mover.run(cell, target, MoveMode::Run, work));
     const Vec3 moved = e.position - cell.position;
     const bool blocked = e.usable() && Vec3{moved.x, moved.y, 0}.length() < kBlockedFraction * grid;
     out.ends.push_back(e);
     if (blocked || cell.crouched) {
-      out.ends.push_back(mover.run(cell, target, MoveMode::Crouch, work));
-      out.ends.push_back(mover.run(cell, target, MoveMode::Jump, work));
+      out.ends.push_back(classified(mover.run(cell, target, MoveMode::Crouch, work)));
+      out.ends.push_back(classified(mover.run(cell, target, MoveMode::Jump, work)));
     }
   }
   for (const MoveEnd& e : out.ends)
@@ -283,9 +311,12 @@ SearchResult searchReachable(const SearchContext& ctx, const std::vector<Vec3>& 
         }
         if (e.tunnel && !tunnel) {
           tunnel = true;
-          out.findings.push_back({AuditKind::Tunnel, AuditSeverity::High, e.tunnelAt,
-                                  "a move from " + pointText(cell.position) + " ended a step inside solid",
-                                  id});
+          out.findings.push_back(
+              {AuditKind::Tunnel, e.tunnelBrush ? AuditSeverity::High : AuditSeverity::Low, e.tunnelAt,
+               "a move from " + pointText(cell.position) + " ended a step inside " +
+                   (e.tunnelBrush ? std::string("a brush")
+                                  : std::string("polygons only (a one-sided patch or polygon, no brush)")),
+               id});
         }
         if (e.usable()) addCell(e, id, cell.start);
       }

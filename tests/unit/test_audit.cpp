@@ -13,6 +13,8 @@
 
 #include "cmkit/audit.h"
 #include "cmkit/map.h"
+#include "cmkit/movement.h"
+#include "cmkit/query.h"
 #include "cmkit/world.h"
 #include "test_support.h"
 
@@ -254,6 +256,32 @@ TEST(Audit, Lt4SameAtOneAndTwoThreads) {
   const Audited a = audit(lt4, one), b = audit(lt4, two);
   EXPECT_GT(a.report.cells.size(), 2000u);
   expectSameReport(a.report, b.report);
+  // Every tunnel's end is in solid; the high ones overlap a brush, the low
+  // ones polygons only (a patch).
+  auto loaded = World::loadMap(lt4, MaterialTable{});
+  ASSERT_TRUE(loaded.ok());
+  WorldQueryWork work;
+  const PlayerShape player = PlayerShape::standard();
+  ASSERT_FALSE(a.report.tunnels.empty());
+  for (const AuditFinding& f : a.report.tunnels) {
+    ContentsQuery q;
+    q.trm = &player.standing;
+    q.position = f.position;
+    q.contentMask = player.contentMask;
+    EXPECT_NE(loaded->world.contentsTest(q, work).result.contents, 0u) << f.what;
+    bool brush = false;
+    for (EntityId id : loaded->world.entityIds()) {
+      const WorldEntity* e = loaded->world.entity(id);
+      PenetrationQuery p;
+      p.trm = &player.standing;
+      p.position = f.position;
+      p.contentMask = player.contentMask;
+      p.placement = e->placement;
+      const PenetrationResult r = penetration(*e->model, p, work.modelWork());
+      brush = brush || (r.stuck && r.depth > Real(0.01));
+    }
+    EXPECT_EQ(brush, f.severity == AuditSeverity::High) << f.what;
+  }
   ASSERT_FALSE(a.report.embedded.empty());
   EXPECT_TRUE(std::any_of(a.report.embedded.begin(), a.report.embedded.end(), [](const AuditFinding& f) {
     return f.what.find("info_player_start_1") != std::string::npos;

@@ -40,6 +40,7 @@ struct AuditRequest {
   std::string movers = "ignore";
   bool noShells = false;
   int worst = 5;
+  int focus = 0;
   std::string materials;
   bool noProc = false;
 };
@@ -48,6 +49,8 @@ struct AuditRequest {
 constexpr int kExitHighSeverity = 1;
 /// Largest picture side (pixels).
 constexpr int kMaxPictureSide = 8192;
+/// Half the width (units) of the square a --focus picture shows.
+constexpr Real kFocusHalfWidth = 384;
 /// The top of the scene left out of the picture (as `cmkit render --top`).
 constexpr Real kPictureCut = Real(0.2);
 
@@ -136,9 +139,18 @@ Rgba severityColor(AuditSeverity s) {
 
 /// The top view: the world (its top cut away), the reachable cells shaded
 /// by height, each finding a numbered marker.
-Image auditPicture(const World& world, const AuditReport& report, Real grid, int width, int height) {
-  Bounds b = report.worldBounds;
-  const Camera camera = frameCamera(b, CameraView::TopDown, Real(width) / Real(height));
+/// `focus` > 0: only the square around that finding.
+Image auditPicture(const World& world, const AuditReport& report, Real grid, int focus, int width,
+                   int height) {
+  const Bounds b = report.worldBounds;
+  Bounds frame = b;
+  const std::vector<const AuditFinding*> numbered = report.numbered();
+  if (focus > 0 && std::size_t(focus) <= numbered.size()) {
+    const Vec3 p = numbered[std::size_t(focus - 1)]->position;
+    frame.min = {p.x - kFocusHalfWidth, p.y - kFocusHalfWidth, b.min.z};
+    frame.max = {p.x + kFocusHalfWidth, p.y + kFocusHalfWidth, b.max.z};
+  }
+  const Camera camera = frameCamera(frame, CameraView::TopDown, Real(width) / Real(height));
   PictureCanvas canvas(width, height, camera, {28, 30, 36, 255});
   // Cut away the top of the scene, and everything higher than a player
   // standing in the highest cell: the roofs over the reachable area.
@@ -178,9 +190,9 @@ Image auditPicture(const World& world, const AuditReport& report, Real grid, int
     canvas.polygon(square, {0, 0, 1}, heightColor((p.z - zLo) / span), tag);
   }
   // Findings: a ring and the number, coloured by severity.
-  const Real r = std::max(grid, (b.max.x - b.min.x + b.max.y - b.min.y) / Real(300));
+  const Real r = std::max(grid, (frame.max.x - frame.min.x + frame.max.y - frame.min.y) / Real(300));
   int number = 1;
-  for (const AuditFinding* f : report.numbered()) {
+  for (const AuditFinding* f : numbered) {
     const Rgba color = severityColor(f->severity);
     const Vec3 p = f->position;
     constexpr int kRingSegments = 16;
@@ -273,7 +285,7 @@ int runAudit(const AuditRequest& r) {
           movers.emplace_back(id, world.entity(id)->contents);
           (void)world.setContents(id, 0);
         }
-    const Image image = auditPicture(world, report, options.grid, width, height);
+    const Image image = auditPicture(world, report, options.grid, r.focus, width, height);
     for (const auto& [id, c] : movers) (void)world.setContents(id, c);
     if (Status s = savePng(r.picture, image); !s) {
       fmt::print(stderr, "cmkit audit: {}\n", s.error().toString());
@@ -320,7 +332,7 @@ void registerAudit(CLI::App& app) {
       "(doors and other movers ignored unless --movers closed), and report (docs/audit.md):\n"
       "  fall-outs    a reachable place from which the player falls out of the world (high)\n"
       "  stuck        a reachable place no move gets out of (high)\n"
-      "  tunnels      a move that ended a step inside solid (high)\n"
+      "  tunnels      a move that ended a step inside a brush (high) or a patch's polygons (low)\n"
       "  embedded     a player start (high), monster (medium) or item (low) placed in solid\n"
       "  open shells  a crack next to reachable space that a point passes out of the world (medium)\n"
       "Prints a summary; --json writes every finding, --picture a top view with the reachable area\n"
@@ -341,6 +353,8 @@ void registerAudit(CLI::App& app) {
   cmd->add_option("--picture", r->picture,
                   "write a top view (PNG) with the reachable cells and the findings");
   cmd->add_option("--size", r->size, "the picture's size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--focus", r->focus, "the picture shows only the 768 x 768 units around finding N")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--grid", r->grid, "the grid of standing positions (units, at least 4)")
       ->capture_default_str()
       ->check(finiteAtLeast(4));
