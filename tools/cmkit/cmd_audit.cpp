@@ -122,7 +122,7 @@ class CutDraw final : public DebugDraw {
 Rgba heightColor(Real t) {
   t = std::clamp(t, Real(0), Real(1));
   return {std::uint8_t(40 + 215 * t), std::uint8_t(200 - 120 * std::abs(t - Real(0.5)) * 2),
-          std::uint8_t(255 - 215 * t), 150};
+          std::uint8_t(255 - 215 * t), 255};
 }
 
 Rgba severityColor(AuditSeverity s) {
