@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "cmkit/audit.h"
+#include "cmkit/map.h"
 #include "cmkit/materials.h"
 #include "cmkit/movement.h"
 #include "cmkit/world.h"
@@ -355,6 +357,79 @@ py::dict walk(PyWorld& self, const py::object& start, const py::object& wish, do
   return d;
 }
 
+// ---- the audit --------------------------------------------------------------
+
+py::dict findingDict(const cmkit::AuditFinding& f, int number) {
+  py::dict d;
+  d["number"] = number;
+  d["kind"] = std::string(cmkit::toString(f.kind));
+  d["severity"] = std::string(cmkit::toString(f.severity));
+  d["position"] = py::make_tuple(double(f.position.x), double(f.position.y), double(f.position.z));
+  d["what"] = f.what;
+  d["merged"] = f.merged;
+  py::list path;
+  for (const Vec3& p : f.path) path.append(py::make_tuple(double(p.x), double(p.y), double(p.z)));
+  d["path"] = path;
+  return d;
+}
+
+// world.audit(): cmkit/audit.h on the world, its spots read again from the
+// map file it was loaded from. A writer (movers' contents are set and
+// restored), so it takes the lock exclusively.
+py::dict auditWorld(PyWorld& self, double grid, int threads, const py::object& starts, bool ignoreMovers,
+                    bool openShells) {
+  cmkit::AuditOptions options;
+  options.grid = Real(grid);
+  options.threads = threads;
+  options.ignoreMovers = ignoreMovers;
+  options.openShells = openShells;
+  if (!starts.is_none()) {
+    const auto a = FloatArray::ensure(starts);
+    if (!a || a.ndim() != 2 || a.shape(1) != 3) throw py::value_error("starts must be an (N, 3) array");
+    for (py::ssize_t i = 0; i < a.shape(0); ++i)
+      options.extraStarts.push_back({a.data()[3 * i], a.data()[3 * i + 1], a.data()[3 * i + 2]});
+  }
+  std::optional<cmkit::Result<cmkit::AuditReport>> r;
+  {
+    py::gil_scoped_release release;
+    cmkit::Result<cmkit::MapFile> map = cmkit::loadMapFile(self.path);
+    if (!map) {
+      r.emplace(map.error());
+    } else {
+      const std::vector<cmkit::AuditSpot> spots = cmkit::auditSpotsFromMap(*map);
+      const std::unique_lock lock(self.mutex);
+      r.emplace(cmkit::auditWorld(self.world, spots, options));
+    }
+  }
+  const cmkit::AuditReport report = unwrap(std::move(*r));
+  auto cells = py::array_t<Real>({py::ssize_t(report.cells.size()), py::ssize_t(3)});
+  for (std::size_t i = 0; i < report.cells.size(); ++i)
+    put(cells.mutable_data() + 3 * i, report.cells[i].position);
+  py::dict d;
+  d["reachable_cells"] = report.cells.size();
+  d["cells"] = cells;
+  py::list startList;
+  for (const Vec3& p : report.starts) startList.append(py::make_tuple(double(p.x), double(p.y), double(p.z)));
+  d["starts"] = startList;
+  d["high_severity"] = report.hasHighSeverity();
+  d["truncated"] = report.truncated;
+  d["movers_ignored"] = report.moversIgnored;
+  d["moves_tried"] = report.movesTried;
+  int number = 1;
+  const std::pair<const char*, const std::vector<cmkit::AuditFinding>*> lists[] = {
+      {"fallouts", &report.fallOuts},
+      {"stuck", &report.stuck},
+      {"tunnels", &report.tunnels},
+      {"embedded", &report.embedded},
+      {"open_shells", &report.openShells}};
+  for (const auto& [name, list] : lists) {
+    py::list out;
+    for (const cmkit::AuditFinding& f : *list) out.append(findingDict(f, number++));
+    d[name] = out;
+  }
+  return d;
+}
+
 }  // namespace
 
 void bindWorld(py::module_& m) {
@@ -463,6 +538,20 @@ Returns a dict: end (3,), velocity (3,), path (steps, 3) (the feet after each st
 ground_entity (the name of the entity stood on, or None), ground_entity_id (-1: none), crouched,
 stuck (the last step started in solid and could not be freed), stuck_steps, steps. The GIL is
 released while it walks.)");
+
+  cls.def("audit", &auditWorld, py::kw_only(), py::arg("grid") = 16.0, py::arg("threads") = 1,
+          py::arg("starts") = py::none(), py::arg("ignore_movers") = true, py::arg("open_shells") = true,
+          R"(Audits the map (cmkit/audit.h, docs/audit.md, as `cmkit audit`): where the player can stand
+from the map's info_player_start entities (and `starts`, an (N, 3) array of feet positions) on a
+grid of `grid` units, and the faults found. Movers (doors, lifts, moveables) are ignored unless
+ignore_movers=False. The spots (player starts, monsters, items) are read again from the map file
+the world was loaded from.
+
+Returns a dict as `cmkit audit --json` writes: reachable_cells (a count), cells (N, 3) (each
+cell's standing position), starts, high_severity, truncated, movers_ignored, moves_tried, and
+the lists fallouts, stuck, tunnels, embedded, open_shells of dicts (number, kind, severity,
+position (x, y, z), what, merged, path). The GIL is released; it waits for running queries
+(movers' contents are set for the audit and restored).)");
 
   m.def("_load_world", &loadWorld, py::arg("path"), py::arg("force_rebuild"), py::arg("use_proc"));
 }

@@ -252,3 +252,36 @@ def test_bad_arguments_raise(halls):
         halls.walk((0, 0, 1), (1, 0), 1.0, shape=5)
     with pytest.raises(cmkit.Error):
         halls.walk((0, 0, 1), (1, 0), 1.0, shape=cmkit.TraceModel.point())
+
+
+def test_audit_finds_the_planted_faults_and_nothing_in_the_sealed_room():
+    sealed = cmkit.load_world(MAPS / "audit_sealed.map").audit()
+    assert sealed["reachable_cells"] > 800 and sealed["cells"].shape == (sealed["reachable_cells"], 3)
+    for kind in ("fallouts", "stuck", "tunnels", "embedded", "open_shells"):
+        assert sealed[kind] == [], kind
+    assert not sealed["high_severity"]
+
+    hole = cmkit.load_world(MAPS / "audit_hole.map").audit()
+    assert hole["fallouts"] and hole["high_severity"]
+    for f in hole["fallouts"]:  # the hole is x 64..160, y -48..48
+        x, y, _ = f["position"]
+        dx, dy = max(64 - x, 0, x - 160), max(-48 - y, 0, y - 48)
+        assert (dx * dx + dy * dy) ** 0.5 <= 96, f
+        assert f["kind"] == "fallout" and f["severity"] == "high" and len(f["path"]) >= 2
+    assert [f["number"] for f in hole["fallouts"]] == list(range(1, len(hole["fallouts"]) + 1))
+
+    pillar = cmkit.load_world(MAPS / "audit_pillar.map").audit(threads=2)
+    assert [f["position"] for f in pillar["embedded"]] == [(128.0, 0.0, 1.0)]
+
+
+def test_audit_is_the_same_at_any_thread_count_and_takes_starts():
+    world = cmkit.load_world(MAPS / "audit_wedge.map")
+    one, two = world.audit(threads=1), world.audit(threads=2)
+    assert np.array_equal(one["cells"], two["cells"])
+    assert one["stuck"] == two["stuck"] and len(one["stuck"]) == 1
+    more = world.audit(starts=[[160, 160, 1]], open_shells=False)
+    assert len(more["starts"]) == 2
+    with pytest.raises(ValueError):
+        world.audit(starts=[1, 2, 3])
+    with pytest.raises(cmkit.Error):
+        world.audit(grid=1)
