@@ -328,6 +328,11 @@ TEST(CmkitAudit, ExitCodesJsonAndPicture) {
     return at == std::string::npos ? s : s.erase(at, s.find('\n', at) - at);
   };
   EXPECT_EQ(withoutTime(test::readFile(json)), withoutTime(test::readFile(json2)));
+  // --from, repeatable, before or after the map.
+  out = test::runCapture(
+      cli + " audit --from 0,0,1 --from 100,0,1 '" + mapPath("audit_sealed.map") + "' --no-shells", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("from 3 starts"), std::string::npos) << out;
   // Bad input: 2.
   for (const std::string& bad :
        {"'" + mapPath("no_such.map") + "'", "'" + mapPath("audit_sealed.map") + "' --grid 1",

@@ -46,7 +46,7 @@ TEST_F(CliConventions, AnUnknownCommandIsNamedAndExitsWith2) {
 
 TEST(CliExitCodes, EveryCommandsHelpSaysThem) {
   for (const char* command : {"trm", "compile", "info", "validate", "query", "render", "export", "view",
-                              "bench", "soak", "walk", "demo"}) {
+                              "bench", "soak", "walk", "audit", "demo"}) {
     int rc = -1;
     const std::string out = test::runCapture(cli() + " " + command + " --help", rc);
     EXPECT_EQ(rc, 0) << command;

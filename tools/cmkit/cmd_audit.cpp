@@ -361,7 +361,9 @@ void registerAudit(CLI::App& app) {
   cmd->add_option("--threads", r->threads, "worker threads")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
-  cmd->add_option("--from", r->from, "another start X,Y,Z (the feet; repeatable)")->check(finiteVec3());
+  cmd->add_option("--from", r->from, "another start X,Y,Z (the feet; repeatable)")
+      ->allow_extra_args(false)
+      ->check(finiteVec3());
   cmd->add_option("--movers", r->movers,
                   "doors, lifts and moveables: ignore (doors open) or closed (as placed)")
       ->capture_default_str()
