@@ -17,7 +17,8 @@
 //   the centres of the eight neighbouring cells, each a few stepPlayer calls
 //   of move::kTimeStep, then falling until it rests. Where a run gets less
 //   than half a cell away (blocked), a crouched run and a running jump the
-//   same way are tried too. Where a move comes to rest is a cell. The search
+//   same way are tried too; where it drops (falls more than a step, or out
+//   of the world), a running jump. Where a move comes to rest is a cell. The search
 //   is breadth-first, level by level; a level's cells are moved in parallel
 //   (AuditOptions::threads) and merged in a fixed order, so the report is
 //   the same at any thread count.

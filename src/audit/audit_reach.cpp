@@ -215,7 +215,7 @@ class Mover {
 };
 
 /// Every move of a cell (the contract's order: per direction, a run, then
-/// when blocked a crouched run and a jump).
+/// when blocked a crouched run and a jump, when it dropped a jump).
 CellMoves movesOf(const Mover& mover, const SearchCell& cell, Real grid, WorldQueryWork& work) {
   CellMoves out;
   auto classified = [&](MoveEnd e) {
@@ -230,11 +230,14 @@ CellMoves movesOf(const Mover& mover, const SearchCell& cell, Real grid, WorldQu
     MoveEnd e = classified(mover.run(cell, target, MoveMode::Run, work));
     const Vec3 moved = e.position - cell.position;
     const bool blocked = e.usable() && Vec3{moved.x, moved.y, 0}.length() < kBlockedFraction * grid;
+    // Dropped: it fell (more than a step) or out of the world: a jump may
+    // clear the gap.
+    const bool dropped = e.fellOut || (e.usable() && moved.z < -move::kStepHeight);
     out.ends.push_back(e);
-    if (blocked || cell.crouched) {
+    if (blocked || cell.crouched)
       out.ends.push_back(classified(mover.run(cell, target, MoveMode::Crouch, work)));
+    if (blocked || cell.crouched || dropped)
       out.ends.push_back(classified(mover.run(cell, target, MoveMode::Jump, work)));
-    }
   }
   for (const MoveEnd& e : out.ends)
     if (e.fellOut || (e.usable() && (e.position - cell.position).length() >= stuckRadius)) leaves = true;

@@ -1,8 +1,8 @@
 // The map audit (audit.h) on hand-made maps with one planted fault each
 // (tests/data/maps/audit_*.map, make_audit_maps.py): a sealed room has no
 // findings; a hole over nothing is a fall-out beside it; a V trench a stuck
-// spot in it; a crack in the floor an open shell along it; a start in a
-// pillar an embedded player start. Also: movers, thread counts, lt4, and
+// spot in it; a crack in the floor or a slit in a wall an open shell; a start in a
+// pillar an embedded player start; a gap is jumped. Also: movers, thread counts, lt4, and
 // `cmkit audit` (exit codes, JSON, picture).
 #include <gtest/gtest.h>
 
@@ -170,6 +170,34 @@ TEST(Audit, CrackBetweenTwoBrushesIsAnOpenShell) {
   AuditOptions o;
   o.openShells = false;
   EXPECT_EQ(findingCount(audit(mapPath("audit_crack.map"), o).report), 0u);
+}
+
+TEST(Audit, GapIsCrossedByARunningJump) {
+  // The start is at x = -160; the floor beyond the gap (x > 32) is reached
+  // only by jumping across it (a run drops into the pit, 128 down).
+  const Audited a = audit(mapPath("audit_gap.map"));
+  const auto farSide = std::count_if(a.report.cells.begin(), a.report.cells.end(), [](const AuditCell& c) {
+    return c.position.x > 48 && std::abs(c.position.z - tol::kClipEpsilon) < 1e-3f;
+  });
+  EXPECT_GT(farSide, 300);  // squares x 64..240, y -240..240: 12 x 31
+  const auto pit = std::count_if(a.report.cells.begin(), a.report.cells.end(),
+                                 [](const AuditCell& c) { return c.position.z < -100; });
+  EXPECT_GT(pit, 30);
+  EXPECT_EQ(findingCount(a.report), 0u);
+}
+
+TEST(Audit, SlitInAWallIsAnOpenShell) {
+  const Audited a = audit(mapPath("audit_wall_crack.map"));
+  ASSERT_FALSE(a.report.openShells.empty());
+  // The slit is y 37..39 through the wall x 256..272, up to the ceiling.
+  for (const AuditFinding& f : a.report.openShells) {
+    EXPECT_GE(f.position.x, 256 - 1);
+    EXPECT_LE(f.position.x, 272);
+    EXPECT_GE(f.position.y, 37 - kAuditCrackProbe);
+    EXPECT_LE(f.position.y, 39 + kAuditCrackProbe);
+    EXPECT_NE(f.what.find("wall"), std::string::npos) << f.what;
+  }
+  EXPECT_EQ(findingCount(a.report), a.report.openShells.size());
 }
 
 TEST(Audit, PlayerStartInAPillarIsEmbedded) {

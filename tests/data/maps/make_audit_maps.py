@@ -14,6 +14,11 @@ Run it again after changing it; the .map files are committed.
   audit_crack.map   the floor in two brushes 2 units apart (x 37..39) over
                     nothing: an open shell (a point falls through; the player
                     does not);
+  audit_wall_crack.map  the wall at x = 256 in two brushes with a slit 2 units
+                    wide (y 37..39) to the outside: an open shell in the wall;
+  audit_gap.map     the floor split by a gap 64 wide (x -32..32) over a pit
+                    128 deep with a floor: the far side is reached by a running
+                    jump; no findings;
   audit_pillar.map  a pillar (x 96..160, y -32..32) with a second player
                     start inside it: an embedded player start.
 """
@@ -49,14 +54,16 @@ def box(lo, hi):
     return planes_brush(planes)
 
 
-def room(floor):
-    """The room's walls and ceiling, and `floor`: a list of (lo, hi) boxes."""
+def room(floor, east_wall=None):
+    """The room's walls and ceiling, and `floor`: a list of (lo, hi) boxes;
+    `east_wall` replaces the wall at x = 256 (a list of boxes)."""
     w = HALF + 16
     brushes = [box(lo, hi) for lo, hi in floor]
+    east = east_wall or [((HALF, -w, 0), (w, w, CEILING))]
+    brushes += [box(lo, hi) for lo, hi in east]
     brushes += [
         box((-w, -w, CEILING), (w, w, CEILING + 16)),
         box((-w, -w, 0), (-HALF, w, CEILING)),
-        box((HALF, -w, 0), (w, w, CEILING)),
         box((-HALF, -w, 0), (HALF, -HALF, CEILING)),
         box((-HALF, HALF, 0), (HALF, w, CEILING)),
     ]
@@ -128,6 +135,12 @@ def main():
     crack = [((-w, -w, -16), (37, w, 0)), ((39, -w, -16), (w, w, 0))]
     write("audit_crack.map", "The sealed room whose floor has a crack 2 units wide (x 37..39) over nothing.",
           room(crack), [])
+    slit = [((HALF, -w, 0), (w, 37, CEILING)), ((HALF, 39, 0), (w, w, CEILING))]
+    write("audit_wall_crack.map", "The sealed room whose east wall has a slit 2 units wide (y 37..39) to the outside.",
+          room(full_floor(), slit), [])
+    gap = [((-w, -w, -144), (-32, w, 0)), ((32, -w, -144), (w, w, 0)), ((-32, -w, -144), (32, w, -128))]
+    write("audit_gap.map", "The room's floor split by a gap 64 wide over a pit 128 deep: jump across.",
+          room(gap) + [box((-32, -w, -128), (32, -HALF, 0)), box((-32, HALF, -128), (32, w, 0))], [])
     write("audit_pillar.map", "The sealed room with a pillar and a player start inside it.",
           room(full_floor()) + [box((96, -32, 0), (160, 32, CEILING))],
           [point_entity("info_player_start", "info_player_start_2", (128, 0, 1))])
