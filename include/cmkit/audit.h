@@ -44,8 +44,8 @@
 //               narrower than 2 * kAuditCrackProbe: not a ledge or a
 //               window). Rays are kAuditCrackSpacing apart: a crack wider
 //               than that is always crossed. Severity medium.
-//   Findings of a kind closer than kAuditClusterRadius to one already kept
-//   are merged into it (AuditFinding::merged counts them). Each list is
+//   Findings of a kind and severity closer than kAuditClusterRadius to one
+//   already kept are merged into it (AuditFinding::merged counts them). Each list is
 //   sorted by position (x, y, z); the report numbers them in the order
 //   fallOuts, stuck, tunnels, embedded, openShells (AuditReport::numbered).
 // - MOVERS (doors, lifts, moveable objects: isMoverClass) are ignored by

@@ -55,13 +55,14 @@ enum class MoveMode { Run, Crouch, Jump };
 
 /// How one move ended.
 struct MoveEnd {
-  Vec3 position;             ///< where it came to rest
-  bool crouched = false;     ///< crouched at rest
-  bool fellOut = false;      ///< left the world (fallOutAt)
-  Vec3 fallOutAt;            ///< where it was when it left
-  bool tunnel = false;       ///< a step ended in solid (tunnelAt)
-  Vec3 tunnelAt;             ///< that step's end
-  bool tunnelBrush = false;  ///< tunnelAt overlaps a brush (not polygons only)
+  Vec3 position;                ///< where it came to rest
+  bool crouched = false;        ///< crouched at rest
+  bool fellOut = false;         ///< left the world (fallOutAt)
+  Vec3 fallOutAt;               ///< where it was when it left
+  bool tunnel = false;          ///< a step ended in solid (tunnelAt)
+  Vec3 tunnelAt;                ///< that step's end
+  bool tunnelCrouched = false;  ///< the player was crouched at tunnelAt
+  bool tunnelBrush = false;     ///< tunnelAt overlaps a brush (not polygons only)
   bool usable() const { return !fellOut && !tunnel; }
 };
 
@@ -121,11 +122,11 @@ class Mover {
     return end;
   }
 
-  /// Whether the standing player at `at` overlaps a brush of some entity
+  /// Whether the player (crouched or standing) at `at` overlaps a brush of some entity
   /// deeper than kTunnelDepth (penetration(), brushes only), rather than
   /// polygons only (a patch, one-sided, that the move crossed or touched).
-  bool overlapsBrush(const Vec3& at, WorldQueryWork& work) const {
-    const TraceModel& trm = ctx_.shape.standing;
+  bool overlapsBrush(const Vec3& at, bool crouched, WorldQueryWork& work) const {
+    const TraceModel& trm = crouched ? ctx_.shape.crouched : ctx_.shape.standing;
     const Bounds box = trm.bounds().translated(at).expanded(1);
     for (EntityId id : ctx_.world.entityIds()) {
       const WorldEntity* e = ctx_.world.entity(id);
@@ -145,12 +146,14 @@ class Mover {
   /// One step; false when the move ended (out of the world, or a tunnel).
   bool step(PlayerState& s, const PlayerInput& input, MoveEnd& end, WorldQueryWork& work) const {
     const Vec3 was = s.origin;
+    const bool wasCrouched = s.crouched;
     const std::int64_t before = s.steps;
     s = stepPlayer(ctx_.world, ctx_.shape, s, input, move::kTimeStep, work);
     // The step's position test found the last step's end in solid.
     if ((s.nudged || s.stuck) && before > 0) {
       end.tunnel = true;
       end.tunnelAt = was;
+      end.tunnelCrouched = wasCrouched;
       end.position = was;
       return false;
     }
@@ -204,6 +207,7 @@ class Mover {
     if (ctx_.world.contentsTest(q, work).result.contents != 0) {
       end.tunnel = true;
       end.tunnelAt = s.origin;
+      end.tunnelCrouched = s.crouched;
     }
     end.position = s.origin;
     end.crouched = s.crouched;
@@ -219,7 +223,7 @@ class Mover {
 CellMoves movesOf(const Mover& mover, const SearchCell& cell, Real grid, WorldQueryWork& work) {
   CellMoves out;
   auto classified = [&](MoveEnd e) {
-    if (e.tunnel) e.tunnelBrush = mover.overlapsBrush(e.tunnelAt, work);
+    if (e.tunnel) e.tunnelBrush = mover.overlapsBrush(e.tunnelAt, e.tunnelCrouched, work);
     return e;
   };
   const Vec3 centre = cellCentre(cell.position, grid);
@@ -318,7 +322,8 @@ SearchResult searchReachable(const SearchContext& ctx, const std::vector<Vec3>& 
               {AuditKind::Tunnel, e.tunnelBrush ? AuditSeverity::High : AuditSeverity::Low, e.tunnelAt,
                "a move from " + pointText(cell.position) + " ended a step inside " +
                    (e.tunnelBrush ? std::string("a brush")
-                                  : std::string("polygons only (a one-sided patch or polygon, no brush)")),
+                                  : std::string("polygons only (a one-sided patch or polygon, no brush)")) +
+                   (e.tunnelCrouched ? ", crouched" : ""),
                id});
         }
         if (e.usable()) addCell(e, id, cell.start);

@@ -292,8 +292,9 @@ TEST(Audit, Lt4SameAtOneAndTwoThreads) {
   const PlayerShape player = PlayerShape::standard();
   ASSERT_FALSE(a.report.tunnels.empty());
   for (const AuditFinding& f : a.report.tunnels) {
+    const TraceModel& trm = f.what.find("crouched") != std::string::npos ? player.crouched : player.standing;
     ContentsQuery q;
-    q.trm = &player.standing;
+    q.trm = &trm;
     q.position = f.position;
     q.contentMask = player.contentMask;
     EXPECT_NE(loaded->world.contentsTest(q, work).result.contents, 0u) << f.what;
@@ -301,7 +302,7 @@ TEST(Audit, Lt4SameAtOneAndTwoThreads) {
     for (EntityId id : loaded->world.entityIds()) {
       const WorldEntity* e = loaded->world.entity(id);
       PenetrationQuery p;
-      p.trm = &player.standing;
+      p.trm = &trm;
       p.position = f.position;
       p.contentMask = player.contentMask;
       p.placement = e->placement;
