@@ -414,6 +414,7 @@ py::dict auditWorld(PyWorld& self, double grid, int threads, const py::object& s
   d["high_severity"] = report.hasHighSeverity();
   d["truncated"] = report.truncated;
   d["movers_ignored"] = report.moversIgnored;
+  d["triggers_ignored"] = report.triggersIgnored;
   d["moves_tried"] = report.movesTried;
   int number = 1;
   const std::pair<const char*, const std::vector<cmkit::AuditFinding>*> lists[] = {

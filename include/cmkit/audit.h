@@ -49,10 +49,9 @@
 //   sorted by position (x, y, z); the report numbers them in the order
 //   fallOuts, stuck, tunnels, embedded, openShells (AuditReport::numbered).
 // - MOVERS (doors, lifts, moveable objects: isMoverClass) are ignored by
-//   default: their contents are set to 0 for the audit and restored at the
-//   end, so auditWorld needs the World as its one writer (no other thread may
-//   query it meanwhile). AuditOptions::ignoreMovers = false keeps them as
-//   placed.
+//   default, TRIGGERS (isTriggerClass) always: their contents are set to 0
+//   for the audit and restored at the end, so auditWorld needs the World as its one writer (no other thread
+//   may query it meanwhile). AuditOptions::ignoreMovers = false keeps them as placed.
 // - COST: proportional to the reachable cells times the moves tried; lt4
 //   (data/maps/lt4) takes the time docs/audit.md gives.
 // - THREAD SAFETY: auditWorld writes the World (movers) before and after
@@ -127,6 +126,11 @@ std::vector<AuditSpot> auditSpotsFromMap(const MapFile& map);
 /// mover_*, and any name containing "door" (after any "prefix:").
 bool isMoverClass(std::string_view className);
 
+/// True for class names of triggers (trigger_*, after any "prefix:"): the
+/// game never lets them block the player, whatever their materials say, so
+/// the audit always leaves them out.
+bool isTriggerClass(std::string_view className);
+
 /// One finding.
 struct AuditFinding {
   AuditKind kind = AuditKind::FallOut;           ///< what it is
@@ -168,7 +172,8 @@ struct AuditReport {
   std::vector<AuditFinding> embedded;    ///< AuditKind::Embedded
   std::vector<AuditFinding> openShells;  ///< AuditKind::OpenShell
   Bounds worldBounds;                    ///< the bounds of every colliding entity
-  int moversIgnored = 0;                 ///< entities whose contents were set to 0
+  int moversIgnored = 0;                 ///< movers whose contents were set to 0
+  int triggersIgnored = 0;               ///< triggers whose contents were set to 0
   bool truncated = false;                ///< the search stopped at AuditOptions::maxCells
   std::size_t movesTried = 0;            ///< moves run in the search
 

@@ -100,16 +100,20 @@ Result<AuditReport> auditWorld(World& world, std::span<const AuditSpot> spots, c
     if (!s.isFinite()) return Error("audit: a start that is not finite");
 
   AuditReport report;
-  // Movers off for the audit (restored below).
+  // Movers (by default) and triggers off for the audit (restored below).
   std::vector<std::pair<EntityId, std::uint32_t>> movers;
-  if (options.ignoreMovers)
-    for (EntityId id : world.entityIds()) {
-      const WorldEntity* e = world.entity(id);
-      if (id != kWorldspawnEntity && e->contents != 0 && isMoverClass(e->className))
-        movers.emplace_back(id, e->contents);
+  for (EntityId id : world.entityIds()) {
+    const WorldEntity* e = world.entity(id);
+    if (id == kWorldspawnEntity || e->contents == 0) continue;
+    if (isTriggerClass(e->className)) {
+      ++report.triggersIgnored;
+      movers.emplace_back(id, e->contents);
+    } else if (options.ignoreMovers && isMoverClass(e->className)) {
+      ++report.moversIgnored;
+      movers.emplace_back(id, e->contents);
     }
+  }
   for (const auto& [id, c] : movers) (void)world.setContents(id, 0);
-  report.moversIgnored = int(movers.size());
   report.worldBounds = worldBounds(world);
 
   const World& w = world;

@@ -66,6 +66,8 @@ bool isMoverClass(std::string_view className) {
   return c.find("door") != std::string::npos;
 }
 
+bool isTriggerClass(std::string_view className) { return startsWith(bareClass(className), "trigger_"); }
+
 std::vector<AuditSpot> auditSpotsFromMap(const MapFile& map) {
   std::vector<AuditSpot> out;
   for (std::size_t i = 0; i < map.entities.size(); ++i) {

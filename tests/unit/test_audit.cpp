@@ -237,6 +237,24 @@ TEST(Audit, MonsterAndItemInSolidAreEmbedded) {
   EXPECT_TRUE(r->embedded.empty());
 }
 
+TEST(Audit, TriggersAreIgnored) {
+  // A trigger_multiple around the start, of a material the default rules
+  // make solid: not an embedded start, and the search goes through it.
+  auto loaded = World::loadMap(mapPath("audit_trigger.map"), MaterialTable{});
+  ASSERT_TRUE(loaded.ok());
+  ASSERT_EQ(loaded->world.size(), 2u);
+  const EntityId trigger = 1;
+  ASSERT_TRUE(isTriggerClass(loaded->world.entity(trigger)->className));
+  const std::uint32_t contents = loaded->world.entity(trigger)->contents;
+  ASSERT_NE(contents & contents::kSolid, 0u);
+  const Audited a = audit(mapPath("audit_trigger.map"));
+  EXPECT_EQ(a.report.triggersIgnored, 1);
+  EXPECT_EQ(findingCount(a.report), 0u);
+  EXPECT_GT(a.report.cells.size(), 900u);
+  EXPECT_FALSE(isTriggerClass("func_static"));
+  EXPECT_TRUE(isTriggerClass("atdm:trigger_once"));
+}
+
 TEST(Audit, MoversIgnoredOpenTheDoorAndAreRestored) {
   auto map = loadMapFile(mapPath("two_halls.map"));
   ASSERT_TRUE(map.ok());

@@ -62,8 +62,9 @@ std::string reportJson(const AuditRequest& r, const AuditReport& report, double 
   std::string out = "{\n";
   out += fmt::format("  \"map\": {},\n  \"grid\": {},\n  \"reachable_cells\": {},\n  \"moves_tried\": {},\n",
                      jsonString(r.map), r.grid, report.cells.size(), report.movesTried);
-  out += fmt::format("  \"truncated\": {},\n  \"movers_ignored\": {},\n  \"seconds\": {:.2f},\n",
-                     report.truncated, report.moversIgnored, seconds);
+  out += fmt::format("  \"truncated\": {},\n  \"movers_ignored\": {},\n  \"triggers_ignored\": {},\n",
+                     report.truncated, report.moversIgnored, report.triggersIgnored);
+  out += fmt::format("  \"seconds\": {:.2f},\n", seconds);
   out += "  \"starts\": [";
   for (std::size_t i = 0; i < report.starts.size(); ++i) out += (i ? ", " : "") + vec(report.starts[i]);
   out += "],\n";
@@ -276,15 +277,16 @@ int runAudit(const AuditRequest& r) {
     }
   }
   if (!r.picture.empty()) {
-    // The picture shows the world as audited: movers left out when ignored.
+    // The picture shows the world as audited: triggers, and movers when
+    // ignored, left out.
     std::vector<std::pair<EntityId, std::uint32_t>> movers;
     World& world = loaded->world;
-    if (options.ignoreMovers)
-      for (EntityId id : world.entityIds())
-        if (id != kWorldspawnEntity && isMoverClass(world.entity(id)->className)) {
-          movers.emplace_back(id, world.entity(id)->contents);
-          (void)world.setContents(id, 0);
-        }
+    for (EntityId id : world.entityIds())
+      if (id != kWorldspawnEntity && (isTriggerClass(world.entity(id)->className) ||
+                                      (options.ignoreMovers && isMoverClass(world.entity(id)->className)))) {
+        movers.emplace_back(id, world.entity(id)->contents);
+        (void)world.setContents(id, 0);
+      }
     const Image image = auditPicture(world, report, options.grid, r.focus, width, height);
     for (const auto& [id, c] : movers) (void)world.setContents(id, c);
     if (Status s = savePng(r.picture, image); !s) {
@@ -299,8 +301,10 @@ int runAudit(const AuditRequest& r) {
       r.map, report.cells.size(), r.grid, report.starts.size(), report.starts.size() == 1 ? "" : "s",
       report.movesTried, seconds, r.threads, r.threads == 1 ? "" : "s",
       report.truncated ? "; STOPPED at the cell limit" : "");
-  fmt::print("{} mover{} {}\n", report.moversIgnored, report.moversIgnored == 1 ? "" : "s",
-             options.ignoreMovers ? "ignored (doors open)" : "kept as placed");
+  fmt::print("{} mover{} {}, {} trigger{} ignored\n", report.moversIgnored,
+             report.moversIgnored == 1 ? "" : "s",
+             options.ignoreMovers ? "ignored (doors open)" : "kept as placed", report.triggersIgnored,
+             report.triggersIgnored == 1 ? "" : "s");
   fmt::print("fall-outs {}, stuck {}, tunnels {}, embedded {}, open shells {}\n", report.fallOuts.size(),
              report.stuck.size(), report.tunnels.size(), report.embedded.size(), report.openShells.size());
   const std::vector<const AuditFinding*> numbered = report.numbered();

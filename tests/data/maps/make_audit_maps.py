@@ -19,6 +19,9 @@ Run it again after changing it; the .map files are committed.
   audit_gap.map     the floor split by a gap 64 wide (x -32..32) over a pit
                     128 deep with a floor: the far side is reached by a running
                     jump; no findings;
+  audit_trigger.map the room with a trigger_multiple brush entity (a material
+                    the default rules make solid) around the player start: the
+                    audit ignores triggers, so no findings;
   audit_pillar.map  a pillar (x 96..160, y -32..32) with a second player
                     start inside it: an embedded player start.
 """
@@ -85,6 +88,17 @@ def point_entity(classname, name, origin):
     ]
 
 
+def brush_entity(classname, name, brushes):
+    out = ["{", f'"classname" "{classname}"', f'"name" "{name}"', f'"model" "{name}"']
+    for i, b in enumerate(brushes):
+        out.append(f"// primitive {i}")
+        out.append("{")
+        out.extend(b)
+        out.append("}")
+    out.append("}")
+    return out
+
+
 def write(name, comment, brushes, entities):
     out = ["Version 2", f"// {name}: written by make_audit_maps.py. {comment}", "// entity 0", "{",
            '"classname" "worldspawn"']
@@ -141,6 +155,9 @@ def main():
     gap = [((-w, -w, -144), (-32, w, 0)), ((32, -w, -144), (w, w, 0)), ((-32, -w, -144), (32, w, -128))]
     write("audit_gap.map", "The room's floor split by a gap 64 wide over a pit 128 deep: jump across.",
           room(gap) + [box((-32, -w, -128), (32, -HALF, 0)), box((-32, HALF, -128), (32, w, 0))], [])
+    trigger = [line.replace(MATERIAL, "textures/common/trigmulti") for line in box((-200, -40, 0), (-120, 40, 96))]
+    write("audit_trigger.map", "The sealed room with a trigger_multiple around the player start.",
+          room(full_floor()), [brush_entity("trigger_multiple", "trigger_multiple_1", [trigger])])
     write("audit_pillar.map", "The sealed room with a pillar and a player start inside it.",
           room(full_floor()) + [box((96, -32, 0), (160, 32, CEILING))],
           [point_entity("info_player_start", "info_player_start_2", (128, 0, 1))])
