@@ -19,9 +19,9 @@
 //   than half a cell away (blocked), a crouched run and a running jump the
 //   same way are tried too; where it drops (falls more than a step, or out
 //   of the world), a running jump. Where a move comes to rest is a cell. The search
-//   is breadth-first, level by level; a level's cells are moved in parallel
-//   (AuditOptions::threads) and merged in a fixed order, so the report is
-//   the same at any thread count.
+//   is breadth-first, level by level; a level's moves (one task per cell
+//   and direction) run in parallel (AuditOptions::threads) and are merged in
+//   a fixed order, so the report is the same at any thread count.
 // - FINDINGS (AuditFinding; the kinds are AuditKind):
 //     FallOut   a move from a reachable cell falls below the world's bounds,
 //               leaves them, or falls for longer than a fall through the

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <unordered_map>
 
 #include "audit/audit_impl.h"
@@ -218,31 +219,38 @@ class Mover {
   Bounds inside_;
 };
 
-/// Every move of a cell (the contract's order: per direction, a run, then
+/// The moves of a cell in one direction (the contract's order: a run, then
 /// when blocked a crouched run and a jump, when it dropped a jump).
-CellMoves movesOf(const Mover& mover, const SearchCell& cell, Real grid, WorldQueryWork& work) {
-  CellMoves out;
+std::vector<MoveEnd> movesToward(const Mover& mover, const SearchCell& cell, int direction, Real grid,
+                                 WorldQueryWork& work) {
+  std::vector<MoveEnd> out;
   auto classified = [&](MoveEnd e) {
     if (e.tunnel) e.tunnelBrush = mover.overlapsBrush(e.tunnelAt, e.tunnelCrouched, work);
     return e;
   };
   const Vec3 centre = cellCentre(cell.position, grid);
+  const auto& d = kDirections[std::size_t(direction)];
+  const Vec3 target{centre.x + Real(d[0]) * grid, centre.y + Real(d[1]) * grid, cell.position.z};
+  MoveEnd e = classified(mover.run(cell, target, MoveMode::Run, work));
+  const Vec3 moved = e.position - cell.position;
+  const bool blocked = e.usable() && Vec3{moved.x, moved.y, 0}.length() < kBlockedFraction * grid;
+  // Dropped: it fell (more than a step) or out of the world: a jump may
+  // clear the gap.
+  const bool dropped = e.fellOut || (e.usable() && moved.z < -move::kStepHeight);
+  out.push_back(e);
+  if (blocked || cell.crouched) out.push_back(classified(mover.run(cell, target, MoveMode::Crouch, work)));
+  if (blocked || cell.crouched || dropped)
+    out.push_back(classified(mover.run(cell, target, MoveMode::Jump, work)));
+  return out;
+}
+
+/// A cell's moves, all directions in order, and whether it is stuck.
+CellMoves gather(const SearchCell& cell, std::span<std::vector<MoveEnd>> byDirection, Real grid) {
+  CellMoves out;
+  for (std::vector<MoveEnd>& ends : byDirection)
+    for (MoveEnd& e : ends) out.ends.push_back(std::move(e));
   const Real stuckRadius = kAuditStuckFraction * grid;
   bool leaves = false;
-  for (const auto& d : kDirections) {
-    const Vec3 target{centre.x + Real(d[0]) * grid, centre.y + Real(d[1]) * grid, cell.position.z};
-    MoveEnd e = classified(mover.run(cell, target, MoveMode::Run, work));
-    const Vec3 moved = e.position - cell.position;
-    const bool blocked = e.usable() && Vec3{moved.x, moved.y, 0}.length() < kBlockedFraction * grid;
-    // Dropped: it fell (more than a step) or out of the world: a jump may
-    // clear the gap.
-    const bool dropped = e.fellOut || (e.usable() && moved.z < -move::kStepHeight);
-    out.ends.push_back(e);
-    if (blocked || cell.crouched)
-      out.ends.push_back(classified(mover.run(cell, target, MoveMode::Crouch, work)));
-    if (blocked || cell.crouched || dropped)
-      out.ends.push_back(classified(mover.run(cell, target, MoveMode::Jump, work)));
-  }
   for (const MoveEnd& e : out.ends)
     if (e.fellOut || (e.usable() && (e.position - cell.position).length() >= stuckRadius)) leaves = true;
   out.stuck = !leaves;
@@ -297,11 +305,17 @@ SearchResult searchReachable(const SearchContext& ctx, const std::vector<Vec3>& 
   while (!frontier.empty()) {
     const std::vector<std::int32_t> level = std::move(frontier);
     frontier.clear();
-    std::vector<CellMoves> moves(level.size());
+    // One task per cell and direction: small levels still keep every
+    // worker busy.
     const std::vector<SearchCell>& cells = out.cells;
-    parallelFor(level.size(), ctx.threads, [&](std::size_t i, WorldQueryWork& work) {
-      moves[i] = movesOf(mover, cells[std::size_t(level[i])], ctx.grid, work);
+    constexpr std::size_t kDirs = kDirections.size();
+    std::vector<std::vector<MoveEnd>> byTask(level.size() * kDirs);
+    parallelFor(byTask.size(), ctx.threads, [&](std::size_t t, WorldQueryWork& work) {
+      byTask[t] = movesToward(mover, cells[std::size_t(level[t / kDirs])], int(t % kDirs), ctx.grid, work);
     });
+    std::vector<CellMoves> moves(level.size());
+    for (std::size_t i = 0; i < level.size(); ++i)
+      moves[i] = gather(cells[std::size_t(level[i])], std::span(byTask).subspan(i * kDirs, kDirs), ctx.grid);
     for (std::size_t i = 0; i < level.size(); ++i) {
       const std::int32_t id = level[i];
       const SearchCell cell = out.cells[std::size_t(id)];
