@@ -375,6 +375,13 @@ TEST(CmkitAudit, ExitCodesJsonAndPicture) {
     return at == std::string::npos ? s : s.erase(at, s.find('\n', at) - at);
   };
   EXPECT_EQ(withoutTime(test::readFile(json)), withoutTime(test::readFile(json2)));
+  // A search stopped at --max-cells says so.
+  out = test::runCapture(
+      cli + " audit '" + mapPath("audit_sealed.map") + "' --max-cells 100 --json '" + json + "'", rc);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("100 reachable cells"), std::string::npos) << out;
+  EXPECT_NE(out.find("STOPPED at the cell limit"), std::string::npos) << out;
+  EXPECT_NE(test::readFile(json).find("\"truncated\": true"), std::string::npos);
   // --from, repeatable, before or after the map.
   out = test::runCapture(
       cli + " audit --from 0,0,1 --from 100,0,1 '" + mapPath("audit_sealed.map") + "' --no-shells", rc);

@@ -41,6 +41,7 @@ struct AuditRequest {
   bool noShells = false;
   int worst = 5;
   int focus = 0;
+  std::size_t maxCells = AuditOptions{}.maxCells;
   std::string materials;
   bool noProc = false;
 };
@@ -228,6 +229,7 @@ int runAudit(const AuditRequest& r) {
   options.threads = r.threads;
   options.ignoreMovers = r.movers == "ignore";
   options.openShells = !r.noShells;
+  options.maxCells = r.maxCells;
   for (const std::string& f : r.from) options.extraStarts.push_back(parseFiniteVec3(f).value_or(Vec3{}));
   Result<MaterialTable> materials = materialsForCli(r.materials);
   if (!materials) {
@@ -373,6 +375,10 @@ void registerAudit(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"ignore", "closed"}));
   cmd->add_flag("--no-shells", r->noShells, "skip the crack rays (open shells)");
+  cmd->add_option("--max-cells", r->maxCells,
+                  "stop the search at this many cells (the summary and JSON say so)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40));
   cmd->add_option("--worst", r->worst, "findings listed in the summary")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
