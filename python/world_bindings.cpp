@@ -289,9 +289,13 @@ cmkit::PlayerShape shapeOf(const py::object& object) {
 }
 
 py::dict walk(PyWorld& self, const py::object& start, const py::object& wish, double seconds,
-              const py::object& shapeObject, bool run, bool crouch, const std::optional<double>& jumpAt) {
+              const py::object& shapeObject, bool run, bool crouch, const std::optional<double>& jumpAt,
+              const py::object& startVelocity) {
   cmkit::PlayerState first;
   first.origin = vector3(start, "start");
+  if (!startVelocity.is_none()) first.velocity = vector3(startVelocity, "velocity");
+  if (!first.origin.isFinite() || !first.velocity.isFinite())
+    throw py::value_error("start and velocity must be finite");
   cmkit::PlayerInput input;
   input.wishDir = wishOf(wish);
   input.run = run;
@@ -449,7 +453,7 @@ unknown entity, ValueError for an axis that is not a rotation.)")
            })
       .def("walk", &walk, py::arg("start"), py::arg("wish"), py::arg("seconds"), py::kw_only(),
            py::arg("shape") = py::none(), py::arg("run") = false, py::arg("crouch") = false,
-           py::arg("jump_at") = py::none(),
+           py::arg("jump_at") = py::none(), py::arg("velocity") = py::none(),
            R"(Walks a player (cmkit/movement.h, Doom 3's player physics) from start (3,), its feet (the
 bottom centre of its shape), wishing to go along wish (dx, dy[, dz]; z ignored; length = fraction
 of full speed, at most 1) for `seconds` (at most 3600) in steps of 1/60 s. The world does not
@@ -457,7 +461,8 @@ change during the walk.
 
 shape: None (the original's box, 32 x 32 x 74, crouched 38), a TraceModel or spec string whose
 origin is at the feet (crouching keeps it). run: 220 units/s instead of 140. crouch: crouched the
-whole walk. jump_at: press jump once, at this time (seconds).
+whole walk. jump_at: press jump once, at this time (seconds). velocity: the player's velocity
+(3,) at the start (None: at rest), e.g. the last walk's, to go on from where it ended.
 
 Returns a dict: end (3,), velocity (3,), path (steps, 3) (the feet after each step), on_ground,
 ground_entity (the name of the entity stood on, or None), ground_entity_id (-1: none), crouched,
