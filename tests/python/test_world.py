@@ -205,6 +205,29 @@ def test_walk_options(stairs):
     assert stairs.walk((-64, 64, 1), (1, 0), 0)["path"].shape == (0, 3)
 
 
+def test_ignore_leaves_entities_out(halls):
+    # The door stops the box; ignored (by name, id, or in a list) it does not, and every query
+    # kind takes the same argument.
+    start, end = (-100, 0, 1), (100, 0, 1)
+    assert halls.translate(PLAYER, start, end)["entity"][0] == 1
+    for ignore in ("door1", 1, ["door1"], (1,), np.array([1])):
+        r = halls.translate(PLAYER, start, end, ignore=ignore)
+        assert r["fraction"][0] == 1.0 and r["entity"][0] == -1, ignore
+    inside = (0, 0, 48)  # in the door's brush
+    assert halls.point_contents(inside)["entity"][0] == 1
+    assert halls.point_contents(inside, ignore="door1")["entity"][0] == -1
+    assert halls.contents(PLAYER, (0, 0, 1))["entity"][0] == 1
+    assert halls.contents(PLAYER, (0, 0, 1), ignore="door1")["entity"][0] != 1
+    assert halls.cast_rays((-100, 0, 48), (100, 0, 48), ignore="door1")["entity"][0] == -1
+    assert halls.contacts(PLAYER, (-21, 0, 1), (1, 0, 0), 8.0, ignore="door1")["count"][0] == 0
+    r = halls.rotate(PLAYER, (-30, 0, 1), (-30, 0, 1), (0, 0, 1), 90.0, ignore=[0, "door1"])
+    assert r["entity"][0] == -1
+    with pytest.raises(KeyError, match="nobody"):
+        halls.translate(PLAYER, start, end, ignore="nobody")
+    with pytest.raises(TypeError):
+        halls.translate(PLAYER, start, end, ignore=[1.5])
+
+
 def test_walk_goes_on_from_a_velocity(stairs):
     # Up the stairs in one walk, and in two whose second starts with the first's end and
     # velocity: on static ground the state between steps is the feet and the velocity (the
