@@ -84,6 +84,22 @@ cmkit::EntityId entityOf(PyWorld& w, const py::handle& nameOrId) {
                        std::string(py::str(nameOrId.get_type().attr("__name__"))));
 }
 
+// The entities a query leaves out: None, or an iterable of ids and names
+// (each as entityOf reads it).
+std::vector<cmkit::EntityId> ignoreList(PyWorld& w, const py::object& ignore) {
+  std::vector<cmkit::EntityId> ids;
+  if (ignore.is_none()) return ids;
+  if (py::isinstance<py::str>(ignore) || py::isinstance<py::int_>(ignore))
+    ids.push_back(entityOf(w, ignore));
+  else
+    for (const py::handle item : py::iter(ignore)) {
+      // numpy integers (an id array) are ids too: anything with __index__.
+      const bool index = !py::isinstance<py::str>(item) && py::hasattr(item, "__index__");
+      ids.push_back(entityOf(w, index ? py::int_(py::reinterpret_borrow<py::object>(item)) : item));
+    }
+  return ids;
+}
+
 // The (N,) int32 array of the results' entities (-1: none).
 template <class R>
 py::array_t<std::int32_t> entityArray(const std::vector<R>& results) {
@@ -102,13 +118,15 @@ std::vector<cmkit::TraceResult> tracesOf(const std::vector<cmkit::WorldTraceResu
 
 py::dict translateWorld(PyWorld& self, const py::object& trm, const py::object& starts,
                         const py::object& ends, std::int64_t mask, const py::object& axis, bool startSolid,
-                        int threads, const py::object& progress) {
+                        int threads, const py::object& progress, const py::object& ignore) {
   TranslationArgs a(trm, starts, ends, mask, axis, startSolid);
   std::vector<cmkit::WorldTraceResult> out(a.size);
+  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
+  const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::translateBatch(self.world, a.batch, out, hook.options);
+    return cmkit::translateBatch(self.world, a.batch, out, hook.options, filter);
   });
   py::dict d = traceArrays(tracesOf(out));
   d["entity"] = entityArray(out);
@@ -118,13 +136,15 @@ py::dict translateWorld(PyWorld& self, const py::object& trm, const py::object& 
 py::dict rotateWorld(PyWorld& self, const py::object& trm, const py::object& starts,
                      const py::object& origins, const py::object& axes, const py::object& angles,
                      std::int64_t mask, const py::object& axis, bool startSolid, int threads,
-                     const py::object& progress) {
+                     const py::object& progress, const py::object& ignore) {
   RotationArgs a(trm, starts, origins, axes, angles, mask, axis, startSolid);
   std::vector<cmkit::WorldTraceResult> out(a.size);
+  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
+  const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::rotateBatch(self.world, a.batch, out, hook.options);
+    return cmkit::rotateBatch(self.world, a.batch, out, hook.options, filter);
   });
   py::dict d = traceArrays(tracesOf(out));
   d["entity"] = entityArray(out);
@@ -132,13 +152,15 @@ py::dict rotateWorld(PyWorld& self, const py::object& trm, const py::object& sta
 }
 
 py::dict castRaysWorld(PyWorld& self, const py::object& starts, const py::object& ends, std::int64_t mask,
-                       int threads, const py::object& progress) {
+                       int threads, const py::object& progress, const py::object& ignore) {
   RayArgs a(starts, ends, mask);
   std::vector<cmkit::WorldRayHit> out(a.size);
+  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
+  const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::castRayBatch(self.world, a.batch, out, hook.options);
+    return cmkit::castRayBatch(self.world, a.batch, out, hook.options, filter);
   });
   std::vector<cmkit::RayHit> hits(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) hits[i] = out[i].hit;
@@ -147,14 +169,16 @@ py::dict castRaysWorld(PyWorld& self, const py::object& starts, const py::object
   return d;
 }
 
-py::dict pointContentsWorld(PyWorld& self, const py::object& points, int threads,
-                            const py::object& progress) {
+py::dict pointContentsWorld(PyWorld& self, const py::object& points, int threads, const py::object& progress,
+                            const py::object& ignore) {
   PointArgs a(points);
   std::vector<cmkit::WorldPointContentsResult> out(a.size);
+  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
+  const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::pointContentsBatch(self.world, a.batch, out, hook.options);
+    return cmkit::pointContentsBatch(self.world, a.batch, out, hook.options, filter);
   });
   std::vector<std::uint32_t> contents(out.size());
   std::vector<cmkit::QueryStatus> status(out.size());
@@ -168,13 +192,16 @@ py::dict pointContentsWorld(PyWorld& self, const py::object& points, int threads
 }
 
 py::dict contentsWorld(PyWorld& self, const py::object& trm, const py::object& positions, std::int64_t mask,
-                       const py::object& axis, int threads, const py::object& progress) {
+                       const py::object& axis, int threads, const py::object& progress,
+                       const py::object& ignore) {
   ContentsArgs a(trm, positions, mask, axis);
   std::vector<cmkit::WorldContentsResult> out(a.size);
+  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
+  const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::contentsBatch(self.world, a.batch, out, hook.options);
+    return cmkit::contentsBatch(self.world, a.batch, out, hook.options, filter);
   });
   std::vector<cmkit::ContentsResult> results(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) results[i] = out[i].result;
@@ -186,13 +213,15 @@ py::dict contentsWorld(PyWorld& self, const py::object& trm, const py::object& p
 py::dict contactsWorld(PyWorld& self, const py::object& trm, const py::object& starts, const py::object& dirs,
                        double depth, int maxContacts, const py::object& origins, const py::object& axes,
                        const py::object& angles, std::int64_t mask, const py::object& axis, int threads,
-                       const py::object& progress) {
+                       const py::object& progress, const py::object& ignore) {
   ContactsArgs a(trm, starts, dirs, depth, maxContacts, origins, axes, angles, mask, axis);
   std::vector<cmkit::WorldContactsResult> out(a.size);
+  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
+  const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::contactsBatch(self.world, a.batch, out, hook.options);
+    return cmkit::contactsBatch(self.world, a.batch, out, hook.options, filter);
   });
   const std::size_t m = std::size_t(maxContacts);
   std::vector<cmkit::ContactsResult> results(out.size());
@@ -291,9 +320,13 @@ cmkit::PlayerShape shapeOf(const py::object& object) {
 }
 
 py::dict walk(PyWorld& self, const py::object& start, const py::object& wish, double seconds,
-              const py::object& shapeObject, bool run, bool crouch, const std::optional<double>& jumpAt) {
+              const py::object& shapeObject, bool run, bool crouch, const std::optional<double>& jumpAt,
+              const py::object& startVelocity) {
   cmkit::PlayerState first;
   first.origin = vector3(start, "start");
+  if (!startVelocity.is_none()) first.velocity = vector3(startVelocity, "velocity");
+  if (!first.origin.isFinite() || !first.velocity.isFinite())
+    throw py::value_error("start and velocity must be finite");
   cmkit::PlayerInput input;
   input.wishDir = wishOf(wish);
   input.run = run;
@@ -446,10 +479,11 @@ entity; walk() walks a player through the world. Load with cmkit.load_world(path
       std::string(kBatchNote) +
       " The answer is the closest entity's (ties: the lowest id); 'entity' (N,) int32 is "
       "its id (-1: none), and 'material' and 'polygon' index that entity's model "
-      "(world.model(id)). See cmkit.Model's method of the same name.";
+      "(world.model(id)). ignore: entities left out (an id or name, or a list of them: e.g. a "
+      "player's own entity). See cmkit.Model's method of the same name.";
   cls.def("translate", &translateWorld, py::arg("trm"), py::arg("starts"), py::arg("ends"), py::kw_only(),
           py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("start_solid") = false,
-          py::arg("threads") = 0, py::arg("progress") = py::none(),
+          py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("ignore") = py::none(),
           ("Moves a trace model from starts (N, 3) to ends (N, 3) through the world: the fields of "
            "Model.translate and entity (N,)." +
            note)
@@ -457,25 +491,27 @@ entity; walk() walks a player through the world. Load with cmkit.load_world(path
       .def("rotate", &rotateWorld, py::arg("trm"), py::arg("starts"), py::arg("origins"), py::arg("axes"),
            py::arg("angles"), py::kw_only(), py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(),
            py::arg("start_solid") = false, py::arg("threads") = 0, py::arg("progress") = py::none(),
+           py::arg("ignore") = py::none(),
            ("Turns a trace model through the world (arguments as Model.rotate): the fields of "
             "Model.rotate and entity (N,)." +
             note)
                .c_str())
       .def("cast_rays", &castRaysWorld, py::arg("origins"), py::arg("ends"), py::kw_only(),
            py::arg("mask") = c::kMaskSolid, py::arg("threads") = 0, py::arg("progress") = py::none(),
+           py::arg("ignore") = py::none(),
            ("Casts rays (segments origins -> ends) through the world (each entity's ray index): the "
             "fields of Model.cast_rays and entity (N,)." +
             note)
                .c_str())
       .def("point_contents", &pointContentsWorld, py::arg("points"), py::kw_only(), py::arg("threads") = 0,
-           py::arg("progress") = py::none(),
+           py::arg("progress") = py::none(), py::arg("ignore") = py::none(),
            ("The contents of the brushes containing each point, over the world: contents (N,) (the OR "
             "over the entities), status (N,) and entity (N,) (the lowest id with contents; -1: none)." +
             note)
                .c_str())
       .def("contents", &contentsWorld, py::arg("trm"), py::arg("positions"), py::kw_only(),
            py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("threads") = 0,
-           py::arg("progress") = py::none(),
+           py::arg("progress") = py::none(), py::arg("ignore") = py::none(),
            ("Position tests over the world: the fields of Model.contents (contents: the OR over the "
             "entities; the trace fields: the lowest-id entity overlapped) and entity (N,) (that entity; "
             "-1: free)." +
@@ -485,7 +521,7 @@ entity; walk() walks a player through the world. Load with cmkit.load_world(path
            py::arg("depth") = 0.0, py::kw_only(), py::arg("max_contacts") = 16,
            py::arg("origins") = py::none(), py::arg("axes") = py::none(), py::arg("angles") = py::none(),
            py::arg("mask") = c::kMaskSolid, py::arg("axis") = py::none(), py::arg("threads") = 0,
-           py::arg("progress") = py::none(),
+           py::arg("progress") = py::none(), py::arg("ignore") = py::none(),
            ("Every contact of a move or turn over the world (arguments as Model.contacts): its fields, "
             "and entity (N, max_contacts) int32, each contact's entity (-1 past count[i]); contacts in "
             "entity-id order (along rotations: by the angle, then the id), at most max_contacts in all." +
@@ -525,7 +561,7 @@ unknown entity, ValueError for an axis that is not a rotation.)")
            })
       .def("walk", &walk, py::arg("start"), py::arg("wish"), py::arg("seconds"), py::kw_only(),
            py::arg("shape") = py::none(), py::arg("run") = false, py::arg("crouch") = false,
-           py::arg("jump_at") = py::none(),
+           py::arg("jump_at") = py::none(), py::arg("velocity") = py::none(),
            R"(Walks a player (cmkit/movement.h, Doom 3's player physics) from start (3,), its feet (the
 bottom centre of its shape), wishing to go along wish (dx, dy[, dz]; z ignored; length = fraction
 of full speed, at most 1) for `seconds` (at most 3600) in steps of 1/60 s. The world does not
@@ -533,7 +569,8 @@ change during the walk.
 
 shape: None (the original's box, 32 x 32 x 74, crouched 38), a TraceModel or spec string whose
 origin is at the feet (crouching keeps it). run: 220 units/s instead of 140. crouch: crouched the
-whole walk. jump_at: press jump once, at this time (seconds).
+whole walk. jump_at: press jump once, at this time (seconds). velocity: the player's velocity
+(3,) at the start (None: at rest), e.g. the last walk's, to go on from where it ended.
 
 Returns a dict: end (3,), velocity (3,), path (steps, 3) (the feet after each step), on_ground,
 ground_entity (the name of the entity stood on, or None), ground_entity_id (-1: none), crouched,

@@ -205,6 +205,67 @@ def test_walk_options(stairs):
     assert stairs.walk((-64, 64, 1), (1, 0), 0)["path"].shape == (0, 3)
 
 
+def test_ignore_leaves_entities_out(halls):
+    # The door stops the box; ignored (by name, id, or in a list) it does not, and every query
+    # kind takes the same argument.
+    start, end = (-100, 0, 1), (100, 0, 1)
+    assert halls.translate(PLAYER, start, end)["entity"][0] == 1
+    for ignore in ("door1", 1, ["door1"], (1,), np.array([1])):
+        r = halls.translate(PLAYER, start, end, ignore=ignore)
+        assert r["fraction"][0] == 1.0 and r["entity"][0] == -1, ignore
+    inside = (0, 0, 48)  # in the door's brush
+    assert halls.point_contents(inside)["entity"][0] == 1
+    assert halls.point_contents(inside, ignore="door1")["entity"][0] == -1
+    assert halls.contents(PLAYER, (0, 0, 1))["entity"][0] == 1
+    assert halls.contents(PLAYER, (0, 0, 1), ignore="door1")["entity"][0] != 1
+    assert halls.cast_rays((-100, 0, 48), (100, 0, 48), ignore="door1")["entity"][0] == -1
+    assert halls.contacts(PLAYER, (-21, 0, 1), (1, 0, 0), 8.0, ignore="door1")["count"][0] == 0
+    r = halls.rotate(PLAYER, (-30, 0, 1), (-30, 0, 1), (0, 0, 1), 90.0, ignore=[0, "door1"])
+    assert r["entity"][0] == -1
+    with pytest.raises(KeyError, match="nobody"):
+        halls.translate(PLAYER, start, end, ignore="nobody")
+    with pytest.raises(TypeError):
+        halls.translate(PLAYER, start, end, ignore=[1.5])
+
+
+def test_walk_goes_on_from_a_velocity(stairs):
+    # Up the stairs in one walk, and in two whose second starts with the first's end and
+    # velocity: on static ground the state between steps is the feet and the velocity (the
+    # ground is found again each step), so the two paths are the same bits.
+    whole = stairs.walk((-64, 64, 1), (1, 0), 2.0)
+    first = stairs.walk((-64, 64, 1), (1, 0), 1.0)
+    second = stairs.walk(first["end"], (1, 0), 1.0, velocity=first["velocity"])
+    assert np.array_equal(np.vstack([first["path"], second["path"]]), whole["path"])
+    # Without the velocity the second walk starts at rest, and falls behind.
+    rested = stairs.walk(first["end"], (1, 0), 1.0)
+    assert rested["end"][0] < second["end"][0]
+    with pytest.raises(ValueError, match="finite"):
+        stairs.walk((0, 0, 1), (1, 0), 1.0, velocity=(np.nan, 0, 0))
+    with pytest.raises(ValueError, match="velocity"):
+        stairs.walk((0, 0, 1), (1, 0), 1.0, velocity=(1, 2))
+
+
+def test_door_walk_example(tmp_path):
+    # examples/python/door_walk.py: lt4's two doors stop the walk, then let it through once
+    # turned open; the same lines as examples/door_walk.cpp prints.
+    pytest.importorskip("matplotlib", reason="examples/python/door_walk.py needs Debian's python3-matplotlib")
+    import os
+    import subprocess
+    import sys
+
+    from conftest import LT4
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    picture = tmp_path / "door_walk.png"
+    run = subprocess.run([sys.executable, str(SOURCE_DIR / "examples" / "python" / "door_walk.py"), "--map",
+                          str(LT4), "-o", str(picture)], env=env, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    lines = run.stdout.splitlines()
+    assert lines[1] == "doors closed: stopped at (952.25 -1483.50 -551.75) after 65 steps, stopped by lt4_door_wood_3"
+    assert lines[2] == "doors open: arrived at (703.28 -1492.13 -551.75) after 141 steps"
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
 # ---- bad arguments ---------------------------------------------------------------------------
 
 

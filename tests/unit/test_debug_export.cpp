@@ -313,6 +313,40 @@ TEST(DebugExport, PlacementMovesTheExportedModel) {
     }
 }
 
+TEST(DebugExport, ModelNodesNameTheirEntityAndTracesTheEntityHit) {
+  // Two models, the second an entity with a class and an origin; a world
+  // result's entity= reaches the trace node.
+  const ModelPtr models[2] = {twoBoxes(), twoBoxes()};
+  ExportOptions o;
+  o.placements = {Placement{}, Placement{{0, 500, 0}, Mat3{}}};
+  o.classNames = {"worldspawn", "func_door"};
+  const auto traces =
+      parseTraceRecords("translation trm=point start=0,0,100 end=0,0,-100\n",
+                        "fraction=0.42 endpos=0,0,16 type=modelvertex point=0,0,16 normal=0,0,1 "
+                        "dist=16 contents=1 entity=door1\n");
+  const std::string text = exportGltf(models, traces, o);
+  JsonReader reader(text);
+  const JsonValue doc = reader.parse();
+  ASSERT_TRUE(reader.error.empty()) << reader.error;
+  int doorParts = 0;
+  bool traceNamesDoor = false;
+  for (const JsonValue& n : doc["nodes"].array) {
+    if (!n.has("extras")) continue;
+    const JsonValue& x = n["extras"];
+    if (x.has("modelIndex") && x["modelIndex"].asInt() == 1) {
+      ++doorParts;
+      EXPECT_EQ(x["classname"].string, "func_door");
+      EXPECT_EQ(x["origin"][1].number, 500);
+    } else if (x.has("modelIndex")) {
+      EXPECT_EQ(x["modelIndex"].asInt(), 0);
+      EXPECT_EQ(x["classname"].string, "worldspawn");
+    }
+    if (n["name"].string == "trace 0") traceNamesDoor = x["entity"].string == "door1";
+  }
+  EXPECT_GE(doorParts, 2);  // its polygons and its edges at least
+  EXPECT_TRUE(traceNamesDoor);
+}
+
 TEST(DebugExport, ObjCountsMatchTheModel) {
   const ModelPtr m = twoBoxes();
   const std::string obj = exportObj(std::span(&m, 1), {}, "scene.mtl");

@@ -137,6 +137,32 @@ TEST(DebugPicture, NearPlaneClipsGeometryBehindTheCamera) {
   EXPECT_EQ(img.rgba.size(), 64u * 48u * 4u);
 }
 
+TEST(DebugPicture, OverlayDrawsOverTheGeometryThroughTheSameCamera) {
+  // A top view of a box with a magenta line over its middle (above the cut:
+  // the overlay is not cut) on top of the box: the pixel at the picture's
+  // centre is magenta; without the overlay it is not.
+  const ModelPtr m = std::make_shared<const CollisionModel>(
+      test::ModelMaker().addBox({{-64, -64, -64}, {64, 64, 64}}).build());
+  PictureOptions o;
+  o.width = 65;
+  o.height = 65;
+  o.view = CameraView::TopDown;
+  o.cutHeight = 0;
+  const auto centre = [](const Image& img) {
+    const std::size_t at =
+        (std::size_t(img.height / 2) * std::size_t(img.width) + std::size_t(img.width / 2)) * 4;
+    return Rgba{img.rgba[at], img.rgba[at + 1], img.rgba[at + 2], img.rgba[at + 3]};
+  };
+  EXPECT_NE(centre(renderPicture(std::span(&m, 1), {}, o)), colors::kMagenta);
+  int calls = 0;
+  o.overlay = [&](DebugDraw& draw) {
+    ++calls;
+    draw.line({-100, 0, 100}, {100, 0, 100}, colors::kMagenta, {DrawKind::Label});
+  };
+  EXPECT_EQ(centre(renderPicture(std::span(&m, 1), {}, o)), colors::kMagenta);
+  EXPECT_EQ(calls, 1);
+}
+
 TEST(DebugPicture, EmptyPictureIsRejectedByTheEncoder) { EXPECT_FALSE(encodePng(Image{})); }
 
 TEST(DebugPicture, CliRendersABoxRoomWithTraces) {

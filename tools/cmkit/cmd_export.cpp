@@ -40,6 +40,7 @@ int runExport(const ExportCliOptions& o) {
     return kExitBadInput;
   }
   e.placements = scene->placements;
+  e.classNames = scene->classNames;
   if (Status s = saveScene(o.output, scene->models, scene->traces, e); !s) {
     fmt::print(stderr, "cmkit export: {}\n", s.error().toString());
     return kExitBadInput;

@@ -213,6 +213,7 @@ int runView(const ViewOptions& o) {
   const FdGuard closeStopSignals(stopSignals);
   ExportOptions exportOptions;
   exportOptions.placements = scene->placements;
+  exportOptions.classNames = scene->classNames;
   if (Status s = saveScene((sceneDir / kSceneFile).string(), scene->models, scene->traces, exportOptions);
       !s) {
     fmt::print(stderr, "cmkit view: {}\n", s.error().toString());
@@ -274,11 +275,15 @@ void registerView(CLI::App& app) {
       "Export the collision models (and traces) to a temporary folder and serve them with the web\n"
       "viewer on http://127.0.0.1:PORT (loopback only; prints the URL). In the browser: drag to\n"
       "orbit, wheel to zoom, toggle contents kinds and internal edges, click a trace to see its\n"
-      "contact (fraction, point, normal, features). Stop with Ctrl-C.\n"
+      "contact (fraction, point, normal, features; the entity hit for `cmkit query --world`\n"
+      "results). A .map's entities are placed by their keys: click a model, or pick one from the\n"
+      "Entities list, to see its name, class and origin; a toggle hides all but the world model.\n"
+      "Stop with Ctrl-C.\n"
       "The viewer must be built once: npm ci --prefix viewer && npm run build --prefix viewer\n\n"
       "Examples:\n"
       "  cmkit view maps/lt4.map\n"
       "  cmkit query maps/box_room.map q.txt -o r.txt\n"
+      "  cmkit query tests/data/maps/two_halls.map q.txt --world -o r.txt   (entity= in each result)\n"
       "  cmkit view maps/box_room.map --queries q.txt --results r.txt --port 8080");
   cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
       ->required();

@@ -21,23 +21,24 @@ Result<std::vector<TraceRecord>> loadTraceRecords(const std::string& queriesPath
   return parseTraceRecords(queries, *results);
 }
 
-std::vector<Placement> modelPlacements(const std::string& modelsPath, std::size_t numModels) {
-  std::vector<Placement> placements;
+ModelEntities modelEntities(const std::string& modelsPath, std::size_t numModels) {
+  ModelEntities out;
   const std::string ext = ".map";
   if (modelsPath.size() < ext.size() ||
       modelsPath.compare(modelsPath.size() - ext.size(), ext.size(), ext) != 0)
-    return placements;
+    return out;
   auto map = loadMapFile(modelsPath);
-  if (!map) return placements;
+  if (!map) return out;
   for (const MapEntity& e : map->entities) {
     if (e.primitives.empty()) continue;
     Placement p;
     p.origin = e.origin();
     p.axis = e.axis();
-    placements.push_back(p);
+    out.placements.push_back(p);
+    out.classNames.emplace_back(e.value("classname").value_or(""));
   }
-  if (placements.size() != numModels) placements.clear();  // not the build's order: do not guess
-  return placements;
+  if (out.placements.size() != numModels) out = {};  // not the build's order: do not guess
+  return out;
 }
 
 Result<CliScene> loadSceneForCli(const std::string& modelsPath, const std::string& materialsDir, bool noProc,
@@ -47,8 +48,10 @@ Result<CliScene> loadSceneForCli(const std::string& modelsPath, const std::strin
   if (!models) return models.error();
   auto traces = loadTraceRecords(queriesPath, resultsPath);
   if (!traces) return traces.error();
-  CliScene scene{std::move(*models), std::move(*traces), {}};
-  scene.placements = modelPlacements(modelsPath, scene.models.size());
+  CliScene scene{std::move(*models), std::move(*traces), {}, {}};
+  ModelEntities entities = modelEntities(modelsPath, scene.models.size());
+  scene.placements = std::move(entities.placements);
+  scene.classNames = std::move(entities.classNames);
   return scene;
 }
 

@@ -28,9 +28,12 @@ const zUp = new THREE.Group();
 zUp.rotation.x = -Math.PI / 2;
 scene.add(zUp);
 
-const groups = { contents: new Map(), edges: [], internal: [], traces: new Map() };
+const groups = { contents: new Map(), edges: [], internal: [], traces: new Map(), entities: new Map() };
 let records = [];
 let selected = null;
+// The highlighted entity: its name and its meshes' own materials, put back
+// when another is picked.
+let highlighted = null;
 
 function resize() {
   const w = canvas.clientWidth;
@@ -82,6 +85,15 @@ function classify(root) {
       obj.material.polygonOffset = true;
       obj.material.polygonOffsetFactor = 1;
       obj.material.polygonOffsetUnits = 1;
+    }
+    // Each model is an entity of the map (its name, class and origin when
+    // the export had them): its polygons, edges and internal edges.
+    if (x.model !== undefined && x.kind !== 'trace') {
+      if (!groups.entities.has(x.model)) {
+        groups.entities.set(x.model, { name: x.model, index: x.modelIndex ?? 0, classname: x.classname ?? '',
+          origin: x.origin ?? null, objs: [] });
+      }
+      groups.entities.get(x.model).objs.push(obj);
     }
     if (x.kind === 'polygons') {
       const name = x.contentsNames || 'none';
@@ -152,6 +164,21 @@ function buildPanel() {
   toggle('show-internal', () => groups.internal);
   toggle('show-traces', () => [...groups.traces.values()]);
 
+  // Entity models: every model but the first (a map's world model).
+  document.getElementById('show-entities').addEventListener('change', (e) => {
+    for (const ent of groups.entities.values()) if (ent.index > 0) ent.objs.forEach((o) => (o.visible = e.target.checked));
+  });
+  const picker = document.getElementById('entities');
+  for (const ent of [...groups.entities.values()].sort((a, b) => a.index - b.index)) {
+    const option = document.createElement('option');
+    option.value = ent.name;
+    option.textContent = ent.classname ? `${ent.name} (${ent.classname})` : ent.name;
+    picker.appendChild(option);
+  }
+  picker.addEventListener('change', () => {
+    if (picker.value) selectEntity(picker.value, true);
+  });
+
   const list = document.getElementById('traces');
   for (const rec of records) {
     const li = document.createElement('li');
@@ -179,6 +206,38 @@ function select(index) {
   document.body.dataset.selected = String(index);
 }
 
+// Shows an entity's name, class and origin and highlights its polygons;
+// `frameIt` also turns the camera to it.
+function selectEntity(name, frameIt = false) {
+  const ent = groups.entities.get(name);
+  if (!ent) return false;
+  if (highlighted) highlighted.saved.forEach(([o, material]) => (o.material = material));
+  highlighted = { name, saved: [] };
+  for (const o of ent.objs) {
+    if (!o.isMesh || !o.material?.emissive) continue;
+    highlighted.saved.push([o, o.material]);
+    o.material = o.material.clone();
+    o.material.emissive = new THREE.Color(0x5a4a00);
+  }
+  const f = (v) => (v ? v.map((x) => +Number(x).toFixed(3)).join(', ') : '-');
+  document.getElementById('info').textContent = [`entity ${ent.name}`, `class: ${ent.classname || '-'}`,
+    `origin: ${f(ent.origin)}`, `model ${ent.index}`].join('\n');
+  document.getElementById('entities').value = name;
+  document.body.dataset.entity = name;
+  if (frameIt) {
+    const box = new THREE.Box3();
+    ent.objs.forEach((o) => box.expandByObject(o));
+    if (!box.isEmpty()) {
+      const center = box.getCenter(new THREE.Vector3());
+      const radius = Math.max(box.getSize(new THREE.Vector3()).length(), 64);
+      camera.position.copy(center).add(camera.position.clone().sub(controls.target).normalize().multiplyScalar(radius * 2));
+      controls.target.copy(center);
+      controls.update();
+    }
+  }
+  return true;
+}
+
 const raycaster = new THREE.Raycaster();
 function pick(event) {
   const rect = canvas.getBoundingClientRect();
@@ -189,7 +248,13 @@ function pick(event) {
   raycaster.params.Line.threshold = camera.position.distanceTo(controls.target) * 0.01;
   const targets = [...groups.traces.values()].filter((o) => o.visible);
   const hit = raycaster.intersectObjects(targets, true)[0];
-  if (!hit) return;
+  if (!hit) {
+    // No trace: the nearest visible polygon in front of the cut names its entity.
+    const meshes = [...groups.entities.values()].flatMap((e) => e.objs).filter((o) => o.isMesh && o.visible);
+    const face = raycaster.intersectObjects(meshes, false).find((h) => cutPlane.distanceToPoint(h.point) >= 0);
+    if (face) selectEntity(face.object.userData.model);
+    return;
+  }
   for (let o = hit.object; o; o = o.parent) {
     if (o.userData?.kind === 'trace' && groups.traces.get(o.userData.trace) === o) {
       select(o.userData.trace);
@@ -219,7 +284,19 @@ function traceScreenPoint(index) {
   const rect = canvas.getBoundingClientRect();
   return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height };
 }
-window.cmkitViewer = { select, traceScreenPoint, get records() { return records; } };
+/** For tests: the screen position (CSS pixels) of the centre of an entity's top (map z max). */
+function entityScreenPoint(name) {
+  const ent = groups.entities.get(name);
+  if (!ent) return null;
+  const box = new THREE.Box3();
+  ent.objs.forEach((o) => box.expandByObject(o));
+  const v = box.getCenter(new THREE.Vector3());
+  v.y = box.max.y - 0.5;  // y is map z here: just under the top
+  v.project(camera);
+  const rect = canvas.getBoundingClientRect();
+  return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height };
+}
+window.cmkitViewer = { select, selectEntity, traceScreenPoint, entityScreenPoint, get records() { return records; } };
 
 async function load() {
   const status = document.getElementById('status');
@@ -235,7 +312,8 @@ async function load() {
     resize();
     frame(gltf.scene);
     setupCut(gltf.scene);
-    status.textContent = `${modelUrl}: ${groups.contents.size} contents kinds, ${groups.traces.size} traces`;
+    status.textContent = `${modelUrl}: ${groups.entities.size} models, ${groups.contents.size} contents kinds, ` +
+      `${groups.traces.size} traces`;
     document.body.dataset.ready = '1';
   } catch (err) {
     status.textContent = `cannot load ${modelUrl}: ${err.message ?? err}`;

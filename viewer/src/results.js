@@ -30,7 +30,8 @@ function isQueryLine(line) {
 /**
  * Parses a results file into trace records:
  * {index, query, result, op, start, end, fraction, endpos, type, point, normal,
- *  contents, modelFeature, trmFeature, error}.
+ *  contents, modelFeature, trmFeature, entity, error}; entity is the entity
+ *  hit of a world result (`cmkit query --world`), else ''.
  */
 export function parseResults(text) {
   const lines = text.split('\n').map((l) => l.trim()).filter((l) => l && !l.startsWith('#'));
@@ -64,6 +65,7 @@ export function parseResults(text) {
       contents: r['contents' + sfx] ?? r.contents ?? '',
       modelFeature: r['modelfeature' + sfx] ?? '',
       trmFeature: r['trmfeature' + sfx] ?? '',
+      entity: r['entity' + sfx] ?? r.entity ?? '',
       error: r.error ?? (result ? '' : 'no result line'),
     });
   }
@@ -87,5 +89,6 @@ export function describe(rec) {
     `contents: ${rec.contents}`,
     `feature: model ${rec.modelFeature}, trace model ${rec.trmFeature}`,
   );
+  if (rec.entity) lines.push(`entity: ${rec.entity}`);
   return lines.join('\n');
 }

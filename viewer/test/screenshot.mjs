@@ -39,7 +39,8 @@ if (!existsSync(join(viewerDir, 'dist', 'index.html'))) {
 }
 const { chromium } = await import('playwright-core');
 
-// A room of six brushes, a pillar, and two traces through it.
+// A room of six brushes, a pillar, a door (an entity of its own), and two
+// traces through it.
 function box([x0, y0, z0], [x1, y1, z1], material = 'textures/base_wall/lfwall27d') {
   const side = (a, b, c, d) => `( ${a} ${b} ${c} ${d} ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) "${material}" 0 0 0\n`;
   return `{\nbrushDef3\n{\n${side(1, 0, 0, -x1)}${side(-1, 0, 0, x0)}${side(0, 1, 0, -y1)}${side(0, -1, 0, y0)}` +
@@ -49,7 +50,8 @@ const map = 'Version 2\n{\n"classname" "worldspawn"\n' +
   box([-256, -256, -16], [256, 256, 0]) + box([-256, -256, 256], [256, 256, 272]) +
   box([-272, -256, -16], [-256, 256, 272]) + box([256, -256, -16], [272, 256, 272]) +
   box([-256, -272, -16], [256, -256, 272]) + box([-256, 256, -16], [256, 272, 272]) +
-  box([-40, -40, 0], [40, 40, 128]) + box([100, 100, 0], [160, 160, 64], 'textures/liquids/water') + '}\n';
+  box([-40, -40, 0], [40, 40, 128]) + box([100, 100, 0], [160, 160, 64], 'textures/liquids/water') + '}\n' +
+  '{\n"classname" "func_door"\n"name" "door1"\n' + box([180, -60, 0], [196, 60, 128]) + '}\n';
 const queries = 'translation trm=box:-16,-16,0,16,16,72 start=-200,-200,8 end=200,200,8\n' +
   'translation trm=point start=-150,150,200 end=-150,150,-100\n';
 
@@ -64,7 +66,7 @@ function check(ok, what) {
 try {
   writeFileSync(join(work, 'room.map'), map);
   writeFileSync(join(work, 'q.txt'), queries);
-  const q = spawnSync(cmkit, ['query', join(work, 'room.map'), join(work, 'q.txt'), '-o', join(work, 'r.txt')]);
+  const q = spawnSync(cmkit, ['query', join(work, 'room.map'), join(work, 'q.txt'), '--world', '-o', join(work, 'r.txt')]);
   if (q.status !== 0) throw new Error(`cmkit query failed: ${q.stderr}`);
 
   server = spawn(cmkit, ['view', join(work, 'room.map'), '--queries', join(work, 'q.txt'), '--results',
@@ -133,8 +135,22 @@ try {
   check(await page.evaluate(() => document.body.dataset.selected === '0'), 'clicking the trace selects it');
   check(/fraction: 0\.\d+/.test(info) && /contact: (edge|trmvertex|modelvertex)/.test(info),
     `contact shown: ${info.replace(/\n/g, ' | ')}`);
+  check(info.includes('entity: worldspawn'), 'the world result names the entity hit');
   await page.click('#traces li[data-trace="1"]');
   check((await page.textContent('#info')).includes('#1 translation'), 'the list selects a trace');
+
+  // Entities: the door is listed with its class; clicking it shows it.
+  const options = await page.$$eval('#entities option', (os) => os.map((o) => o.textContent));
+  check(options.includes('door1 (func_door)'), `entities listed: ${options.join(', ')}`);
+  const door = await page.evaluate(() => window.cmkitViewer.entityScreenPoint('door1'));
+  await page.mouse.click(door.x, door.y);
+  await page.waitForTimeout(200);
+  const doorInfo = await page.textContent('#info');
+  check(doorInfo.includes('entity door1') && doorInfo.includes('class: func_door'),
+    `clicking the door shows it: ${doorInfo.replace(/\n/g, ' | ')}`);
+  await page.selectOption('#entities', 'door1');
+  check(await page.evaluate(() => document.body.dataset.entity === 'door1'), 'the list selects an entity');
+  await page.uncheck('#show-entities');
 
   // Toggles: internal edges on, a contents kind off.
   await page.check('#show-internal');

@@ -12,10 +12,13 @@
 //   their own; each trace is a node with line meshes for its path, trace
 //   model, contact marker and contact normal.
 // - Every glTF node carries `extras` for viewers: {"kind": "polygons" |
-//   "edges" | "internal edges" | "trace", "contents": N, "model": NAME} for
-//   model parts; {"trace": I, "query": LINE, "result": LINE, "fraction": F,
+//   "edges" | "internal edges" | "trace", "contents": N, "model": NAME,
+//   "modelIndex": I} for model parts, plus "classname": CLASS and "origin":
+//   [x,y,z] when the options give them (a map's entities: the model's
+//   entity); {"trace": I, "query": LINE, "result": LINE, "fraction": F,
 //   "point": [x,y,z], "normal": [x,y,z], "type": T, "modelFeature": N,
-//   "trmFeature": N} for traces.
+//   "trmFeature": N} for traces, plus "entity": NAME when the result names
+//   the entity hit (world results).
 // - Output is deterministic (same input, same bytes).
 #pragma once
 
@@ -40,6 +43,9 @@ struct ExportOptions {
   /// Where each model is placed (index = model index); models past the end
   /// are at the origin with identity axis. Exported positions are placed.
   std::vector<Placement> placements;
+  /// The class name of each model's entity (index = model index; missing or
+  /// empty: none), written into the model's glTF extras ("classname").
+  std::vector<std::string> classNames;
 };
 
 /// The scene as glTF JSON with the buffer embedded as a base64 data URI.

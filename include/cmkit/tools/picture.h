@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -118,6 +119,11 @@ struct PictureOptions {
   bool tracesOnTop = true;
   /// Colour of the empty background.
   Rgba background{28, 30, 36, 255};
+  /// The caller's own drawing (paths, markers, labels), called once after
+  /// the traces with the picture's canvas: seen through the same camera,
+  /// over the geometry when tracesOnTop, and not cut by cutHeight. Empty:
+  /// nothing.
+  std::function<void(DebugDraw&)> overlay;
 };
 
 /// Fraction of the scene height that the automatic top-down cut removes.

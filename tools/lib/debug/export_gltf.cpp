@@ -237,6 +237,16 @@ Document buildDocument(std::span<const ModelPtr> models, std::span<const TraceRe
     } else {
       nodes.raw(",\"model\":");
       nodes.str(g.model);
+      nodes.raw(",\"modelIndex\":" + std::to_string(g.modelIndex));
+      const auto at = std::size_t(g.modelIndex);
+      if (at < options.classNames.size() && !options.classNames[at].empty()) {
+        nodes.raw(",\"classname\":");
+        nodes.str(options.classNames[at]);
+      }
+      if (at < options.placements.size()) {
+        nodes.raw(",\"origin\":");
+        nodes.vec(options.placements[at].origin);
+      }
       nodes.raw(",\"contents\":" + std::to_string(g.contents) + ",\"contentsNames\":");
       nodes.str(contentsToStringExact(g.contents));
       rootChildren.push_back(node);
@@ -265,7 +275,12 @@ Document buildDocument(std::span<const ModelPtr> models, std::span<const TraceRe
     nodes.vec(r.result.contact.normal);
     nodes.raw(",\"contents\":" + std::to_string(r.result.contact.contents) +
               ",\"modelFeature\":" + std::to_string(r.result.contact.modelFeature) +
-              ",\"trmFeature\":" + std::to_string(r.result.contact.trmFeature) + "}}");
+              ",\"trmFeature\":" + std::to_string(r.result.contact.trmFeature));
+    if (!r.entity.empty()) {
+      nodes.raw(",\"entity\":");
+      nodes.str(r.entity);
+    }
+    nodes.raw("}}");
     rootChildren.push_back(nextNode++);
   }
   align();

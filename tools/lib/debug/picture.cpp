@@ -321,6 +321,7 @@ Image renderPicture(std::span<const ModelPtr> models, std::span<const TraceRecor
   }
   canvas.setDepthTest(!options.tracesOnTop);
   drawTraceRecords(canvas, traces);
+  if (options.overlay) options.overlay(canvas);
   return canvas.image();
 }
 

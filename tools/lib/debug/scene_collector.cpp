@@ -54,12 +54,13 @@ Group& SceneCollector::groupFor(const DrawTag& tag, const Rgba& color, bool tria
   const std::uint32_t contents = kind == GroupKind::Polygons ? tag.contents : 0;
   const std::int32_t trace = isTrace ? tag.feature : -1;
   const int drawKind = isTrace ? int(tag.kind) : -1;
-  const auto key = std::make_tuple(isTrace ? std::string() : model, int(kind), contents, trace, drawKind);
+  const auto key = std::make_tuple(isTrace ? -1 : modelIndex, int(kind), contents, trace, drawKind);
   const auto [it, inserted] = index_.try_emplace(key, groups_.size());
   if (inserted) {
     Group& g = groups_.emplace_back();
     g.kind = kind;
     g.model = isTrace ? std::string() : model;
+    g.modelIndex = isTrace ? -1 : modelIndex;
     g.contents = isTrace ? tag.contents : contents;
     g.trace = trace;
     g.drawKind = tag.kind;
@@ -102,6 +103,7 @@ std::vector<Group> collectScene(std::span<const ModelPtr> models, std::span<cons
     if (!m) continue;
     const Placement place = i < options.placements.size() ? options.placements[i] : Placement{};
     collector.model = m->name();
+    collector.modelIndex = std::int32_t(i);
     DrawOptions draw;
     draw.contentMask = options.contentMask;
     draw.filled = true;

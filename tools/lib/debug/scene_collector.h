@@ -22,6 +22,7 @@ const char* toString(GroupKind kind);
 struct Group {
   GroupKind kind = GroupKind::Polygons;
   std::string model;                      ///< model name (empty for traces)
+  std::int32_t modelIndex = -1;           ///< index of the model (-1 for traces)
   std::uint32_t contents = 0;             ///< polygons and edges
   std::int32_t trace = -1;                ///< trace index (Trace groups)
   DrawKind drawKind = DrawKind::Polygon;  ///< for trace groups: path, shape, contact...
@@ -40,16 +41,18 @@ class SceneCollector final : public DebugDraw {
                const DrawTag& tag) override;
   void text(const Vec3&, std::string_view, const Rgba&, const DrawTag&) override {}
 
-  /// Name of the model being drawn (groups are per model).
+  /// Name of the model being drawn.
   std::string model;
+  /// Index of the model being drawn (groups are per model).
+  std::int32_t modelIndex = -1;
   /// The groups in creation order (deterministic).
   std::vector<Group>& groups() { return groups_; }
 
  private:
   Group& groupFor(const DrawTag& tag, const Rgba& color, bool triangles);
   std::vector<Group> groups_;
-  /// (model, kind, contents, trace, draw kind) -> index into groups_.
-  std::map<std::tuple<std::string, int, std::uint32_t, std::int32_t, int>, std::size_t> index_;
+  /// (model index, kind, contents, trace, draw kind) -> index into groups_.
+  std::map<std::tuple<std::int32_t, int, std::uint32_t, std::int32_t, int>, std::size_t> index_;
 };
 
 /// Draws the models and traces into groups, as every exporter needs them.
