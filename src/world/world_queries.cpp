@@ -25,6 +25,20 @@ Bounds trmBoundsAt(const TraceModel* trm, const Mat3& axis, const Vec3& position
   return detail::placedBounds(trm->bounds(), {position, axis});
 }
 
+/// World bounds of the trace model swept from `start` to `end` with
+/// orientation `axis`: its box about its origin, made once, moved to both
+/// ends. (The same bits as trmBoundsAt at each end, joined: a rounded sum
+/// grows with its terms.)
+Bounds sweptTrmBounds(const TraceModel* trm, const Mat3& axis, const Vec3& start, const Vec3& end) {
+  const Bounds local = trmBoundsAt(trm, axis, Vec3{});
+  Bounds b;
+  for (int i = 0; i < 3; ++i) {
+    b.min[i] = std::min(start[i], end[i]) + local.min[i];
+    b.max[i] = std::max(start[i], end[i]) + local.max[i];
+  }
+  return b;
+}
+
 /// Every position a trace model takes while it turns about an axis through
 /// `origin` stays as far from `origin` as it started: the box around that
 /// sphere (through the corners of its start box, which lie no nearer).
@@ -109,9 +123,7 @@ WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork&
   if (const QueryStatus st = detail::guardTranslation(g); st != QueryStatus::Ok)
     return {detail::refusedTrace(query.start, query.trmAxis, st), kNoEntity};
   WorldScratch& s = scratchOf(work);
-  Bounds sweep = trmBoundsAt(g.trm, g.trmAxis, g.start);
-  sweep.addBounds(trmBoundsAt(g.trm, g.trmAxis, g.end));
-  gatherBox(*data_, sweep, g.contentMask, filter, s);
+  gatherBox(*data_, sweptTrmBounds(g.trm, g.trmAxis, g.start, g.end), g.contentMask, filter, s);
   if (s.candidates.empty()) {
     // Nothing near: the miss every model gives (translate()'s rules).
     WorldTraceResult out;
