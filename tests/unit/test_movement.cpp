@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -504,6 +505,62 @@ TEST(PlayerMove, TheObserverSeesEveryTranslationOfAStep) {
   // nothing.
   EXPECT_EQ(climb, (std::vector<P>{P::Ground, P::Slide, P::Slide, P::StepUp, P::Slide, P::StepDown, P::Ground,
                                    P::Ground}));
+}
+
+// One writer, many readers (movement.h, THREAD SAFETY): four threads step
+// the same players at once, each with its own scratch and observer, then the
+// one writer moves the crate between the rounds, never while they step (the
+// player standing on it is carried at its next step). Every thread's paths
+// and observed translations equal one thread's made before the round. (Run
+// under ThreadSanitizer by ./dev.sh tsan: no race.)
+TEST(PlayerMove, PlayersOnManyThreadsBetweenTheWritersMoves) {
+  World world = withFloor().build();
+  auto crateShape = TraceModel::box({{-32, -32, 0}, {32, 32, 32}});
+  ASSERT_TRUE(crateShape);
+  Placement crateAt;
+  crateAt.origin = {100, 0, 0};
+  auto crate = world.addTraceModelEntity("crate", *crateShape, crateAt);
+  ASSERT_TRUE(crate) << crate.error().toString();
+  const PlayerShape shape = PlayerShape::standard();
+  // On the crate, walking into it, walking in the open.
+  std::vector<PlayerState> players = {at({100, 0, 33}), at({-100, 0, 1}), at({-100, 200, 1})};
+  const std::vector<PlayerInput> inputs = {walk(0, 0), walk(1, 0), walk(0, 1)};
+  struct Steps {
+    std::vector<std::vector<PlayerState>> paths;
+    std::size_t translations = 0;
+  };
+  auto stepAll = [&](const std::vector<PlayerState>& from) {
+    Steps out;
+    WorldQueryWork work;
+    Recorder seen;
+    for (std::size_t p = 0; p < from.size(); ++p) {
+      out.paths.emplace_back();
+      runPlayer(world, shape, from[p], inputs[p], stepsFor(0.5), kDt, work, {}, &out.paths.back(), &seen);
+    }
+    out.translations = seen.seen.size();
+    return out;
+  };
+  for (int round = 0; round < 3; ++round) {
+    const Steps expected = stepAll(players);
+    std::array<Steps, 4> got;
+    std::vector<std::thread> readers;
+    for (std::size_t t = 0; t < got.size(); ++t) readers.emplace_back([&, t] { got[t] = stepAll(players); });
+    for (std::thread& r : readers) r.join();
+    for (std::size_t t = 0; t < got.size(); ++t) {
+      EXPECT_EQ(got[t].translations, expected.translations) << "round " << round << " reader " << t;
+      for (std::size_t p = 0; p < players.size(); ++p)
+        EXPECT_TRUE(sameBits(got[t].paths[p], expected.paths[p])) << "round " << round << " player " << p;
+    }
+    for (std::size_t p = 0; p < players.size(); ++p) players[p] = expected.paths[p].back();
+    EXPECT_EQ(players[0].groundEntity, *crate) << "round " << round;
+    // The one writer, between the rounds: the crate slides along +x.
+    const Vec3 was = players[0].origin;
+    crateAt.origin.x += 20;
+    ASSERT_TRUE(world.setPlacement(*crate, crateAt).ok());
+    WorldQueryWork work;
+    const PlayerState carried = stepPlayer(world, shape, players[0], inputs[0], kDt, work);
+    EXPECT_NEAR(carried.origin.x, was.x + 20, 0.01) << "round " << round;
+  }
 }
 
 /// The "end" array of `cmkit walk --json` output.
