@@ -124,28 +124,46 @@ bool BroadPhase::refit(EntityId id, const Bounds& bounds) {
 
 void BroadPhase::collectBox(const Bounds& box, std::vector<EntityId>& out) const {
   if (nodes_.empty()) return;
+  // The next node is kept in a register: the first child node a node's test
+  // passes is visited at once, the others wait on the stack (most queries
+  // pass one child per level, or none).
   Walk walk;
-  walk.push(0);
+  std::int32_t node = 0;
 #ifdef CMKIT_FLOAT_LANES
   using simd::F4;
   const F4 qMinX = F4::all(box.min.x), qMinY = F4::all(box.min.y), qMinZ = F4::all(box.min.z);
   const F4 qMaxX = F4::all(box.max.x), qMaxY = F4::all(box.max.y), qMaxZ = F4::all(box.max.z);
-  while (!walk.empty()) {
-    const Node& n = nodes_[std::size_t(walk.pop())];
+#endif
+  for (;;) {
+    const Node& n = nodes_[std::size_t(node)];
+#ifdef CMKIT_FLOAT_LANES
     // Bounds::intersects, four lanes at once: no axis where one box ends
     // before the other begins (the cleared lanes fail every axis).
     const F4 meets = (qMinX <= F4::load(n.maxX)) & (qMaxX >= F4::load(n.minX)) & (qMinY <= F4::load(n.maxY)) &
                      (qMaxY >= F4::load(n.minY)) & (qMinZ <= F4::load(n.maxZ)) & (qMaxZ >= F4::load(n.minZ));
-    for (unsigned lanes = simd::bits(meets); lanes != 0; lanes &= lanes - 1)
-      visit(n.child[std::countr_zero(lanes)], out, walk);
-  }
+    unsigned lanes = simd::bits(meets);
 #else
-  while (!walk.empty()) {
-    const Node& n = nodes_[std::size_t(walk.pop())];
-    for (int lane = 0; lane < n.count; ++lane)
-      if (box.intersects(n.laneBounds(lane))) visit(n.child[lane], out, walk);
-  }
+    unsigned lanes = 0;
+    for (int lane = 0; lane < n.count; ++lane) lanes |= unsigned(box.intersects(n.laneBounds(lane))) << lane;
 #endif
+    std::int32_t next = -1;
+    for (; lanes != 0; lanes &= lanes - 1) {
+      const std::int32_t child = n.child[std::countr_zero(lanes)];
+      if (child < 0)
+        out.push_back(~child);
+      else if (next < 0)
+        next = child;
+      else
+        walk.push(child);
+    }
+    if (next >= 0) {
+      node = next;
+    } else if (!walk.empty()) {
+      node = walk.pop();
+    } else {
+      break;
+    }
+  }
 }
 
 }  // namespace cmkit::detail

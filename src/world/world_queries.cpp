@@ -30,7 +30,9 @@ Bounds trmBoundsAt(const TraceModel* trm, const Mat3& axis, const Vec3& position
 /// ends. (The same bits as trmBoundsAt at each end, joined: a rounded sum
 /// grows with its terms.)
 Bounds sweptTrmBounds(const TraceModel* trm, const Mat3& axis, const Vec3& start, const Vec3& end) {
-  const Bounds local = trmBoundsAt(trm, axis, Vec3{});
+  const Bounds local = isPoint(trm)        ? Bounds::ofPoint(Vec3{})
+                       : axis.isIdentity() ? trm->bounds()
+                                           : detail::placedBounds(trm->bounds(), {Vec3{}, axis});
   Bounds b;
   for (int i = 0; i < 3; ++i) {
     b.min[i] = std::min(start[i], end[i]) + local.min[i];
