@@ -54,6 +54,16 @@
 // - THREAD SAFETY: as the World's queries: any number of threads may step
 //   players in one World at once, each with its own WorldQueryWork, while
 //   nothing moves the World's entities.
+// - OBSERVING A STEP: a PlayerMoveObserver passed to stepPlayer (or
+//   runPlayer) is told of every World::translate the step makes, in order,
+//   on the stepping thread, as it returns: what moved (the shape, its mask),
+//   from where to where, what for (PlayerMovePart) and the answer. It only
+//   watches: the step's result is the same bits with or without one. Each
+//   stepping thread needs its own observer (or one that is safe to call at
+//   once); stepPlayer keeps no pointer to it after it returns. The
+//   position tests of a step (crouch, unstick) are not translations and are
+//   not reported. `cmkit soak` checks every reported end with a position
+//   test (docs/reliability.md).
 #pragma once
 
 #include <cstdint>
@@ -191,20 +201,56 @@ struct PlayerState {
   std::int64_t steps = 0;
 };
 
+/// What a translation of a player step was for (the steps of the contract).
+enum class PlayerMovePart : std::uint8_t {
+  Carry,     ///< 1. carried by the ground entity's move
+  Ground,    ///< 4, 7, 8. a trace down looking for the ground
+  Slide,     ///< 6. a move of the slide (the flat one, or the stepped one's)
+  StepUp,    ///< 6. the lift of a step up (by at most stepHeight)
+  StepDown,  ///< 6. the stepped slide put down again
+};
+
+/// The name of a part: "carry", "ground", "slide", "step-up", "step-down".
+const char* toString(PlayerMovePart part);
+
+/// One translation of a player step, as World::translate answered it.
+struct PlayerTranslation {
+  PlayerMovePart part = PlayerMovePart::Slide;  ///< what it was for
+  const TraceModel* trm = nullptr;              ///< the shape moved (standing or crouched)
+  Vec3 start;                                   ///< the shape's origin (the feet) at the start
+  Vec3 end;                                     ///< where it was to go
+  std::uint32_t contentMask = 0;                ///< PlayerShape::contentMask
+  /// The entity left out (a carry ignores the entity stood on), else kNoEntity.
+  EntityId ignored = kNoEntity;
+  /// The answer: result.trace.endPos is where the shape stopped.
+  WorldTraceResult result;
+};
+
+/// Told of each translation a player step makes (see the contract).
+class PlayerMoveObserver {
+ public:
+  virtual ~PlayerMoveObserver() = default;
+  /// One translation, in the order the step made them.
+  virtual void translated(const PlayerTranslation& t) = 0;
+};
+
 /// Advances the player one step of `dt` seconds (see the contract).
 /// Refused input (dt not > 0 or not finite, a non-finite origin, velocity
 /// or wish) leaves the state as it was, `stuck` set.
+/// `observer`, when not null, is told of every translation the step makes.
 PlayerState stepPlayer(const World& world, const PlayerShape& shape, const PlayerState& state,
-                       const PlayerInput& input, Real dt, WorldQueryWork& work,
-                       const MoveParams& params = {});
+                       const PlayerInput& input, Real dt, WorldQueryWork& work, const MoveParams& params = {},
+                       PlayerMoveObserver* observer = nullptr);
 
 /// `steps` calls of stepPlayer with the same input, each from the last's
-/// state; `path`, when not null, gets every step's state appended. The
-/// world does not change between the steps (move entities between your own
-/// stepPlayer calls instead).
+/// state; `path`, when not null, gets every step's state appended;
+/// `observer`, when not null, every step's translations. The world does not
+/// change between the steps (move entities between your own stepPlayer
+/// calls instead).
 PlayerState runPlayer(const World& world, const PlayerShape& shape, const PlayerState& start,
                       const PlayerInput& input, int steps, Real dt, WorldQueryWork& work,
-                      const MoveParams& params = {}, std::vector<PlayerState>* path = nullptr);
+                      const MoveParams& params = {}, std::vector<PlayerState>* path = nullptr,
+                      PlayerMoveObserver* observer = nullptr);
 
 /// The shape in use in a state: shape.crouched when state.crouched.
 const TraceModel& playerTraceModel(const PlayerShape& shape, const PlayerState& state);

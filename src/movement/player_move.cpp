@@ -16,22 +16,29 @@ namespace cmkit {
 
 namespace {
 
-/// What the moves of one step share: the world, the shape in use, its mask
-/// and the caller's scratch.
+/// What the moves of one step share: the world, the shape in use, its mask,
+/// the caller's scratch and observer.
 struct Mover {
   const World& world;
   const TraceModel& trm;
   std::uint32_t mask;
   WorldQueryWork& work;
+  PlayerMoveObserver* observer;
 
-  /// The shape moved from `from` towards `to`, stopped by what it meets.
-  WorldTraceResult trace(const Vec3& from, const Vec3& to, const EntityFilter& filter = {}) const {
+  /// The shape moved from `from` towards `to`, stopped by what it meets
+  /// (reported to the observer as `part`); `ignored`: an entity left out.
+  WorldTraceResult trace(PlayerMovePart part, const Vec3& from, const Vec3& to,
+                         EntityId ignored = kNoEntity) const {
     TranslationQuery q;
     q.trm = &trm;
     q.start = from;
     q.end = to;
     q.contentMask = mask;
-    return world.translate(q, work, filter);
+    EntityFilter filter;
+    if (ignored != kNoEntity) filter.ignore = std::span<const EntityId>(&ignored, 1);
+    const WorldTraceResult r = world.translate(q, work, filter);
+    if (observer) observer->translated({part, &trm, from, to, mask, ignored, r});
+    return r;
   }
 
   /// True when `shape` at `at` overlaps nothing the player collides with.
@@ -128,7 +135,7 @@ Slide slideMove(const Mover& m, const Vec3& pos, const Vec3& vel, Real time, boo
   out.pos = pos;
   out.vel = vel;
   for (int bump = 0; bump <= move::kMaxClipPlanes && time > 0 && !out.vel.isZero(); ++bump) {
-    const WorldTraceResult r = m.trace(out.pos, out.pos + out.vel * time);
+    const WorldTraceResult r = m.trace(PlayerMovePart::Slide, out.pos, out.pos + out.vel * time);
     out.pos = r.trace.endPos;
     if (!(r.trace.fraction < 1)) break;
     out.blocked = true;
@@ -160,11 +167,11 @@ Real flatDistanceSquared(const Vec3& a, const Vec3& b) {
 Slide groundMove(const Mover& m, const Vec3& pos, const Vec3& vel, Real time, const MoveParams& params) {
   Slide flat = slideMove(m, pos, vel, time, true, params);
   if (!flat.blocked || !(params.stepHeight > 0)) return flat;
-  const Vec3 top = m.trace(pos, pos + Vec3{0, 0, params.stepHeight}).trace.endPos;
+  const Vec3 top = m.trace(PlayerMovePart::StepUp, pos, pos + Vec3{0, 0, params.stepHeight}).trace.endPos;
   if (!(top.z > pos.z)) return flat;
   Slide high = slideMove(m, top, vel, time, true, params);
   const Vec3 downTo{high.pos.x, high.pos.y, std::min(pos.z, high.pos.z) - tol::kPlayerGroundProbe};
-  const WorldTraceResult down = m.trace(high.pos, downTo);
+  const WorldTraceResult down = m.trace(PlayerMovePart::StepDown, high.pos, downTo);
   const bool walkable = down.trace.fraction < 1 && down.trace.contact.normal.z >= params.minWalkNormalZ;
   const Real steppedFar = std::sqrt(flatDistanceSquared(pos, down.trace.endPos));
   const Real flatFar = std::sqrt(flatDistanceSquared(pos, flat.pos));
@@ -187,7 +194,7 @@ struct Ground {
 Ground findGround(const Mover& m, const Vec3& pos, const Vec3& vel, Real depth, const MoveParams& params) {
   Ground g;
   g.pos = pos;
-  const WorldTraceResult r = m.trace(pos, pos - Vec3{0, 0, depth});
+  const WorldTraceResult r = m.trace(PlayerMovePart::Ground, pos, pos - Vec3{0, 0, depth});
   if (!(r.trace.fraction < 1) || r.trace.status != QueryStatus::Ok) return g;
   const Vec3& n = r.trace.contact.normal;
   if (n.z < params.minWalkNormalZ || vel.dot(n) > tol::kPlayerLeaveGroundSpeed) return g;
@@ -239,20 +246,34 @@ Vec3 carried(const Mover& m, const PlayerState& s) {
   const Vec3 local = was.axis * (s.origin - was.origin);  // the feet in the entity's frame
   const Vec3 moved = now.origin + local * now.axis;
   if (moved == s.origin) return s.origin;
-  const EntityId id = s.groundEntity;
-  EntityFilter filter;
-  filter.ignore = std::span<const EntityId>(&id, 1);
-  return m.trace(s.origin, moved, filter).trace.endPos;
+  return m.trace(PlayerMovePart::Carry, s.origin, moved, s.groundEntity).trace.endPos;
 }
 
 }  // namespace
+
+const char* toString(PlayerMovePart part) {
+  switch (part) {
+    case PlayerMovePart::Carry:
+      return "carry";
+    case PlayerMovePart::Ground:
+      return "ground";
+    case PlayerMovePart::Slide:
+      return "slide";
+    case PlayerMovePart::StepUp:
+      return "step-up";
+    case PlayerMovePart::StepDown:
+      return "step-down";
+  }
+  return "?";
+}
 
 const TraceModel& playerTraceModel(const PlayerShape& shape, const PlayerState& state) {
   return state.crouched ? shape.crouched : shape.standing;
 }
 
 PlayerState stepPlayer(const World& world, const PlayerShape& shape, const PlayerState& state,
-                       const PlayerInput& input, Real dt, WorldQueryWork& work, const MoveParams& params) {
+                       const PlayerInput& input, Real dt, WorldQueryWork& work, const MoveParams& params,
+                       PlayerMoveObserver* observer) {
   PlayerState s = state;
   ++s.steps;
   s.stuck = false;
@@ -266,17 +287,17 @@ PlayerState stepPlayer(const World& world, const PlayerShape& shape, const Playe
   s.jumpHeld = input.jump;
 
   // 1. Carried by the ground entity's move since the last step.
-  s.origin = carried(Mover{world, playerTraceModel(shape, s), shape.contentMask, work}, s);
+  s.origin = carried(Mover{world, playerTraceModel(shape, s), shape.contentMask, work, observer}, s);
 
   // 2. Crouch, or stand up where the standing shape fits (with the clip
   // epsilon's room above, so that the next moves start free).
-  const Mover standing{world, shape.standing, shape.contentMask, work};
+  const Mover standing{world, shape.standing, shape.contentMask, work, observer};
   if (input.crouch) {
     s.crouched = true;
   } else if (s.crouched && standing.fits(s.origin + Vec3{0, 0, tol::kClipEpsilon})) {
     s.crouched = false;
   }
-  const Mover m{world, playerTraceModel(shape, s), shape.contentMask, work};
+  const Mover m{world, playerTraceModel(shape, s), shape.contentMask, work, observer};
 
   // 3. A start in solid: lifted to free space, or stuck.
   if (!m.fits(s.origin)) {
@@ -363,10 +384,11 @@ PlayerState stepPlayer(const World& world, const PlayerShape& shape, const Playe
 
 PlayerState runPlayer(const World& world, const PlayerShape& shape, const PlayerState& start,
                       const PlayerInput& input, int steps, Real dt, WorldQueryWork& work,
-                      const MoveParams& params, std::vector<PlayerState>* path) {
+                      const MoveParams& params, std::vector<PlayerState>* path,
+                      PlayerMoveObserver* observer) {
   PlayerState s = start;
   for (int i = 0; i < steps; ++i) {
-    s = stepPlayer(world, shape, s, input, dt, work, params);
+    s = stepPlayer(world, shape, s, input, dt, work, params, observer);
     if (path) path->push_back(s);
   }
   return s;

@@ -10,12 +10,21 @@ using namespace detail;  // the query internals (trace_work.h)
 
 ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& query, QueryWork& work) {
   ContentsQuery q = query;
-  ContentsResult r;
   if (const QueryStatus st = guardContents(q); st != QueryStatus::Ok) {
+    ContentsResult r;
     r.trace = refusedTrace(query.position, query.trmAxis, st);
     r.status = st;
     return r;
   }
+  return contentsTestGuarded(model, q, work);
+}
+
+}  // namespace cmkit
+
+namespace cmkit::detail {
+
+ContentsResult contentsTestGuarded(const CollisionModel& model, const ContentsQuery& q, QueryWork& work) {
+  ContentsResult r;
   r.trace.endPos = q.position;
   r.trace.endAxis = q.trmAxis;
   if (isPointTrm(q.trm)) {
@@ -39,4 +48,4 @@ ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& qu
   return r;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -81,15 +81,19 @@ QueryStatus checkTrmSize(const TraceModel* trm) {
   return checkPoint(b.max);
 }
 
-QueryStatus checkPlacement(Placement& placement) {
+}  // namespace
+
+QueryStatus guardPlacement(Placement& placement) {
   if (const QueryStatus s = checkPoint(placement.origin); s != QueryStatus::Ok) return s;
   return checkAxis(placement.axis) ? QueryStatus::Ok : QueryStatus::BadModelAxis;
 }
 
+namespace {
+
 /// The shared part: position(s), placement, trace-model axis.
 QueryStatus checkCommon(const Vec3& position, Placement& placement, const TraceModel* trm, Mat3& trmAxis) {
   if (const QueryStatus s = checkPoint(position); s != QueryStatus::Ok) return s;
-  if (const QueryStatus s = checkPlacement(placement); s != QueryStatus::Ok) return s;
+  if (const QueryStatus s = guardPlacement(placement); s != QueryStatus::Ok) return s;
   if (hasShape(trm) && !checkAxis(trmAxis)) return QueryStatus::BadTrmAxis;
   return checkTrmSize(trm);
 }
@@ -109,7 +113,7 @@ QueryStatus guardPenetration(PenetrationQuery& q) {
 
 QueryStatus guardPointContents(PointContentsQuery& q) {
   if (const QueryStatus s = checkPoint(q.point); s != QueryStatus::Ok) return s;
-  return checkPlacement(q.placement);
+  return guardPlacement(q.placement);
 }
 
 QueryStatus guardContacts(ContactsQuery& q) {

@@ -28,6 +28,26 @@ QueryStatus guardPointContents(PointContentsQuery& q);
 QueryStatus guardContacts(ContactsQuery& q);
 /// Checks (and may normalise) a rotation.
 QueryStatus guardRotation(RotationQuery& q);
+/// Checks (and may normalise) a model's placement as every guard above
+/// checks it: the origin within range, the axis a rotation.
+QueryStatus guardPlacement(Placement& placement);
+
+// The public queries past their guard, for a caller that checked the input
+// once for many models (the World: one guard, then one query per entity).
+// Each takes a query its guard accepted, as the guard left it (normalised),
+// and answers as the public query does on that input:
+//   translate(model, query, work) == translateGuarded(model, q, work)
+//   whenever guardTranslation(q = query) is Ok; the same for the others.
+// The World also checks each entity's placement once, when it is set
+// (guardPlacement must accept it and leave it unchanged, or the World asks
+// the public query).
+
+/// translate() on a guarded query.
+TraceResult translateGuarded(const CollisionModel& model, const TranslationQuery& q, QueryWork& work);
+/// contentsTest() on a guarded query.
+ContentsResult contentsTestGuarded(const CollisionModel& model, const ContentsQuery& q, QueryWork& work);
+/// rotate() on a guarded query.
+TraceResult rotateGuarded(const CollisionModel& model, const RotationQuery& q, QueryWork& work);
 /// True when every coordinate's magnitude is within
 /// tol::kMaxQueryCoordinate (false for NaN and infinity), on the bit
 /// patterns: the shift drops the sign, and NaN and infinity have larger

@@ -309,12 +309,18 @@ namespace cmkit {
 using namespace detail;  // the query internals (trace_work.h)
 
 TraceResult rotate(const CollisionModel& model, const RotationQuery& query, QueryWork& work) {
-  TraceResult r;  // (returned on every path, as translate's: no copy)
   RotationQuery q = query;
-  if (const QueryStatus st = guardRotation(q); st != QueryStatus::Ok) {
-    r = refusedTrace(query.start, query.trmAxis, st);
-    return r;
-  }
+  if (const QueryStatus st = guardRotation(q); st != QueryStatus::Ok)
+    return refusedTrace(query.start, query.trmAxis, st);
+  return rotateGuarded(model, q, work);
+}
+
+}  // namespace cmkit
+
+namespace cmkit::detail {
+
+TraceResult rotateGuarded(const CollisionModel& model, const RotationQuery& q, QueryWork& work) {
+  TraceResult r;  // (returned on every path, as translate's: no copy)
   const Real angle = q.rotation.angle;
   const bool point = isPointTrm(q.trm);
   if (angle == 0) {  // a position test
@@ -351,4 +357,4 @@ TraceResult rotate(const CollisionModel& model, const RotationQuery& query, Quer
   return r;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

@@ -164,15 +164,21 @@ namespace cmkit {
 using namespace detail;  // the query internals (trace_work.h)
 
 TraceResult translate(const CollisionModel& model, const TranslationQuery& query, QueryWork& work) {
+  TranslationQuery q = query;
+  if (const QueryStatus st = guardTranslation(q); st != QueryStatus::Ok)
+    return refusedTrace(query.start, query.trmAxis, st);
+  return translateGuarded(model, q, work);
+}
+
+}  // namespace cmkit
+
+namespace cmkit::detail {
+
+TraceResult translateGuarded(const CollisionModel& model, const TranslationQuery& q, QueryWork& work) {
   // (One result object, returned on every path: made in the caller's place,
   // not copied there. A copy read back, in wide loads, fields just stored
   // one at a time: a stall per query.)
   TraceResult r;
-  TranslationQuery q = query;
-  if (const QueryStatus st = guardTranslation(q); st != QueryStatus::Ok) {
-    r = refusedTrace(query.start, query.trmAxis, st);
-    return r;
-  }
   if (q.start == q.end) {
     ContentsQuery cq{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
     r = contentsTest(model, cq, work).trace;
@@ -201,4 +207,4 @@ TraceResult translate(const CollisionModel& model, const TranslationQuery& query
   return r;
 }
 
-}  // namespace cmkit
+}  // namespace cmkit::detail

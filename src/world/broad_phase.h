@@ -1,11 +1,17 @@
-// broad_phase.h: the world's broad phase, a bounding-volume tree over the
-// world bounds of its entities (every entity but the world model, which
-// every query asks). Built top down (median split of the box centres along
-// the longest axis of their spread, at most kLeafSize entities a leaf);
-// an entity that moves is refitted in place (its leaf's box and every box
-// above it grow or shrink to their children's); adding or removing an entity
-// rebuilds the tree (a few hundred entities: well under a millisecond).
-// Queries only read it: any number of threads at once.
+// broad_phase.h: the world's broad phase, a 4-wide bounding-volume tree over
+// the world bounds of its entities (every entity but the world model, which
+// every query asks). A node holds the boxes of up to four children, each an
+// entity or another node, stored coordinate by coordinate (minX of the four,
+// minY of the four, ...) so that a box query tests all four at once
+// (src/util/simd.h; the portable path tests them one at a time, with the same
+// comparisons). Built top down: the items are split in two at the median of
+// their box centres along the longest axis of the centres' spread, and each
+// half so again, giving four groups; a group of one entity is a child
+// entity, a larger one a child node. An entity that moves is refitted in
+// place (its box in its node, and every box above it, grow or shrink to what
+// they hold; the tree's shape stays); adding or removing an entity rebuilds
+// the tree (a few hundred entities: well under a millisecond). Queries only
+// read it: any number of threads at once.
 #pragma once
 
 #include <cstdint>
@@ -14,10 +20,11 @@
 
 #include "cmkit/bounds.h"
 #include "cmkit/world.h"
+#include "util/assert.h"
 
 namespace cmkit::detail {
 
-/// An entity as the tree holds it.
+/// An entity as the tree is built from it.
 struct BroadPhaseItem {
   EntityId id = kNoEntity;  ///< the entity
   Bounds bounds;            ///< its world bounds
@@ -34,54 +41,83 @@ class BroadPhase {
   /// caller rebuilds.
   bool refit(EntityId id, const Bounds& bounds);
 
+  /// Appends to `out` every entity whose box meets `box` (Bounds::intersects:
+  /// touching counts), in the tree's order (callers sort when they need to).
+  void collectBox(const Bounds& box, std::vector<EntityId>& out) const;
+
   /// Appends to `out` every entity whose box `overlaps` accepts, visiting
   /// only the subtrees whose box it accepts (`overlaps(const Bounds&)`).
-  /// `stack` is scratch. Order: the tree's (callers sort
-  /// when they need to).
+  /// Order: the tree's.
   template <class Overlaps>
-  void collect(const Overlaps& overlaps, std::vector<EntityId>& out, std::vector<std::int32_t>& stack) const {
+  void collect(const Overlaps& overlaps, std::vector<EntityId>& out) const {
     if (nodes_.empty()) return;
-    stack.clear();
-    if (overlaps(nodes_[0].bounds)) stack.push_back(0);
-    // A node is pushed only once its box passed (children tested in place).
-    while (!stack.empty()) {
-      const Node& n = nodes_[std::size_t(stack.back())];
-      stack.pop_back();
-      if (n.count > 0) {
-        for (std::int32_t k = n.first; k < n.first + n.count; ++k) {
-          const BroadPhaseItem& item = items_[std::size_t(k)];
-          if (overlaps(item.bounds)) out.push_back(item.id);
-        }
-        continue;
-      }
-      if (overlaps(nodes_[std::size_t(n.first + 1)].bounds)) stack.push_back(n.first + 1);
-      if (overlaps(nodes_[std::size_t(n.first)].bounds)) stack.push_back(n.first);
+    Walk walk;
+    walk.push(0);
+    while (!walk.empty()) {
+      const Node& n = nodes_[std::size_t(walk.pop())];
+      for (int lane = 0; lane < n.count; ++lane)
+        if (overlaps(n.laneBounds(lane))) visit(n.child[lane], out, walk);
     }
   }
 
   /// Number of entities in the tree.
-  std::size_t size() const { return items_.size(); }
+  std::size_t size() const { return size_; }
 
  private:
-  /// count > 0: a leaf of items_[first, first + count); else an inner node
-  /// whose children are nodes first and first + 1.
+  /// Up to four children, lanes [0, count); the other lanes' boxes are
+  /// cleared (min +infinity, max -infinity: no box meets them).
   struct Node {
-    Bounds bounds;
-    std::int32_t first = 0;
+    alignas(16) Real minX[4];
+    alignas(16) Real minY[4];
+    alignas(16) Real minZ[4];
+    alignas(16) Real maxX[4];
+    alignas(16) Real maxY[4];
+    alignas(16) Real maxZ[4];
+    /// >= 0: a child node's index; < 0: the entity ~child.
+    std::int32_t child[4] = {0, 0, 0, 0};
     std::int32_t count = 0;
-    std::int32_t parent = -1;
+    std::int32_t parent = -1;      ///< -1 at the root
+    std::int32_t parentLane = -1;  ///< the lane of this node in its parent
+
+    Node();  ///< no lanes, every box cleared
+    Bounds laneBounds(int lane) const {
+      return {{minX[lane], minY[lane], minZ[lane]}, {maxX[lane], maxY[lane], maxZ[lane]}};
+    }
+    void setLane(int lane, const Bounds& b);
+    /// The box around the node's lanes.
+    Bounds bounds() const;
   };
-  /// Two a leaf: lt4's no-entity-near translations were fastest so (1, 4
-  /// and 8 were slower; `cmkit bench --world`).
-  static constexpr std::int32_t kLeafSize = 2;
 
-  /// Fills node `self` over items_[begin, end), its children below it.
-  void build(std::int32_t self, std::int32_t parent, std::int32_t begin, std::int32_t end);
+  /// The nodes still to visit. A node pushes at most four children and the
+  /// median splits make the depth at most log4(n) + 1 (every group holds at
+  /// most ceil(n / 4) items): 17 levels for 2^31 entities, so at most
+  /// 3 * 17 + 1 entries wait at once.
+  struct Walk {
+    std::int32_t nodes[64];
+    int size = 0;
+    void push(std::int32_t n) {
+      CMKIT_ASSERT(size < 64);
+      nodes[size++] = n;
+    }
+    std::int32_t pop() { return nodes[--size]; }
+    bool empty() const { return size == 0; }
+  };
 
-  std::vector<Node> nodes_;
-  std::vector<BroadPhaseItem> items_;
-  std::vector<std::int32_t> leafOfId_;  ///< by entity id: its leaf node, -1 when not in the tree
-  std::vector<std::int32_t> slotOfId_;  ///< by entity id: its index in items_
+  static void visit(std::int32_t child, std::vector<EntityId>& out, Walk& walk) {
+    if (child < 0)
+      out.push_back(~child);
+    else
+      walk.push(child);
+  }
+
+  /// Fills node `self` over items[begin, end) (more than one item).
+  void build(std::vector<BroadPhaseItem>& items, std::int32_t self, std::size_t begin, std::size_t end);
+
+  std::vector<Node> nodes_;  ///< nodes_[0]: the root
+  std::size_t size_ = 0;
+  /// By entity id: the node holding it (-1 when not in the tree) and its lane.
+  std::vector<std::int32_t> nodeOfId_;
+  std::vector<std::int32_t> laneOfId_;
 };
 
 }  // namespace cmkit::detail

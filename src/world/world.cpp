@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <new>
 
+#include "query/query_guards.h"
 #include "world/world_data.h"
 
 namespace cmkit {
@@ -26,6 +28,15 @@ Bounds placedBounds(const Bounds& local, const Placement& placement) {
     world.addPoint(placement.origin + c * placement.axis);
   }
   return world;
+}
+
+void EntitySlot::place(const Placement& placement) {
+  entity.placement = placement;
+  entity.bounds = placedBounds(entity.model->bounds(), placement);
+  static_assert(sizeof(Placement) == 12 * sizeof(Real), "compared byte for byte: no padding");
+  Placement guarded = placement;
+  placementGuarded =
+      guardPlacement(guarded) == QueryStatus::Ok && std::memcmp(&guarded, &placement, sizeof(Placement)) == 0;
 }
 
 void WorldData::rebuildTree() {
@@ -70,7 +81,6 @@ Result<Placement> checkedPlacement(const Placement& p) {
 /// rebuilds the tree.
 EntityId addSlot(WorldData& d, WorldEntity e) {
   e.id = EntityId(d.slots.size());
-  e.bounds = detail::placedBounds(e.model->bounds(), e.placement);
   auto slot = std::make_unique<EntitySlot>();
   std::weak_ptr<const RayIndex>& cached = d.rayIndexes[e.model.get()];
   slot->rays = cached.lock();
@@ -79,7 +89,9 @@ EntityId addSlot(WorldData& d, WorldEntity e) {
     cached = slot->rays;
   }
   d.maxLocalMagnitude = std::max(d.maxLocalMagnitude, largestMagnitude(e.model->bounds()));
+  const Placement placement = e.placement;
   slot->entity = std::move(e);
+  slot->place(placement);
   d.slots.push_back(std::move(slot));
   ++d.live;
   return EntityId(d.slots.size() - 1);
@@ -227,8 +239,7 @@ Status World::setPlacement(EntityId id, const Placement& placement) {
   if (!slot) return noEntity(id);
   Result<Placement> checked = checkedPlacement(placement);
   if (!checked) return Error("setPlacement: " + checked.error().message);
-  slot->entity.placement = *checked;
-  slot->entity.bounds = detail::placedBounds(slot->entity.model->bounds(), *checked);
+  slot->place(*checked);
   if (id != data_->worldModel && !data_->tree.refit(id, slot->entity.bounds)) data_->rebuildTree();
   return Ok{};
 }

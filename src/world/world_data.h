@@ -17,6 +17,13 @@ struct EntitySlot {
   WorldEntity entity;
   /// The ray index of entity.model, shared by every entity of that model.
   std::shared_ptr<const RayIndex> rays;
+  /// The queries' guard accepts entity.placement and leaves it as it is
+  /// (guardPlacement; set with the placement): the world asks this entity
+  /// with the guarded queries (query_guards.h) on input it checked once.
+  bool placementGuarded = false;
+
+  /// Sets entity.placement, its world bounds and placementGuarded.
+  void place(const Placement& placement);
 };
 
 /// A World's state. Written only by the World's mutators (one writer).
@@ -50,7 +57,6 @@ Bounds placedBounds(const Bounds& local, const Placement& placement);
 struct WorldScratch {
   QueryWork model;                    ///< for the per-entity queries
   std::vector<EntityId> candidates;   ///< the broad phase's answer
-  std::vector<std::int32_t> stack;    ///< the tree walk's
   std::vector<ContactInfo> contacts;  ///< one entity's contacts
 };
 

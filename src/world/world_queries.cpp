@@ -25,6 +25,22 @@ Bounds trmBoundsAt(const TraceModel* trm, const Mat3& axis, const Vec3& position
   return detail::placedBounds(trm->bounds(), {position, axis});
 }
 
+/// World bounds of the trace model swept from `start` to `end` with
+/// orientation `axis`: its box about its origin, made once, moved to both
+/// ends. (The same bits as trmBoundsAt at each end, joined: a rounded sum
+/// grows with its terms.)
+Bounds sweptTrmBounds(const TraceModel* trm, const Mat3& axis, const Vec3& start, const Vec3& end) {
+  const Bounds local = isPoint(trm)        ? Bounds::ofPoint(Vec3{})
+                       : axis.isIdentity() ? trm->bounds()
+                                           : detail::placedBounds(trm->bounds(), {Vec3{}, axis});
+  Bounds b;
+  for (int i = 0; i < 3; ++i) {
+    b.min[i] = std::min(start[i], end[i]) + local.min[i];
+    b.max[i] = std::max(start[i], end[i]) + local.max[i];
+  }
+  return b;
+}
+
 /// Every position a trace model takes while it turns about an axis through
 /// `origin` stays as far from `origin` as it started: the box around that
 /// sphere (through the corners of its start box, which lie no nearer).
@@ -45,15 +61,15 @@ bool ignored(const EntityFilter& filter, const WorldEntity& e) {
 }
 
 /// The entities a query asks, ascending by id, into s.candidates: the world
-/// model and every entity of the tree whose box `overlaps` accepts, whose
+/// model and every entity of the tree that `collect(out)` appends, whose
 /// contents meet `mask` (mask 0: whose contents are not 0) and that the
 /// filter keeps.
-template <class Overlaps>
-void gather(const WorldData& d, const Overlaps& overlaps, std::uint32_t mask, const EntityFilter& filter,
+template <class Collect>
+void gather(const WorldData& d, const Collect& collect, std::uint32_t mask, const EntityFilter& filter,
             WorldScratch& s) {
   s.candidates.clear();
   if (d.worldModel != kNoEntity) s.candidates.push_back(d.worldModel);
-  d.tree.collect(overlaps, s.candidates, s.stack);
+  collect(s.candidates);
   if (s.candidates.size() > 1) std::sort(s.candidates.begin(), s.candidates.end());
   const bool filtering = !filter.ignore.empty() || bool(filter.accept);
   std::size_t kept = 0;
@@ -71,55 +87,48 @@ void gatherBox(const WorldData& d, const Bounds& sweep, std::uint32_t mask, cons
                WorldScratch& s) {
   const Bounds padded = sweep.expanded(tol::kWorldBroadPhasePadding);
   gather(
-      d, [&padded](const Bounds& b) { return padded.intersects(b); }, mask, filter, s);
+      d, [&](std::vector<EntityId>& out) { d.tree.collectBox(padded, out); }, mask, filter, s);
 }
 
 WorldScratch& scratchOf(WorldQueryWork& work) { return detail::WorldWorkAccess::of(work); }
 
-/// Asks every candidate (ascending ids) with `ask(entity)`, a single-model
-/// translation or rotation at the entity's placement, and keeps in `out`
-/// the smallest fraction (equal fractions: the lowest id) and the OR of
-/// startSolid. False when no entity was asked (`out` then untouched but
-/// for startSolid).
+/// The closest of the candidates' answers (ascending ids; at least one),
+/// each `ask(slot)`, a single-model translation or rotation at the entity's
+/// placement: the smallest fraction (equal fractions: the lowest id), with
+/// startSolid the OR over them all; entity kNoEntity when none was hit.
 template <class Ask>
-bool keepClosest(const WorldData& d, const WorldScratch& s, WorldTraceResult& out, const Ask& ask) {
-  bool asked = false, startSolid = false;
-  for (const EntityId id : s.candidates) {
-    const TraceResult r = ask(d.slot(id)->entity);
+WorldTraceResult closest(const WorldData& d, const WorldScratch& s, const Ask& ask) {
+  // (The first answer is made in place: most queries ask only the world
+  // model, and a copy of the result would read back its fields just stored.)
+  WorldTraceResult out{ask(*d.slot(s.candidates[0])), s.candidates[0]};
+  bool startSolid = out.trace.startSolid;
+  for (std::size_t k = 1; k < s.candidates.size(); ++k) {
+    const EntityId id = s.candidates[k];
+    const TraceResult r = ask(*d.slot(id));
     startSolid = startSolid || r.startSolid;
-    if (!asked || r.fraction < out.trace.fraction) {
+    if (r.fraction < out.trace.fraction) {
       out.trace = r;
       out.entity = id;
-      asked = true;
     }
   }
   out.trace.startSolid = startSolid;
-  return asked;
+  if (!(out.trace.fraction < 1)) out.entity = kNoEntity;
+  return out;
 }
 
 }  // namespace
 
 WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork& work,
                                   const EntityFilter& filter) const {
-  WorldTraceResult out;
-  TranslationQuery g = query;  // checked (and normalised) once for the broad phase
+  TranslationQuery g = query;  // checked (and normalised) once, for every entity
   g.placement = {};
-  if (const QueryStatus st = detail::guardTranslation(g); st != QueryStatus::Ok) {
-    out.trace = detail::refusedTrace(query.start, query.trmAxis, st);
-    return out;
-  }
+  if (const QueryStatus st = detail::guardTranslation(g); st != QueryStatus::Ok)
+    return {detail::refusedTrace(query.start, query.trmAxis, st), kNoEntity};
   WorldScratch& s = scratchOf(work);
-  Bounds sweep = trmBoundsAt(g.trm, g.trmAxis, g.start);
-  sweep.addBounds(trmBoundsAt(g.trm, g.trmAxis, g.end));
-  gatherBox(*data_, sweep, g.contentMask, filter, s);
-
-  TranslationQuery q = query;
-  const bool asked = keepClosest(*data_, s, out, [&](const WorldEntity& e) {
-    q.placement = e.placement;
-    return cmkit::translate(*e.model, q, s.model);
-  });
-  if (!asked) {
-    // Nothing near: the miss every model gives (translate(), query.cpp's rules).
+  gatherBox(*data_, sweptTrmBounds(g.trm, g.trmAxis, g.start, g.end), g.contentMask, filter, s);
+  if (s.candidates.empty()) {
+    // Nothing near: the miss every model gives (translate()'s rules).
+    WorldTraceResult out;
     out.trace.fraction = 1;
     if (g.start == g.end) {
       out.trace.endPos = g.start;
@@ -128,30 +137,31 @@ WorldTraceResult World::translate(const TranslationQuery& query, WorldQueryWork&
       out.trace.endPos = g.start + (g.end - g.start) * Real(1);
       out.trace.endAxis = isPoint(g.trm) ? Mat3::identity() : g.trmAxis;
     }
+    return out;
   }
-  if (!(out.trace.fraction < 1)) out.entity = kNoEntity;
-  return out;
+  return closest(*data_, s, [&](const EntitySlot& slot) {
+    const WorldEntity& e = slot.entity;
+    if (!slot.placementGuarded) {  // the public query checks (and refuses) it
+      TranslationQuery q = query;
+      q.placement = e.placement;
+      return cmkit::translate(*e.model, q, s.model);
+    }
+    g.placement = e.placement;
+    return detail::translateGuarded(*e.model, g, s.model);
+  });
 }
 
 WorldTraceResult World::rotate(const RotationQuery& query, WorldQueryWork& work,
                                const EntityFilter& filter) const {
-  WorldTraceResult out;
   RotationQuery g = query;
   g.placement = {};
-  if (const QueryStatus st = detail::guardRotation(g); st != QueryStatus::Ok) {
-    out.trace = detail::refusedTrace(query.start, query.trmAxis, st);
-    return out;
-  }
+  if (const QueryStatus st = detail::guardRotation(g); st != QueryStatus::Ok)
+    return {detail::refusedTrace(query.start, query.trmAxis, st), kNoEntity};
   WorldScratch& s = scratchOf(work);
   gatherBox(*data_, turnBounds(g.trm, g.trmAxis, g.start, g.rotation.origin), g.contentMask, filter, s);
-
-  RotationQuery q = query;
-  const bool asked = keepClosest(*data_, s, out, [&](const WorldEntity& e) {
-    q.placement = e.placement;
-    return cmkit::rotate(*e.model, q, s.model);
-  });
-  if (!asked) {
+  if (s.candidates.empty()) {
     // Nothing near: the miss every model gives (rotate()'s rules).
+    WorldTraceResult out;
     const bool point = isPoint(g.trm);
     out.trace.fraction = 1;
     if (g.rotation.angle == 0) {
@@ -162,9 +172,18 @@ WorldTraceResult World::rotate(const RotationQuery& query, WorldQueryWork& work,
       out.trace.endPos = done.rotatePoint(g.start);
       out.trace.endAxis = point ? Mat3::identity() : done.rotateAxis(g.trmAxis);
     }
+    return out;
   }
-  if (!(out.trace.fraction < 1)) out.entity = kNoEntity;
-  return out;
+  return closest(*data_, s, [&](const EntitySlot& slot) {
+    const WorldEntity& e = slot.entity;
+    if (!slot.placementGuarded) {
+      RotationQuery q = query;
+      q.placement = e.placement;
+      return cmkit::rotate(*e.model, q, s.model);
+    }
+    g.placement = e.placement;
+    return detail::rotateGuarded(*e.model, g, s.model);
+  });
 }
 
 WorldContentsResult World::contentsTest(const ContentsQuery& query, WorldQueryWork& work,
@@ -180,13 +199,20 @@ WorldContentsResult World::contentsTest(const ContentsQuery& query, WorldQueryWo
   WorldScratch& s = scratchOf(work);
   gatherBox(*data_, trmBoundsAt(g.trm, g.trmAxis, g.position), g.contentMask, filter, s);
 
-  ContentsQuery q = query;
   std::uint32_t all = 0;
   bool asked = false;
   for (const EntityId id : s.candidates) {
-    const WorldEntity& e = data_->slot(id)->entity;
-    q.placement = e.placement;
-    const ContentsResult r = cmkit::contentsTest(*e.model, q, s.model);
+    const EntitySlot& slot = *data_->slot(id);
+    const WorldEntity& e = slot.entity;
+    ContentsResult r;
+    if (slot.placementGuarded) {
+      g.placement = e.placement;
+      r = detail::contentsTestGuarded(*e.model, g, s.model);
+    } else {
+      ContentsQuery q = query;
+      q.placement = e.placement;
+      r = cmkit::contentsTest(*e.model, q, s.model);
+    }
     all |= r.contents;
     if (!asked || (out.entity == kNoEntity && r.contents != 0)) {
       out.result = r;
@@ -272,9 +298,10 @@ WorldRayHit World::castRay(const RayCastQuery& query, WorldQueryWork& work,
   const Real pad = tol::kWorldBroadPhasePadding +
                    2 * (tol::kRayAcceptPadding + tol::kRayNodePadding) * (data_->maxLocalMagnitude + 1);
   const Vec3 start = query.start, end = query.end;
+  const auto meets = [&](const Bounds& b) { return b.expanded(pad).intersectsSegment(start, end); };
   gather(
-      *data_, [&](const Bounds& b) { return b.expanded(pad).intersectsSegment(start, end); },
-      query.contentMask, filter, s);
+      *data_, [&](std::vector<EntityId>& out) { data_->tree.collect(meets, out); }, query.contentMask, filter,
+      s);
   RayCastQuery q = query;
   for (const EntityId id : s.candidates) {
     const EntitySlot& slot = *data_->slot(id);

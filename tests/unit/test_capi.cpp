@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -310,4 +311,89 @@ TEST(CApi, PlayerClimbsTheStairsAsTheLibrarysMoveDoes) {
   cmkit_trace_model_free(point);
   cmkit_player_free(player);
   cmkit_world_free(world);
+}
+
+// One writer, many readers (cmkit.h, THREAD SAFETY): four threads query the
+// world and step players of their own at once (translations, position tests,
+// rays, a batch, player steps), then the one writer moves and disables the
+// door between the rounds, never while they run. Every reader's answers
+// equal, bit for bit, one thread's made before the round. (Run under
+// ThreadSanitizer by ./dev.sh tsan: no race.)
+TEST(CApi, ReadersOnManyThreadsBetweenTheWritersChanges) {
+  CWorld w;
+  cmkit_entity_t door = CMKIT_NO_ENTITY;
+  ASSERT_EQ(cmkit_world_find_entity(w.world, "door1", &door), CMKIT_OK);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> x(-220, 220), y(-40, 40), z(1, 40);
+  constexpr std::size_t n = 64;
+  std::vector<std::array<float, 3>> from(n), to(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    from[i] = {x(rng), y(rng), z(rng)};
+    to[i] = {x(rng), y(rng), z(rng)};
+  }
+  // What one reader does: every query, then a player's walk through the
+  // doorway; its answers as bytes.
+  auto read = [&](std::vector<unsigned char>& out) {
+    out.clear();
+    auto keep = [&out](const void* p, std::size_t size) {
+      const auto* b = static_cast<const unsigned char*>(p);
+      out.insert(out.end(), b, b + size);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      cmkit_trace_t t{};
+      EXPECT_EQ(
+          cmkit_translate(w.world, w.box, nullptr, from[i].data(), to[i].data(), CMKIT_MASK_PLAYER_SOLID, &t),
+          CMKIT_OK);
+      keep(&t, sizeof t);
+      std::uint32_t contents = 0;
+      cmkit_entity_t entity = CMKIT_NO_ENTITY;
+      EXPECT_EQ(
+          cmkit_contents(w.world, w.box, nullptr, to[i].data(), CMKIT_MASK_PLAYER_SOLID, &contents, &entity),
+          CMKIT_OK);
+      keep(&contents, sizeof contents);
+      keep(&entity, sizeof entity);
+      cmkit_ray_hit_t r{};
+      EXPECT_EQ(cmkit_cast_ray(w.world, from[i].data(), to[i].data(), CMKIT_MASK_SOLID, &r), CMKIT_OK);
+      keep(&r, sizeof r);
+    }
+    std::vector<cmkit_trace_t> batch(n, cmkit_trace_t{});
+    EXPECT_EQ(cmkit_translate_batch(w.world, w.box, nullptr, from.data()->data(), to.data()->data(), n,
+                                    CMKIT_MASK_PLAYER_SOLID, 2, batch.data()),
+              CMKIT_OK);
+    keep(batch.data(), n * sizeof(cmkit_trace_t));
+    cmkit_player_t* player = nullptr;
+    const float feet[3] = {-150, 0, 1}, east[3] = {1, 0, 0};
+    EXPECT_EQ(cmkit_player_create(nullptr, feet, &player), CMKIT_OK);
+    cmkit_player_state_t state{};
+    EXPECT_EQ(cmkit_player_step(w.world, player, east, CMKIT_PLAYER_RUN, 90, &state), CMKIT_OK);
+    keep(&state, sizeof state);
+    cmkit_player_free(player);
+  };
+  float origin[3], axis[9];
+  ASSERT_EQ(cmkit_world_get_placement(w.world, door, origin, axis), CMKIT_OK);
+  std::vector<unsigned char> first;
+  for (int round = 0; round < 3; ++round) {
+    std::vector<unsigned char> expected;
+    read(expected);
+    if (round == 0)
+      first = expected;
+    else
+      EXPECT_NE(expected, first) << "round " << round << ": the door still stops the same moves";
+    std::array<std::vector<unsigned char>, 4> got;
+    std::vector<std::thread> readers;
+    for (std::size_t t = 0; t < got.size(); ++t) readers.emplace_back([&, t] { read(got[t]); });
+    for (std::thread& r : readers) r.join();
+    for (std::size_t t = 0; t < got.size(); ++t)
+      EXPECT_EQ(got[t], expected) << "round " << round << " reader " << t;
+    // The one writer, between the rounds: the door up, then down again but
+    // not solid.
+    if (round == 0) {
+      origin[2] += 128;
+      ASSERT_EQ(cmkit_world_set_placement(w.world, door, origin, axis), CMKIT_OK);
+    } else if (round == 1) {
+      origin[2] -= 128;
+      ASSERT_EQ(cmkit_world_set_placement(w.world, door, origin, axis), CMKIT_OK);
+      ASSERT_EQ(cmkit_world_set_contents(w.world, door, 0), CMKIT_OK);
+    }
+  }
 }

@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <ostream>
+#include <span>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -21,6 +24,10 @@
 #include "test_support.h"
 
 namespace cmkit {
+
+/// GoogleTest prints a part by its name.
+void PrintTo(PlayerMovePart part, std::ostream* os) { *os << toString(part); }
+
 namespace {
 
 constexpr Real kDt = move::kTimeStep;
@@ -417,6 +424,143 @@ TEST(PlayerMove, RunsAreDeterministic) {
   EXPECT_TRUE(sameBits(first, second));
   EXPECT_TRUE(sameBits(first, third));
   EXPECT_FALSE(first.back().origin == first.front().origin);
+}
+
+/// Keeps every translation a step reports.
+struct Recorder : PlayerMoveObserver {
+  std::vector<PlayerTranslation> seen;
+  void translated(const PlayerTranslation& t) override { seen.push_back(t); }
+};
+
+/// The parts of the translations seen, in order.
+std::vector<PlayerMovePart> partsOf(const Recorder& r) {
+  std::vector<PlayerMovePart> parts;
+  for (const PlayerTranslation& t : r.seen) parts.push_back(t.part);
+  return parts;
+}
+
+/// The same bits: a reported answer and World::translate's for its move.
+bool sameAnswer(const World& world, const PlayerTranslation& t, WorldQueryWork& work) {
+  TranslationQuery q;
+  q.trm = t.trm;
+  q.start = t.start;
+  q.end = t.end;
+  q.contentMask = t.contentMask;
+  EntityFilter filter;
+  if (t.ignored != kNoEntity) filter.ignore = std::span<const EntityId>(&t.ignored, 1);
+  const WorldTraceResult r = world.translate(q, work, filter);
+  return std::memcmp(&r.trace.fraction, &t.result.trace.fraction, sizeof(Real)) == 0 &&
+         std::memcmp(&r.trace.endPos, &t.result.trace.endPos, sizeof(Vec3)) == 0 &&
+         std::memcmp(&r.trace.contact.normal, &t.result.trace.contact.normal, sizeof(Vec3)) == 0 &&
+         r.entity == t.result.entity;
+}
+
+// The observer is told of exactly the translations of a step. A walk on a
+// floor in the open: the ground probe, one slide that meets nothing, the
+// stay-down probe and the end's probe; every answer is World::translate's
+// for its move, the slide starts where the ground put the feet, the step
+// ends where the last probe stopped. Into a riser: the flat slide (two
+// moves), the lift, the stepped slide, the put-down, then the two probes.
+// Without an observer the steps are the same bits.
+TEST(PlayerMove, TheObserverSeesEveryTranslationOfAStep) {
+  using P = PlayerMovePart;
+  const PlayerShape shape = PlayerShape::standard();
+  const World world = withFloor().box({64, -64, 0}, {256, 64, 8}).build();
+  WorldQueryWork work;
+  const PlayerState rest = runPlayer(world, shape, at({0, 0, 1}), walk(1, 0), 5, kDt, work);
+  ASSERT_TRUE(rest.onGround);
+
+  Recorder open;
+  const PlayerState next = stepPlayer(world, shape, rest, walk(1, 0), kDt, work, {}, &open);
+  ASSERT_EQ(partsOf(open), (std::vector<P>{P::Ground, P::Slide, P::Ground, P::Ground}));
+  for (const PlayerTranslation& t : open.seen) {
+    EXPECT_EQ(t.trm, &shape.standing);
+    EXPECT_EQ(t.contentMask, shape.contentMask);
+    EXPECT_EQ(t.ignored, kNoEntity);
+    EXPECT_TRUE(sameAnswer(world, t, work)) << toString(t.part);
+  }
+  EXPECT_TRUE(open.seen[1].start == open.seen[0].result.trace.endPos);
+  EXPECT_EQ(open.seen[1].result.trace.fraction, 1);
+  EXPECT_GT(open.seen[1].end.x, open.seen[1].start.x);
+  EXPECT_TRUE(open.seen.back().result.trace.endPos == next.origin);
+  const PlayerState unobserved = stepPlayer(world, shape, rest, walk(1, 0), kDt, work);
+  EXPECT_TRUE(sameBits({next}, {unobserved}));
+
+  // Walk on until a step climbs the riser.
+  PlayerState s = next;
+  std::vector<P> climb;
+  for (int i = 0; i < stepsFor(2) && climb.empty(); ++i) {
+    Recorder r;
+    const PlayerState after = stepPlayer(world, shape, s, walk(1, 0), kDt, work, {}, &r);
+    EXPECT_TRUE(sameBits({after}, {stepPlayer(world, shape, s, walk(1, 0), kDt, work)}));
+    for (const PlayerTranslation& t : r.seen) EXPECT_TRUE(sameAnswer(world, t, work)) << toString(t.part);
+    if (after.origin.z > 4) {
+      climb = partsOf(r);
+      EXPECT_TRUE(r.seen.back().result.trace.endPos == after.origin);
+    }
+    s = after;
+  }
+  // The flat slide meets the riser and slides on (the overclip leaves it a
+  // hair of speed away from it: a second move); the stepped slide meets
+  // nothing.
+  EXPECT_EQ(climb, (std::vector<P>{P::Ground, P::Slide, P::Slide, P::StepUp, P::Slide, P::StepDown, P::Ground,
+                                   P::Ground}));
+}
+
+// One writer, many readers (movement.h, THREAD SAFETY): four threads step
+// the same players at once, each with its own scratch and observer, then the
+// one writer moves the crate between the rounds, never while they step (the
+// player standing on it is carried at its next step). Every thread's paths
+// and observed translations equal one thread's made before the round. (Run
+// under ThreadSanitizer by ./dev.sh tsan: no race.)
+TEST(PlayerMove, PlayersOnManyThreadsBetweenTheWritersMoves) {
+  World world = withFloor().build();
+  auto crateShape = TraceModel::box({{-32, -32, 0}, {32, 32, 32}});
+  ASSERT_TRUE(crateShape);
+  Placement crateAt;
+  crateAt.origin = {100, 0, 0};
+  auto crate = world.addTraceModelEntity("crate", *crateShape, crateAt);
+  ASSERT_TRUE(crate) << crate.error().toString();
+  const PlayerShape shape = PlayerShape::standard();
+  // On the crate, walking into it, walking in the open.
+  std::vector<PlayerState> players = {at({100, 0, 33}), at({-100, 0, 1}), at({-100, 200, 1})};
+  const std::vector<PlayerInput> inputs = {walk(0, 0), walk(1, 0), walk(0, 1)};
+  struct Steps {
+    std::vector<std::vector<PlayerState>> paths;
+    std::size_t translations = 0;
+  };
+  auto stepAll = [&](const std::vector<PlayerState>& from) {
+    Steps out;
+    WorldQueryWork work;
+    Recorder seen;
+    for (std::size_t p = 0; p < from.size(); ++p) {
+      out.paths.emplace_back();
+      runPlayer(world, shape, from[p], inputs[p], stepsFor(0.5), kDt, work, {}, &out.paths.back(), &seen);
+    }
+    out.translations = seen.seen.size();
+    return out;
+  };
+  for (int round = 0; round < 3; ++round) {
+    const Steps expected = stepAll(players);
+    std::array<Steps, 4> got;
+    std::vector<std::thread> readers;
+    for (std::size_t t = 0; t < got.size(); ++t) readers.emplace_back([&, t] { got[t] = stepAll(players); });
+    for (std::thread& r : readers) r.join();
+    for (std::size_t t = 0; t < got.size(); ++t) {
+      EXPECT_EQ(got[t].translations, expected.translations) << "round " << round << " reader " << t;
+      for (std::size_t p = 0; p < players.size(); ++p)
+        EXPECT_TRUE(sameBits(got[t].paths[p], expected.paths[p])) << "round " << round << " player " << p;
+    }
+    for (std::size_t p = 0; p < players.size(); ++p) players[p] = expected.paths[p].back();
+    EXPECT_EQ(players[0].groundEntity, *crate) << "round " << round;
+    // The one writer, between the rounds: the crate slides along +x.
+    const Vec3 was = players[0].origin;
+    crateAt.origin.x += 20;
+    ASSERT_TRUE(world.setPlacement(*crate, crateAt).ok());
+    WorldQueryWork work;
+    const PlayerState carried = stepPlayer(world, shape, players[0], inputs[0], kDt, work);
+    EXPECT_NEAR(carried.origin.x, was.x + 20, 0.01) << "round " << round;
+  }
 }
 
 /// The "end" array of `cmkit walk --json` output.

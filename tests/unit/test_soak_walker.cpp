@@ -1,5 +1,6 @@
-// The soak's diagnosis of a stuck walker (tools/cmkit/soak.cpp,
-// diagnoseStuck; issue #34, item 5): a walker pressed into a room's corner
+// The soak's diagnosis of a stuck walker (tools/cmkit/soak_walker.cpp,
+// diagnoseStuck; issue #34, item 5; the walker is the library's player,
+// stepPlayer): a walker pressed into a room's corner
 // with its wish direction into it is `cornered` (the walk's), one in a pit
 // a little wider than the box is `no-room` (the map's), and walkers whose
 // step moves them (in the open, or sliding along a wall) are `unexplained`
@@ -63,10 +64,10 @@ ModelPtr roomWithPit() {
   return built->models[0];
 }
 
-/// The walker's wish velocity toward (x, y) at its walking speed (320).
+/// The walker's wished direction toward (x, y).
 Vec3 wishToward(Real x, Real y) {
   const Real len = std::sqrt(x * x + y * y);
-  return {x / len * 320, y / len * 320, 0};
+  return {x / len, y / len, 0};
 }
 
 struct SoakWalker : ::testing::Test {
@@ -74,7 +75,7 @@ struct SoakWalker : ::testing::Test {
     world = roomWithPit();
     ASSERT_TRUE(world);
     walker = {cli::kWalkerTrm, *TraceModel::parse(cli::kWalkerTrm), {}};
-    soak = std::make_unique<cli::Soak>(*world, std::vector<cli::Shape>{}, walker, options);
+    soak = std::make_unique<cli::Soak>(world, std::vector<cli::Shape>{}, walker, options);
   }
   /// The diagnosis at `pos` (which must be free: the walker only gets stuck
   /// at free positions).

@@ -1,6 +1,6 @@
-// `cmkit soak MAP`: random sweeps of every trace-model kind and a player-like
-// walker through the world model, each end checked with a position test and
-// every embedded end classified (docs/reliability.md).
+// `cmkit soak MAP`: random sweeps of every trace-model kind and a walker (the
+// library's player) through the world model, each end checked with a
+// position test and every embedded end classified (docs/reliability.md).
 #include <fmt/core.h>
 #include <unistd.h>
 
@@ -53,7 +53,8 @@ int runReplay(const SoakOptions& o, const std::vector<ModelPtr>& models) {
     Shape shape{q->trmSpec, q->trm ? *q->trm : TraceModel::point(), q->trmAxis};
     SoakOptions one = o;
     one.mask = q->contentMask;
-    const Soak soak(*models.front(), {}, shape, one);
+    one.walkerSteps = 0;
+    const Soak soak(models.front(), {}, shape, one);
     fmt::print("{}\n  {}\n", line, soak.replay(shape, q->position, q->end, work));
   }
   return bad == 0 ? 0 : kExitBadInput;
@@ -107,7 +108,7 @@ int runSoak(const SoakOptions& o) {
   }
   Shape walker{kWalkerTrm, *TraceModel::parse(kWalkerTrm), {}};
   const CollisionModel& world = *models->front();
-  Soak soak(world, std::move(shapes), std::move(walker), o);
+  Soak soak(models->front(), std::move(shapes), std::move(walker), o);
 
   const std::uint64_t items = soak.numItems();
   std::atomic<std::uint64_t> next{0}, done{0};
@@ -177,7 +178,8 @@ int runSoak(const SoakOptions& o) {
     fmt::print("  {:<16} {:>9}  {}\n", kFindingNames[k], total.counts[k], kFindingMeaning[k]);
   if (total.counts[std::size_t(Finding::WalkerEmbedded)] > 0) {
     fmt::print(
-        "walker-embedded by the class of the step's last move (closed-brush, precision, grazing: "
+        "walker-embedded by the class of the translation that ended in solid (closed-brush, precision, "
+        "grazing: "
         "cmkit's; the others: the map's):");
     for (std::size_t k = 0; k < kNumFindings; ++k)
       if (total.walkerCauses[k] > 0) fmt::print(" {} {}", kFindingNames[k], total.walkerCauses[k]);
@@ -221,15 +223,16 @@ void registerSoak(CLI::App& app) {
   auto o = std::make_shared<SoakOptions>();
   auto* cmd = app.add_subcommand(
       "soak",
-      "Random sweeps and a player-like walker through the world model, every end checked.\n\n"
+      "Random sweeps and a walker, the library's player, through the world model, every end checked.\n\n"
       "Sweeps: --sweeps translations, the trace models taken in turn (--trm, default every kind),\n"
       "each from a random free start (a contents test of the trace model there finds nothing, and\n"
       "point traces along +-x, +-y, +-z all hit a surface: inside the map) to a random end.\n"
       "30% of the sweeps of a trace model other than the point turn it to a random orientation\n"
       "(trmAxis; the query lines print it as trmaxis=).\n"
-      "Walker: --walker-steps steps of a 32x32x72 box (60 steps a second, gravity 800, speed 320,\n"
-      "up to 4 slide planes a step with the velocity clipped along each, 18-unit step-up, random\n"
-      "wish directions and jumps), restarted elsewhere every 500 steps.\n\n"
+      "Walker: --walker-steps steps of the library's player (stepPlayer, docs/movement.md: 60 steps\n"
+      "a second, gravity 1066, running at 220, slides along up to 4 planes a step, 16-unit step-up)\n"
+      "as a 32x32x72 box, a random wish direction every 40 steps and a jump pressed at one step in\n"
+      "97, restarted elsewhere every 500 steps. Every translation of its steps is checked.\n\n"
       "Checks: every result finite and its fraction in [0,1] (these must hold: exit 1), and every\n"
       "end free (a contents test). An end in solid is classified, first match (closed-brush\n"
       "first, so that no other class can hide a miss):\n"
@@ -245,12 +248,13 @@ void registerSoak(CLI::App& app) {
       "  brush-face     as closed-brush, but one of those faces is not (wholly) covered\n"
       "  patch-behind   the end overlaps polygons only; one was crossed from behind\n"
       "  other-polygon  the end overlaps polygons only, none crossed from behind\n"
-      "Walker steps that end in solid (walker-embedded) or make less than 1 unit of progress in\n"
-      "60 steps (walker-stuck) are counted and the walker restarts. An embedded step's last move\n"
-      "is classified as above (closed-brush, precision, grazing: cmkit's; the others: the map's).\n"
+      "Walker steps with a translation that ends in solid (walker-embedded) or that make less than\n"
+      "1 unit of progress in 60 steps (walker-stuck) are counted and the walker restarts. The\n"
+      "translation that ended in solid is classified as above (closed-brush, precision, grazing:\n"
+      "cmkit's; the others: the map's).\n"
       "A stuck walker is diagnosed, first match:\n"
       "  no-room        the box moves less than 1 unit along each of 8 horizontal directions\n"
-      "                 (probes of 4 units, flat or 18 units up): the map's (too small a space)\n"
+      "                 (probes of 4 units, flat or 16 units up): the map's (too small a space)\n"
       "  cornered       at least 30 of the 60 steps were blocked (each moved it less than 1/60\n"
       "                 unit, its slide stopped on a plane: the contact planes clipped the velocity\n"
       "                 to ~0 in a corner or crease; another direction has room): the walk's\n"

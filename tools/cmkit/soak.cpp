@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -251,8 +252,29 @@ void Soak::Impl::sweep(Ctx& c, const Shape& shape) const {
   record(c, f, translationLine(s, *start, end) + contentsLine(s, r.endPos));
 }
 
-Soak::Soak(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
-    : impl_(std::make_unique<Impl>(world, std::move(shapes), std::move(walker), o)) {}
+Soak::Impl::Impl(ModelPtr world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
+    : worldModel_(std::move(world)),
+      world_(*worldModel_),
+      shapes_(std::move(shapes)),
+      walker_(std::move(walker)),
+      o_(o),
+      facts_(world_, o.mask) {
+  const Vec3 size = world_.bounds().max - world_.bounds().min;
+  inner_ = world_.bounds().expanded(-std::min({size.x, size.y, size.z}) * 0.01f);
+  if (walkerItems() == 0) return;
+  Result<PlayerShape> player = PlayerShape::fromTraceModel(walker_.trm);
+  if (!player) throw std::invalid_argument("cmkit soak: the walker: " + player.error().message);
+  player->contentMask = o_.mask;
+  player_ = std::move(*player);
+  EntityDesc entity;
+  entity.name = "worldspawn";
+  entity.model = worldModel_;
+  if (Result<EntityId> added = playerWorld_.addEntity(std::move(entity)); !added)
+    throw std::invalid_argument("cmkit soak: the walker's world: " + added.error().message);
+}
+
+Soak::Soak(ModelPtr world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
+    : impl_(std::make_unique<Impl>(std::move(world), std::move(shapes), std::move(walker), o)) {}
 Soak::~Soak() = default;
 std::size_t Soak::numClosedBrushes() const { return impl_->numClosedBrushes(); }
 std::uint64_t Soak::numItems() const { return impl_->numItems(); }

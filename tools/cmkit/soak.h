@@ -1,6 +1,7 @@
 // soak.h: the engine of `cmkit soak` (random sweeps of every trace-model
-// kind and a player-like walker through the world model, every end checked
-// with a position test and every embedded end classified; docs/reliability.md).
+// kind and a walker, the library's player (movement.h), through the world
+// model, every end checked with a position test and every embedded end
+// classified; docs/reliability.md).
 #pragma once
 
 #include <array>
@@ -39,7 +40,7 @@ enum class Finding : std::uint8_t {
   Precision,       // (d) penetration <= kPrecisionDepth
   ClosedBrush,     // (e) end in a closed brush the move started outside of
   OtherPolygon,    // end overlaps only polygons, none crossed from behind
-  WalkerEmbedded,  // a walker step ended in solid
+  WalkerEmbedded,  // a translation of a walker step ended in solid
   WalkerStuck,     // a walker made no progress for kStuckSteps steps
   Count
 };
@@ -56,7 +57,7 @@ inline const char* const kFindingMeaning[kNumFindings] = {
     "(d) penetration <= 0.01 units",
     "(e) end in a brush whose faces the move crossed are all covered by polygons",
     "end overlaps only polygons, none crossed from behind",
-    "walker step ended in solid",
+    "a translation of a walker step ended in solid",
     "walker made no progress",
 };
 
@@ -74,7 +75,7 @@ inline const char* const kStuckCauseMeaning[kNumStuckCauses] = {
     "neither below: the steps moved the box, yet it made no progress (a query fault?)",
     ("the walk's: for at least half of the steps the slide planes clipped the velocity to ~0 "
      "(a corner or crease), though another direction has room"),
-    "the map's: the box cannot move 1 unit in any of 8 horizontal directions, flat or 18 up",
+    "the map's: the box cannot move 1 unit in any of 8 horizontal directions, flat or 16 up",
 };
 
 struct SoakOptions {
@@ -131,7 +132,10 @@ struct ItemTally {
 /// any number of threads may run items at once, each with its own QueryWork.
 class Soak {
  public:
-  Soak(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o);
+  /// Soaks `world` with the sweeps of `shapes` and `walker` as the player
+  /// of the walks. With walker steps (o.walkerSteps > 0) the walker must be
+  /// a closed convex solid: std::invalid_argument otherwise.
+  Soak(ModelPtr world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o);
   ~Soak();
   Soak(const Soak&) = delete;
   Soak& operator=(const Soak&) = delete;
@@ -145,9 +149,9 @@ class Soak {
   /// Runs one translation and names what its end is: "free", or the class
   /// of the finding (the --replay of a pasted query line).
   std::string replay(const Shape& s, const Vec3& from, const Vec3& to, QueryWork& work) const;
-  /// Why a walker at the free position `pos` with the wish velocity `wish`
-  /// (horizontal, units a second) makes no progress; `detail` (when given)
-  /// gets what the tests measured.
+  /// Why a walker at the free position `pos` wishing to walk along `wish`
+  /// (horizontal; its length does not matter) makes no progress; `detail`
+  /// (when given) gets what the tests measured. Needs walker steps.
   StuckCause diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWork& work,
                            std::string* detail = nullptr) const;
 

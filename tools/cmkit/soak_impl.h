@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "cmkit/movement.h"
 #include "cmkit/query.h"
+#include "cmkit/world.h"
 #include "soak.h"
 #include "soak_geometry.h"
 
@@ -29,28 +31,26 @@ constexpr int kWalkerStepsPerItem = 500;
 /// A walker that moves less than kStuckDistance in kStuckSteps steps is stuck.
 constexpr int kStuckSteps = 60;
 constexpr Real kStuckDistance = 1.0f;
-/// The walker: frame time, gravity, speed, step height, slide planes.
-constexpr Real kFrameTime = 1.0f / 60.0f;
-constexpr Real kGravity = 800.0f;
-constexpr Real kWalkSpeed = 320.0f;
-constexpr Real kJumpSpeed = 270.0f;
-constexpr Real kStepHeight = 18.0f;
-constexpr int kMaxSlidePlanes = 4;
-constexpr Real kOverbounce = 1.001f;
-constexpr Real kMinWalkNormalZ = 0.7f;
+/// The walker is the library's player (movement.h, stepPlayer) with the
+/// default MoveParams, running: steps of move::kTimeStep, a new random wish
+/// direction every kWishSteps steps, a jump pressed at one step in
+/// kJumpOneIn.
+constexpr int kWishSteps = 40;
+constexpr std::uint64_t kJumpOneIn = 97;
+/// The slide planes of a step kept for a stuck walker's diagnosis.
+constexpr int kMaxSlidePlanes = move::kMaxClipPlanes;
 /// The room test of a stuck walker: how far the box moves (up to
-/// kRoomProbe units) along each of kRoomDirections horizontal directions.
+/// kRoomProbe units) along each of kRoomDirections horizontal directions,
+/// flat or lifted by the player's step height.
 constexpr Real kRoomProbe = 4.0f;
 constexpr int kRoomDirections = 8;
 constexpr Real kTwoPi = 6.2831853f;
 
 struct Soak::Impl {
  public:
-  Impl(const CollisionModel& world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o)
-      : world_(world), shapes_(std::move(shapes)), walker_(std::move(walker)), o_(o), facts_(world, o.mask) {
-    const Vec3 size = world.bounds().max - world.bounds().min;
-    inner_ = world.bounds().expanded(-std::min({size.x, size.y, size.z}) * 0.01f);
-  }
+  /// With walker steps (o.walkerSteps > 0), `walker` must be a closed
+  /// convex solid (the player's shape): std::invalid_argument otherwise.
+  Impl(ModelPtr world, std::vector<Shape> shapes, Shape walker, const SoakOptions& o);
 
   std::size_t numClosedBrushes() const { return facts_.numClosed(); }
 
@@ -62,7 +62,7 @@ struct Soak::Impl {
 
   void runItem(std::uint64_t item, QueryWork& work, ItemTally& tally, std::vector<Case>& cases);
 
-  /// Why a walker at `pos` with the wish velocity `wish` is stuck, one step
+  /// Why a walker at `pos` wishing to walk along `wish` is stuck, one step
   /// from rest replayed (Soak::diagnoseStuck).
   StuckCause diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWork& work, std::string* detail) const;
 
@@ -130,36 +130,34 @@ struct Soak::Impl {
 
   void sweep(Ctx& c, const Shape& shape) const;
 
-  /// The contact normals a slide move stopped on, in order.
+  /// The contact normals the slide moves of a step stopped on, in order
+  /// (the first kMaxSlidePlanes).
   struct SlidePlanes {
     Vec3 normals[kMaxSlidePlanes];
     int count = 0;
   };
 
-  /// One slide move of the walker: up to kMaxSlidePlanes contacts per step,
-  /// the velocity clipped along each (creases between two planes followed).
-  /// False when a must-hold check failed.
-  bool slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine, Vec3& lastFrom,
-                 SlidePlanes& hit) const;
-
-  /// What one walker step did: whether it stood on walkable ground, the
-  /// contact normals of the slide move it kept, its last move.
+  /// What one walker step did, from the translations the player reported
+  /// (PlayerMoveObserver): the player's state after it, the slide moves'
+  /// contact normals, and the first translation that ended in solid.
   struct StepInfo {
-    bool onGround = false;
+    PlayerState state;
     SlidePlanes planes;
-    std::string lastLine;
-    Vec3 lastFrom;
+    /// The first translation whose end a position test found in solid.
+    std::optional<PlayerTranslation> embedded;
+    /// The step's last translation (a step ends where its last probe did).
+    std::optional<PlayerTranslation> last;
   };
 
-  /// One walker step from `pos` with velocity `vel` and wish velocity `wish`:
-  /// a ground check, the velocity (the wish on the ground, a jump when
-  /// `mayJump` and the generator says so; gravity in the air), a slide move
-  /// and the step-up (over kStepHeight, move, back down; kept when it got
-  /// further). False when a must-hold check failed.
-  bool walkerStep(Ctx& c, Vec3& pos, Vec3& vel, const Vec3& wish, bool mayJump, StepInfo& info) const;
+  /// One player step of the walker from `state` (stepPlayer with `input`),
+  /// every translation it makes checked: the must-hold checks (false when
+  /// one failed: the walk ends), then a position test at its end.
+  bool walkerStep(Ctx& c, WorldQueryWork& playerWork, const PlayerState& state, const PlayerInput& input,
+                  StepInfo& info) const;
 
   /// How far the walker at `pos` moves along the horizontal unit `dir`, up
-  /// to kRoomProbe: flat, or after going up kStepHeight (whichever is further).
+  /// to kRoomProbe: flat, or after going up the player's step height
+  /// (whichever is further).
   Real roomAlong(Ctx& c, const Vec3& pos, const Vec3& dir) const;
 
   /// A blocked step: it moved the walker less than kStuckDistance /
@@ -169,7 +167,7 @@ struct Soak::Impl {
     return (to - from).length() * Real(kStuckSteps) < kStuckDistance && info.planes.count > 0;
   }
 
-  /// Why a walker at `pos` with the wish velocity `wish` made no progress,
+  /// Why a walker at `pos` wishing to walk along `wish` made no progress,
   /// `blockedSteps` of its last kStuckSteps steps blocked (blockedStep;
   /// negative: unknown, one step replayed from rest stands for them all):
   ///  no-room     it moves less than kStuckDistance along each of
@@ -188,9 +186,17 @@ struct Soak::Impl {
 
   void walk(Ctx& c, int steps) const;
 
+  ModelPtr worldModel_;
   const CollisionModel& world_;
+  /// The world model alone in a World, at the origin: where the walker, a
+  /// player, walks (a World's answers are its models' answers bit for bit).
+  World playerWorld_;
   std::vector<Shape> shapes_;
   Shape walker_;
+  /// The walker's shape as a player (standing and crouched: walker_.trm)
+  /// with the soak's mask; made (with playerWorld_'s entity) only for a
+  /// soak with walker steps.
+  std::optional<PlayerShape> player_;
   const SoakOptions& o_;
   soak_geometry::WorldFacts facts_;
   Bounds inner_;

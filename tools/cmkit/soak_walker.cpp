@@ -1,16 +1,48 @@
-// The walker of `cmkit soak` (soak_impl.h): a player-like box that walks,
-// slides along what it meets, steps up, falls and jumps; its embedded steps
-// classified as a sweep's ends are, its stuck spells diagnosed.
+// The walker of `cmkit soak` (soak_impl.h): the library's player
+// (movement.h, stepPlayer) walking, stepping, sliding, falling and jumping
+// through the world model; every translation of its steps (reported by a
+// PlayerMoveObserver) checked as a sweep's end is, and classified when it
+// ends in solid; its stuck spells diagnosed.
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "soak_impl.h"
 
 namespace cmkit::cli {
+
+namespace {
+
+/// Keeps the translations of one player step.
+struct StepTranslations : PlayerMoveObserver {
+  std::vector<PlayerTranslation> seen;
+  void translated(const PlayerTranslation& t) override { seen.push_back(t); }
+};
+
+/// A player standing (or falling) at `pos`, at rest.
+PlayerState playerAt(const Vec3& pos) {
+  PlayerState s;
+  s.origin = pos;
+  return s;
+}
+
+/// The walker's input: running along the horizontal direction of `wish`
+/// (its length does not matter), a jump pressed when `jump`.
+PlayerInput walkerInput(const Vec3& wish, bool jump) {
+  PlayerInput in;
+  const Vec3 flat{wish.x, wish.y, 0};
+  const Real len = flat.length();
+  in.wishDir = len > 0 ? flat * (1 / len) : Vec3{};
+  in.run = true;
+  in.jump = jump;
+  return in;
+}
+
+}  // namespace
 
 StuckCause Soak::Impl::diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWork& work,
                                      std::string* detail) const {
@@ -21,94 +53,25 @@ StuckCause Soak::Impl::diagnoseStuck(const Vec3& pos, const Vec3& wish, QueryWor
   return diagnoseStuck(c, pos, wish, -1, detail);
 }
 
-bool Soak::Impl::slideMove(Ctx& c, Vec3& pos, Vec3& vel, Real time, std::string& lastLine, Vec3& lastFrom,
-                           SlidePlanes& hit) const {
-  Vec3* const planes = hit.normals;
-  int& numPlanes = hit.count;
-  numPlanes = 0;
-  for (int bump = 0; bump < kMaxSlidePlanes && time > 0; ++bump) {
-    const Vec3 end = pos + vel * time;
-    const TraceResult r = move(c, walker_, pos, end);
-    lastLine = translationLine(walker_, pos, end);
-    lastFrom = pos;
-    if (!checkResult(c, walker_, pos, end, r)) return false;
-    pos = r.endPos;
-    if (r.fraction >= 1) break;
-    time *= 1 - r.fraction;
-    if (numPlanes == kMaxSlidePlanes) {
-      vel = {};
-      break;
-    }
-    planes[numPlanes++] = r.contact.normal;
-    auto clip = [](const Vec3& v, const Vec3& n) {
-      const Real into = v.dot(n);
-      return into < 0 ? v - n * (into * kOverbounce) : v;
-    };
-    Vec3 next = clip(vel, r.contact.normal);
-    for (int i = 0; i + 1 < numPlanes; ++i) {
-      if (next.dot(planes[i]) < 0) {  // pushed into an earlier plane: follow the crease
-        Vec3 crease = planes[i].cross(r.contact.normal);
-        const Real len = crease.length();
-        if (len < 1e-4f) {
-          next = {};
-          break;
-        }
-        crease = crease * (1 / len);
-        next = crease * crease.dot(vel);
-      }
-    }
-    vel = next;
-    if (vel.dot(vel) < 1e-6f) break;
+bool Soak::Impl::walkerStep(Ctx& c, WorldQueryWork& playerWork, const PlayerState& state,
+                            const PlayerInput& input, StepInfo& info) const {
+  StepTranslations step;
+  info = StepInfo{};
+  info.state = stepPlayer(playerWorld_, *player_, state, input, move::kTimeStep, playerWork, {}, &step);
+  for (const PlayerTranslation& t : step.seen) {
+    const TraceResult& r = t.result.trace;
+    if (!checkResult(c, walker_, t.start, t.end, r)) return false;
+    if (t.part == PlayerMovePart::Slide && r.fraction < 1 && info.planes.count < kMaxSlidePlanes)
+      info.planes.normals[info.planes.count++] = r.contact.normal;
+    if (!info.embedded && !isFree(c, walker_, r.endPos)) info.embedded = t;
   }
-  return true;
-}
-
-bool Soak::Impl::walkerStep(Ctx& c, Vec3& pos, Vec3& vel, const Vec3& wish, bool mayJump,
-                            StepInfo& info) const {
-  // Ground check: a short point-of-feet trace down.
-  const TraceResult down = move(c, walker_, pos, pos - Vec3{0, 0, 1});
-  if (!checkResult(c, walker_, pos, pos - Vec3{0, 0, 1}, down)) return false;
-  info.onGround = down.fraction < 1 && down.contact.normal.z >= kMinWalkNormalZ;
-  if (info.onGround) {
-    vel.x = wish.x;
-    vel.y = wish.y;
-    vel.z = (mayJump && c.rng() % 97 == 0) ? kJumpSpeed : std::max<Real>(vel.z, 0);
-  } else {
-    vel.z -= kGravity * kFrameTime;
-  }
-  Vec3 slidPos = pos, slidVel = vel;
-  if (!slideMove(c, slidPos, slidVel, kFrameTime, info.lastLine, info.lastFrom, info.planes)) return false;
-  if (info.onGround) {
-    Vec3 up = pos + Vec3{0, 0, kStepHeight};
-    const TraceResult ru = move(c, walker_, pos, up);
-    if (!checkResult(c, walker_, pos, up, ru)) return false;
-    Vec3 stepPos = ru.endPos, stepVel = vel;
-    stepVel.z = 0;
-    std::string stepLine;
-    Vec3 stepFrom;
-    SlidePlanes stepPlanes;
-    if (!slideMove(c, stepPos, stepVel, kFrameTime, stepLine, stepFrom, stepPlanes)) return false;
-    const Vec3 downTo = stepPos - Vec3{0, 0, kStepHeight + 1};
-    const TraceResult rd = move(c, walker_, stepPos, downTo);
-    if (!checkResult(c, walker_, stepPos, downTo, rd)) return false;
-    const auto flat = [&](const Vec3& p) { return Vec3{p.x - pos.x, p.y - pos.y, 0}.lengthSquared(); };
-    if (rd.fraction < 1 && rd.contact.normal.z >= kMinWalkNormalZ &&
-        flat(rd.endPos) > flat(slidPos) + 0.01f) {
-      slidPos = rd.endPos;
-      slidVel = stepVel;
-      info.planes = stepPlanes;
-      info.lastLine = translationLine(walker_, stepPos, downTo);
-      info.lastFrom = stepPos;
-    }
-  }
-  pos = slidPos;
-  vel = slidVel;
+  if (!step.seen.empty()) info.last = step.seen.back();
   return true;
 }
 
 Real Soak::Impl::roomAlong(Ctx& c, const Vec3& pos, const Vec3& dir) const {
   const Real flat = move(c, walker_, pos, pos + dir * kRoomProbe).fraction * kRoomProbe;
-  const TraceResult up = move(c, walker_, pos, pos + Vec3{0, 0, kStepHeight});
+  const TraceResult up = move(c, walker_, pos, pos + Vec3{0, 0, move::kStepHeight});
   const Real stepped = move(c, walker_, up.endPos, up.endPos + dir * kRoomProbe).fraction * kRoomProbe;
   return std::max(flat, stepped);
 }
@@ -126,9 +89,11 @@ StuckCause Soak::Impl::diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, 
       mostDir = dir;
     }
   }
-  Vec3 stepped = pos, vel;
+  // One step from rest, without a jump.
+  WorldQueryWork playerWork;
   StepInfo info;
-  const bool ok = walkerStep(c, stepped, vel, wish, false, info);
+  const bool ok = walkerStep(c, playerWork, playerAt(pos), walkerInput(wish, false), info);
+  const Vec3 stepped = ok ? info.state.origin : pos;
   const Real moved = (stepped - pos).length();
   if (blockedSteps < 0) blockedSteps = ok && blockedStep(pos, stepped, info) ? kStuckSteps : 0;
   StuckCause cause = StuckCause::Unexplained;
@@ -137,8 +102,7 @@ StuckCause Soak::Impl::diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, 
   else if (2 * blockedSteps >= kStuckSteps)
     cause = StuckCause::Cornered;
   if (detail) {
-    const Real speed = Vec3{wish.x, wish.y, 0}.length();
-    const Vec3 wishDir = speed > 0 ? Vec3{wish.x, wish.y, 0} * (1 / speed) : Vec3{};
+    const Vec3 wishDir = walkerInput(wish, false).wishDir;
     std::string planes;
     for (int i = 0; i < info.planes.count; ++i) {
       const Vec3& n = info.planes.normals[i];
@@ -147,7 +111,7 @@ StuckCause Soak::Impl::diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, 
     *detail = fmt::format(
         "{} of {} steps blocked; {}, wish ({:.3f} {:.3f}): a step from rest moves it {:.5f} against {} "
         "plane(s) {}; room along the wish {:.3f}, most room {:.3f} toward ({:.3f} {:.3f})",
-        blockedSteps, kStuckSteps, info.onGround ? "on the ground" : "in the air", wishDir.x, wishDir.y,
+        blockedSteps, kStuckSteps, info.state.onGround ? "on the ground" : "in the air", wishDir.x, wishDir.y,
         moved, info.planes.count, planes, roomAlong(c, pos, wishDir), most, mostDir.x, mostDir.y);
   }
   return cause;
@@ -159,24 +123,29 @@ void Soak::Impl::walk(Ctx& c, int steps) const {
     c.tally.noStart++;
     return;
   }
-  Vec3 pos = *start, vel;
+  WorldQueryWork playerWork;
+  PlayerState player = playerAt(*start);
   Vec3 wish;
-  Vec3 progressFrom = pos;
+  Vec3 progressFrom = player.origin;
   int sinceProgress = 0, blockedSteps = 0;
   StepInfo info;
   for (int step = 0; step < steps; ++step) {
     c.tally.walkerSteps++;
-    if (step % 40 == 0) {
+    if (step % kWishSteps == 0) {
       const Real a = uniform(c, 0, kTwoPi);
-      wish = {std::cos(a) * kWalkSpeed, std::sin(a) * kWalkSpeed, 0};
+      wish = {std::cos(a), std::sin(a), 0};
     }
-    const Vec3 before = pos;
-    if (!walkerStep(c, pos, vel, wish, true, info)) return;
-    // Embedded, fallen out of the map or stuck: count it and start again
-    // from a new free position.
+    const bool jump = c.rng() % kJumpOneIn == 0;
+    const Vec3 before = player.origin;
+    if (!walkerStep(c, playerWork, player, walkerInput(wish, jump), info)) return;
+    player = info.state;
+    const Vec3& pos = player.origin;
+    // A translation that ended in solid (or a step that did, or found no
+    // way out of solid), fallen out of the map or stuck: count it and start
+    // again from a new free position.
     std::optional<Finding> finding;
     bool restart = false;
-    if (!isFree(c, walker_, pos)) {
+    if (info.embedded || player.stuck || !isFree(c, walker_, pos)) {
       finding = Finding::WalkerEmbedded;
     } else if (pos.z < world_.bounds().min.z - 64) {
       restart = true;
@@ -187,28 +156,34 @@ void Soak::Impl::walk(Ctx& c, int steps) const {
       blockedSteps += blockedStep(before, pos, info);
       if (++sinceProgress >= kStuckSteps) finding = Finding::WalkerStuck;
     }
-    // An embedded step's last move is classified as a sweep's end is (the
-    // map's faults: brush-face, patch-behind, other-polygon; cmkit's:
-    // closed-brush, precision, grazing), counted per class and named in
-    // the case; a stuck walker is diagnosed (diagnoseStuck) likewise.
+    // The translation that ended in solid (else the step's last) is
+    // classified as a sweep's end is (the map's faults: brush-face,
+    // patch-behind, other-polygon; cmkit's: closed-brush, precision,
+    // grazing), counted per class and named in the case; a stuck walker is
+    // diagnosed (diagnoseStuck) likewise.
     if (finding == Finding::WalkerEmbedded) {
-      const Finding why = classify(c, walker_, info.lastFrom, pos);
+      const std::optional<PlayerTranslation>& t = info.embedded ? info.embedded : info.last;
+      const Vec3 from = t ? t->start : before, to = t ? t->end : pos;
+      const Vec3 end = t ? t->result.trace.endPos : pos;
+      const Finding why = classify(c, walker_, from, end);
       c.tally.walkerCauses[std::size_t(why)]++;
       record(c, *finding,
-             fmt::format("# walker-embedded: {}\n", kFindingNames[std::size_t(why)]) + info.lastLine +
-                 contentsLine(walker_, pos));
+             fmt::format("# walker-embedded: {} (a {} translation)\n", kFindingNames[std::size_t(why)],
+                         t ? toString(t->part) : "step's end") +
+                 translationLine(walker_, from, to) + contentsLine(walker_, end));
     } else if (finding == Finding::WalkerStuck) {
       std::string detail;
       const StuckCause why = diagnoseStuck(c, pos, wish, blockedSteps, &detail);
+      const Vec3 from = info.last ? info.last->start : before, to = info.last ? info.last->end : pos;
       recordStuck(c, why,
                   fmt::format("# walker-stuck: {}: {}\n", kStuckCauseNames[std::size_t(why)], detail) +
-                      info.lastLine + contentsLine(walker_, pos));
+                      translationLine(walker_, from, to) + contentsLine(walker_, pos));
     }
     if (finding || restart) {
       if (!(start = freeStart(c, walker_))) return;
       c.tally.respawns++;
-      pos = progressFrom = *start;
-      vel = {};
+      player = playerAt(*start);
+      progressFrom = player.origin;
       sinceProgress = blockedSteps = 0;
     }
   }
