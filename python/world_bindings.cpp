@@ -292,6 +292,7 @@ py::dict loadInfo(const PyWorld& self) {
   d["entities_placed"] = r.entitiesPlaced;
   d["noclip_skipped"] = r.noclipSkipped;
   d["mesh_models_skipped"] = r.meshModelsSkipped;
+  d["func_groups_in_world"] = r.funcGroupsInWorld;
   return d;
 }
 
@@ -552,7 +553,7 @@ unknown entity, ValueError for an axis that is not a rotation.)")
       .def_property_readonly("info", &loadInfo,
                              "How the world was loaded: path, from_cm, cm_path, crc, proc_path, "
                              "proc_polygons_removed, warnings, entities_placed, noclip_skipped, "
-                             "mesh_models_skipped.")
+                             "mesh_models_skipped, func_groups_in_world.")
       .def("__len__", [](PyWorld& self) { return readLocked(self, [&] { return self.world.size(); }); })
       .def("__repr__",
            [](PyWorld& self) {

@@ -14,7 +14,10 @@
 //   numbers, the axis rows) or else `angle` (a yaw in degrees about +z;
 //   `rotation` wins). Not placed: entities with `noclipmodel` "1", and
 //   entities whose `model` key names a file (a mesh; they own no primitives)
-//   - LoadedWorld::report counts both. docs/world.md says it all.
+//   - LoadedWorld::report counts both. A .cm written by tools that merge
+//   func_group entities into the world model has no model for them: such
+//   entities are left out too (report.funcGroupsInWorld). docs/world.md
+//   says it all.
 // - An entity's `contents` is what it can collide as: a query whose content
 //   mask does not meet it skips the entity (the model's own polygon and brush
 //   contents still decide each hit). It starts as the model's contents();
@@ -194,6 +197,10 @@ struct WorldLoadReport {
   int entitiesPlaced = 0;     ///< entities in the world, worldspawn included
   int noclipSkipped = 0;      ///< entities with primitives left out for `noclipmodel` "1"
   int meshModelsSkipped = 0;  ///< entities without primitives whose `model` key names a file
+  /// func_group entities given no model of their own: the models (a .cm
+  /// written by tools that merge func_groups into the world, such as
+  /// RBDoom-3-BFG's) hold their primitives in the world model.
+  int funcGroupsInWorld = 0;
 };
 
 /// A world loaded from a map, with its report.

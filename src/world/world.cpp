@@ -133,14 +133,33 @@ Result<LoadedWorld> World::loadMap(const std::string& mapPath, const MaterialTab
   return world;
 }
 
+namespace {
+
+/// A func_group entity: an editor's group of world brushes. Tools that merge
+/// them into the world model (RBDoom-3-BFG's, for TrenchBroom maps) write
+/// no model of their own for them.
+bool isFuncGroup(const MapEntity& e) {
+  return e.value("classname") == std::optional<std::string_view>("func_group");
+}
+
+}  // namespace
+
 Result<LoadedWorld> World::fromMap(const MapFile& map, std::span<const ModelPtr> models) {
   try {
-    std::size_t owners = 0;
-    for (const MapEntity& e : map.entities) owners += !e.primitives.empty();
-    if (owners != models.size())
-      return Error("the map has " + std::to_string(owners) + " entities with brushes or patches but " +
-                       std::to_string(models.size()) +
-                       " models were given (one per such entity, in map order)",
+    std::size_t owners = 0, groups = 0;
+    for (std::size_t i = 0; i < map.entities.size(); ++i) {
+      const MapEntity& e = map.entities[i];
+      owners += !e.primitives.empty();
+      groups += i != 0 && !e.primitives.empty() && isFuncGroup(e);
+    }
+    // One model per entity with primitives (cmkit's build, the original's);
+    // or none for func_groups, whose primitives are in the world model.
+    const bool groupsInWorld = owners != models.size() && groups > 0 && owners - groups == models.size();
+    if (owners != models.size() && !groupsInWorld)
+      return Error("the map has " + std::to_string(owners) + " entities with brushes or patches (" +
+                       std::to_string(groups) + " of them func_group) but " + std::to_string(models.size()) +
+                       " models were given (one per such entity, in map order, or one per such entity "
+                       "but the func_groups)",
                    map.fileName);
     LoadedWorld out;
     WorldData& d = *out.world.data_;
@@ -150,6 +169,10 @@ Result<LoadedWorld> World::fromMap(const MapFile& map, std::span<const ModelPtr>
       if (e.primitives.empty()) {
         // A `model` key without primitives names a mesh file: not placed.
         if (i != 0 && e.value("model")) ++out.report.meshModelsSkipped;
+        continue;
+      }
+      if (groupsInWorld && i != 0 && isFuncGroup(e)) {
+        ++out.report.funcGroupsInWorld;
         continue;
       }
       const ModelPtr& model = models[next++];

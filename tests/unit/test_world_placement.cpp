@@ -132,6 +132,52 @@ TEST(WorldPlacement, ModelCountMustMatchTheMap) {
   EXPECT_FALSE(World::fromMap(*map, built->models).ok());
 }
 
+TEST(WorldPlacement, FuncGroupsWithoutModelsAreInTheWorldModel) {
+  // Models for every entity with primitives but the func_group (as tools
+  // that merge func_groups into the world write them): the group is left
+  // out and counted; with its model it is an entity as any other.
+  const std::string text = "Version 2\n{\n\"classname\" \"worldspawn\"\n" +
+                           boxBrush({-1024, -1024, -16}, {1024, 1024, 0}) + "}\n" +
+                           "{\n\"classname\" \"func_group\"\n" + boxBrush({0, 0, 0}, {8, 8, 8}) + "}\n" +
+                           "{\n\"classname\" \"func_static\"\n\"name\" \"crate\"\n\"origin\" \"64 0 0\"\n" +
+                           boxBrush({-8, -8, 0}, {8, 8, 16}) + "}\n";
+  Result<MapFile> map = parseMapText(text, "groups.map");
+  ASSERT_TRUE(map.ok()) << map.error().toString();
+  Result<BuildResult> built = buildCollisionModels(*map, MaterialTable{});
+  ASSERT_TRUE(built.ok());
+  ASSERT_EQ(built->models.size(), 3u);
+  auto all = World::fromMap(*map, built->models);
+  ASSERT_TRUE(all.ok()) << all.error().toString();
+  EXPECT_EQ(all->world.size(), 3u);
+  EXPECT_EQ(all->report.funcGroupsInWorld, 0);
+
+  const std::vector<ModelPtr> merged = {built->models[0], built->models[2]};
+  auto groups = World::fromMap(*map, merged);
+  ASSERT_TRUE(groups.ok()) << groups.error().toString();
+  EXPECT_EQ(groups->world.size(), 2u);
+  EXPECT_EQ(groups->report.funcGroupsInWorld, 1);
+  const EntityId crate = groups->world.find("crate");
+  ASSERT_NE(crate, kNoEntity);
+  EXPECT_EQ(groups->world.entity(crate)->model, built->models[2]);
+  EXPECT_EQ(groups->world.entity(crate)->placement.origin, (Vec3{64, 0, 0}));
+  // Any other count is still an error, naming the func_groups.
+  const std::vector<ModelPtr> one = {built->models[0]};
+  auto wrong = World::fromMap(*map, one);
+  ASSERT_FALSE(wrong.ok());
+  EXPECT_NE(wrong.error().message.find("func_group"), std::string::npos) << wrong.error().message;
+}
+
+TEST(WorldPlacement, RbdoomCmWithFuncGroupsMergedLoads) {
+  // test_func_group_instancing.cm (RBDoom-3-BFG's tools, CC0, bundled) has
+  // no models for the map's func_groups: its world model holds them.
+  const auto path = test::dataFile("maps/rbdoom-unittests/test_func_group_instancing.map");
+  auto loaded = World::loadMap(path.string(), MaterialTable{});
+  ASSERT_TRUE(loaded.ok()) << loaded.error().toString();
+  EXPECT_TRUE(loaded->report.models.fromCmFile);
+  EXPECT_EQ(loaded->report.funcGroupsInWorld, 4);
+  EXPECT_EQ(loaded->world.size(), 6u);
+}
+
 // The scenario: a player box walks from one hall to the other.
 TEST(WorldDoor, PlayerStopsAtTheDoorAndPassesWhenItMoves) {
   auto loaded = World::loadMap(twoHalls().string(), MaterialTable{});
