@@ -45,11 +45,13 @@ constexpr int kListenBacklog = 16;
 /// File names of the exported scene in the temporary folder.
 constexpr const char* kSceneFile = "scene.glb";
 constexpr const char* kResultsFile = "results.txt";
+constexpr const char* kAuditFile = "audit.json";
 
 struct ViewOptions {
   std::string models;
   std::string queries;
   std::string results;
+  std::string audit;  ///< --audit: a `cmkit audit --json` file
   std::string materials;
   bool noProc = false;  ///< --no-proc
   MeshCliOptions mesh;  ///< --up, --scale, --contents (mesh files)
@@ -198,6 +200,23 @@ int runView(const ViewOptions& o) {
     fmt::print(stderr, "cmkit view: {}\n", scene.error().toString());
     return kExitBadInput;
   }
+  // The audit's findings are served as written; the viewer reads them (and
+  // says in its status line when it cannot).
+  std::string audit;
+  if (!o.audit.empty()) {
+    auto text = readCliText(o.audit);
+    if (!text) {
+      fmt::print(stderr, "cmkit view: {}\n", text.error().toString());
+      return kExitBadInput;
+    }
+    const std::size_t first = text->find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || (*text)[first] != '{') {
+      fmt::print(stderr, "cmkit view: {}:1: not a JSON object (write one with cmkit audit MAP --json FILE)\n",
+                 o.audit);
+      return kExitBadInput;
+    }
+    audit = std::move(*text);
+  }
 
   // Export into a fresh temporary folder.
   std::string tmpl = (fs::temp_directory_path() / "cmkit-view-XXXXXX").string();
@@ -223,6 +242,7 @@ int runView(const ViewOptions& o) {
     std::ofstream out(sceneDir / kResultsFile, std::ios::binary);
     for (const TraceRecord& r : scene->traces) out << r.queryLine << '\n' << r.resultLine << '\n';
   }
+  if (!audit.empty()) std::ofstream(sceneDir / kAuditFile, std::ios::binary) << audit;
 
   // Listen on the loopback address only.
   const int server = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -244,8 +264,9 @@ int runView(const ViewOptions& o) {
   }
   socklen_t len = sizeof addr;
   ::getsockname(server, reinterpret_cast<sockaddr*>(&addr), &len);
-  fmt::print("scene: {}\nviewer: http://127.0.0.1:{}/?model={}&results={}\n", sceneDir.string(),
-             ntohs(addr.sin_port), kSceneFile, kResultsFile);
+  fmt::print("scene: {}\nviewer: http://127.0.0.1:{}/?model={}&results={}{}\n", sceneDir.string(),
+             ntohs(addr.sin_port), kSceneFile, kResultsFile,
+             audit.empty() ? "" : std::string("&audit=") + kAuditFile);
   std::fflush(stdout);
 
   const auto start = std::chrono::steady_clock::now();
@@ -278,18 +299,22 @@ void registerView(CLI::App& app) {
       "contact (fraction, point, normal, features; the entity hit for `cmkit query --world`\n"
       "results). A .map's entities are placed by their keys: click a model, or pick one from the\n"
       "Entities list, to see its name, class and origin; a toggle hides all but the world model.\n"
+      "--audit FILE shows the findings of `cmkit audit MAP --json FILE` (numbered markers coloured\n"
+      "by severity, a list; click one for what it is and the path that reached it).\n"
       "Stop with Ctrl-C.\n"
       "The viewer must be built once: npm ci --prefix viewer && npm run build --prefix viewer\n\n"
       "Examples:\n"
       "  cmkit view maps/lt4.map\n"
       "  cmkit query maps/box_room.map q.txt -o r.txt\n"
       "  cmkit query tests/data/maps/two_halls.map q.txt --world -o r.txt   (entity= in each result)\n"
-      "  cmkit view maps/box_room.map --queries q.txt --results r.txt --port 8080");
+      "  cmkit view maps/box_room.map --queries q.txt --results r.txt --port 8080\n"
+      "  cmkit audit maps/lt4.map --json lt4_audit.json; cmkit view maps/lt4.map --audit lt4_audit.json");
   cmd->add_option("MODELS", o->models, "a .map (built on the fly), .cm or mesh file (.obj, .glb, ...)")
       ->required();
   cmd->add_option("--queries", o->queries, "query file whose traces to show (with --results)");
   cmd->add_option("--results", o->results,
                   "results of the queries; without --queries, query lines each followed by its result line");
+  cmd->add_option("--audit", o->audit, "findings to show: the JSON of cmkit audit MAP --json FILE");
   cmd->add_option("--port", o->port, "port on 127.0.0.1 (0: any free port)")
       ->capture_default_str()
       ->check(CLI::Range(0, 65535));

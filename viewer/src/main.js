@@ -1,6 +1,7 @@
 // cmkit viewer: shows a glTF exported by `cmkit export` / `cmkit view` and
 // the traces of a results file. URL parameters: model (default scene.glb),
-// results (default results.txt; optional).
+// results (default results.txt; optional), audit (the findings of
+// `cmkit audit --json`; optional).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -9,6 +10,7 @@ import { describe, parseResults } from './results.js';
 const params = new URLSearchParams(location.search);
 const modelUrl = params.get('model') ?? 'scene.glb';
 const resultsUrl = params.get('results') ?? 'results.txt';
+const auditUrl = params.get('audit');
 
 const canvas = document.getElementById('view');
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
@@ -30,6 +32,8 @@ scene.add(zUp);
 
 const groups = { contents: new Map(), edges: [], internal: [], traces: new Map(), entities: new Map() };
 let records = [];
+let findings = [];
+const findingGroup = new THREE.Group();
 let selected = null;
 // The highlighted entity: its name and its meshes' own materials, put back
 // when another is picked.
@@ -238,6 +242,60 @@ function selectEntity(name, frameIt = false) {
   return true;
 }
 
+// The audit's findings: a marker per finding (a cross on the spot and a post
+// above it, coloured by severity), numbered as in the JSON.
+const SEVERITY_COLORS = { high: 0xff3030, medium: 0xff9000, low: 0xffe040 };
+const FINDING_LISTS = ['fallouts', 'stuck', 'tunnels', 'embedded', 'open_shells'];
+function addFindings(audit) {
+  findings = FINDING_LISTS.flatMap((k) => audit[k] ?? []).filter((f) => Array.isArray(f.position));
+  findings.sort((a, b) => (a.number ?? 0) - (b.number ?? 0));
+  for (const f of findings) {
+    const color = SEVERITY_COLORS[f.severity] ?? 0xffffff;
+    const g = new THREE.Group();
+    g.userData = { kind: 'finding', number: f.number };
+    const [x, y, z] = f.position;
+    const s = 12;
+    const points = [[x - s, y, z], [x + s, y, z], [x, y - s, z], [x, y + s, z], [x, y, z - s], [x, y, z + 64]];
+    const geo = new THREE.BufferGeometry().setFromPoints(points.map((p) => new THREE.Vector3(...p)));
+    g.add(new THREE.LineSegments(geo, new THREE.LineBasicMaterial({ color, depthTest: false })));
+    findingGroup.add(g);
+  }
+  zUp.add(findingGroup);
+  const list = document.getElementById('findings');
+  for (const f of findings) {
+    const li = document.createElement('li');
+    li.value = f.number;
+    li.textContent = `${f.kind} (${f.severity})`;
+    li.dataset.finding = f.number;
+    li.addEventListener('click', () => selectFinding(f.number));
+    list.appendChild(li);
+  }
+  document.getElementById('findings-section').hidden = false;
+  document.getElementById('show-findings').addEventListener('change', (e) => (findingGroup.visible = e.target.checked));
+}
+
+// Shows a finding: what it is, where, and the way points that reached it (drawn).
+let findingPath = null;
+function selectFinding(number) {
+  const f = findings.find((x) => x.number === number);
+  if (!f) return false;
+  const v = (p) => p.map((x) => +Number(x).toFixed(2)).join(', ');
+  const lines = [`finding ${f.number}: ${f.kind}, ${f.severity}`, `at ${v(f.position)}`, f.what ?? ''];
+  if (f.merged > 1) lines.push(`(${f.merged - 1} more of its kind nearby)`);
+  if (Array.isArray(f.path) && f.path.length) lines.push('reached by:', ...f.path.map((p) => `  ${v(p)}`));
+  document.getElementById('info').textContent = lines.join('\n');
+  if (findingPath) findingGroup.remove(findingPath);
+  findingPath = null;
+  if (Array.isArray(f.path) && f.path.length > 1) {
+    const geo = new THREE.BufferGeometry().setFromPoints(f.path.map((p) => new THREE.Vector3(...p)));
+    findingPath = new THREE.Line(geo, new THREE.LineBasicMaterial({ color: 0x40e0ff, depthTest: false }));
+    findingGroup.add(findingPath);
+  }
+  document.querySelectorAll('#findings li').forEach((li) => li.classList.toggle('selected', +li.dataset.finding === number));
+  document.body.dataset.finding = String(number);
+  return true;
+}
+
 const raycaster = new THREE.Raycaster();
 function pick(event) {
   const rect = canvas.getBoundingClientRect();
@@ -247,7 +305,14 @@ function pick(event) {
   // Lines are thin: accept hits within a few pixels' worth of world units.
   raycaster.params.Line.threshold = camera.position.distanceTo(controls.target) * 0.01;
   const targets = [...groups.traces.values()].filter((o) => o.visible);
+  if (findingGroup.visible) targets.push(...findingGroup.children.filter((o) => o.userData?.kind === 'finding'));
   const hit = raycaster.intersectObjects(targets, true)[0];
+  for (let o = hit?.object; o; o = o.parent) {
+    if (o.userData?.kind === 'finding') {
+      selectFinding(o.userData.number);
+      return;
+    }
+  }
   if (!hit) {
     // No trace: the nearest visible polygon in front of the cut names its entity.
     const meshes = [...groups.entities.values()].flatMap((e) => e.objs).filter((o) => o.isMesh && o.visible);
@@ -296,7 +361,16 @@ function entityScreenPoint(name) {
   const rect = canvas.getBoundingClientRect();
   return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height };
 }
-window.cmkitViewer = { select, selectEntity, traceScreenPoint, entityScreenPoint, get records() { return records; } };
+/** For tests: the screen position (CSS pixels) of a finding's spot. */
+function findingScreenPoint(number) {
+  const f = findings.find((x) => x.number === number);
+  if (!f) return null;
+  const v = new THREE.Vector3(...f.position).applyMatrix4(zUp.matrixWorld).project(camera);
+  const rect = canvas.getBoundingClientRect();
+  return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height };
+}
+window.cmkitViewer = { select, selectEntity, selectFinding, traceScreenPoint, entityScreenPoint, findingScreenPoint,
+  get records() { return records; }, get findings() { return findings; } };
 
 async function load() {
   const status = document.getElementById('status');
@@ -306,6 +380,17 @@ async function load() {
     classify(gltf.scene);
     const res = await fetch(resultsUrl);
     if (res.ok) records = parseResults(await res.text());
+    let auditNote = '';
+    if (auditUrl) {
+      try {
+        const a = await fetch(auditUrl);
+        if (!a.ok) throw new Error(`HTTP ${a.status}`);
+        addFindings(await a.json());
+        auditNote = `, ${findings.length} audit findings`;
+      } catch (err) {
+        auditNote = `, cannot read the audit ${auditUrl}: ${err.message ?? err}`;
+      }
+    }
     zUp.updateMatrixWorld(true);
     addTraceLines(records);
     buildPanel();
@@ -313,7 +398,7 @@ async function load() {
     frame(gltf.scene);
     setupCut(gltf.scene);
     status.textContent = `${modelUrl}: ${groups.entities.size} models, ${groups.contents.size} contents kinds, ` +
-      `${groups.traces.size} traces`;
+      `${groups.traces.size} traces${auditNote}`;
     document.body.dataset.ready = '1';
   } catch (err) {
     status.textContent = `cannot load ${modelUrl}: ${err.message ?? err}`;

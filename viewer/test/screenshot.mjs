@@ -51,7 +51,8 @@ const map = 'Version 2\n{\n"classname" "worldspawn"\n' +
   box([-272, -256, -16], [-256, 256, 272]) + box([256, -256, -16], [272, 256, 272]) +
   box([-256, -272, -16], [256, -256, 272]) + box([-256, 256, -16], [256, 272, 272]) +
   box([-40, -40, 0], [40, 40, 128]) + box([100, 100, 0], [160, 160, 64], 'textures/liquids/water') + '}\n' +
-  '{\n"classname" "func_door"\n"name" "door1"\n' + box([180, -60, 0], [196, 60, 128]) + '}\n';
+  '{\n"classname" "func_door"\n"name" "door1"\n' + box([180, -60, 0], [196, 60, 128]) + '}\n' +
+  '{\n"classname" "info_player_start"\n"name" "start_in_pillar"\n"origin" "0 0 1"\n}\n';
 const queries = 'translation trm=box:-16,-16,0,16,16,72 start=-200,-200,8 end=200,200,8\n' +
   'translation trm=point start=-150,150,200 end=-150,150,-100\n';
 
@@ -69,8 +70,12 @@ try {
   const q = spawnSync(cmkit, ['query', join(work, 'room.map'), join(work, 'q.txt'), '--world', '-o', join(work, 'r.txt')]);
   if (q.status !== 0) throw new Error(`cmkit query failed: ${q.stderr}`);
 
+  // The audit finds the player start in the pillar (exit 1: a high finding).
+  const audit = spawnSync(cmkit, ['audit', join(work, 'room.map'), '--from', '-200,150,1', '--json', join(work, 'a.json')]);
+  if (audit.status !== 1) throw new Error(`cmkit audit gave ${audit.status}: ${audit.stdout}${audit.stderr}`);
+
   server = spawn(cmkit, ['view', join(work, 'room.map'), '--queries', join(work, 'q.txt'), '--results',
-    join(work, 'r.txt'), '--port', '0', '--exit-after', String(SERVER_SECONDS),
+    join(work, 'r.txt'), '--audit', join(work, 'a.json'), '--port', '0', '--exit-after', String(SERVER_SECONDS),
     '--viewer-dir', join(viewerDir, 'dist')], { stdio: ['ignore', 'pipe', 'inherit'] });
   const url = await new Promise((ok, fail) => {
     let out = '';
@@ -151,6 +156,20 @@ try {
   await page.selectOption('#entities', 'door1');
   check(await page.evaluate(() => document.body.dataset.entity === 'door1'), 'the list selects an entity');
   await page.uncheck('#show-entities');
+
+  // Audit findings: listed and drawn; clicking the embedded start shows it and its path.
+  const found = await page.evaluate(() => window.cmkitViewer.findings.map((f) => [f.number, f.kind]));
+  const embedded = found.find(([, kind]) => kind === 'embedded');
+  check(embedded !== undefined, `audit findings shown: ${JSON.stringify(found)}`);
+  check((await page.textContent('#status')).includes('audit findings'), 'the status counts the findings');
+  if (embedded) {
+    const spot = await page.evaluate((n) => window.cmkitViewer.findingScreenPoint(n), embedded[0]);
+    await page.mouse.click(spot.x, spot.y);
+    await page.waitForTimeout(200);
+    const findingInfo = await page.textContent('#info');
+    check(findingInfo.includes(`finding ${embedded[0]}: embedded, high`) && findingInfo.includes('start_in_pillar'),
+      `clicking a finding shows it: ${findingInfo.replace(/\n/g, ' | ')}`);
+  }
 
   // Toggles: internal edges on, a contents kind off.
   await page.check('#show-internal');
