@@ -116,18 +116,30 @@ std::vector<cmkit::TraceResult> tracesOf(const std::vector<cmkit::WorldTraceResu
 
 // ---- the queries ----------------------------------------------------------
 
-py::dict translateWorld(PyWorld& self, const py::object& trm, const py::object& starts,
-                        const py::object& ends, std::int64_t mask, const py::object& axis, bool startSolid,
-                        int threads, const py::object& progress, const py::object& ignore) {
-  TranslationArgs a(trm, starts, ends, mask, axis, startSolid);
-  std::vector<cmkit::WorldTraceResult> out(a.size);
+// Runs one world batch: the entities of `ignore` left out, the GIL released,
+// the World read-locked (set_transform waits), progress and threads as for
+// a Model's batches. `batch(options, filter)` calls the cmkit batch function.
+template <class Batch>
+void runWorldBatch(PyWorld& self, int threads, const py::object& progress, const py::object& ignore,
+                   const Batch& batch) {
   const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
   const cmkit::EntityFilter filter{ignored, {}};
   Hook hook(threads, progress);
   runBatch([&] {
     const std::shared_lock lock(self.mutex);
-    return cmkit::translateBatch(self.world, a.batch, out, hook.options, filter);
+    return batch(hook.options, filter);
   });
+}
+
+py::dict translateWorld(PyWorld& self, const py::object& trm, const py::object& starts,
+                        const py::object& ends, std::int64_t mask, const py::object& axis, bool startSolid,
+                        int threads, const py::object& progress, const py::object& ignore) {
+  TranslationArgs a(trm, starts, ends, mask, axis, startSolid);
+  std::vector<cmkit::WorldTraceResult> out(a.size);
+  runWorldBatch(self, threads, progress, ignore,
+                [&](const cmkit::BatchOptions& options, const cmkit::EntityFilter& filter) {
+                  return cmkit::translateBatch(self.world, a.batch, out, options, filter);
+                });
   py::dict d = traceArrays(tracesOf(out));
   d["entity"] = entityArray(out);
   return d;
@@ -139,13 +151,10 @@ py::dict rotateWorld(PyWorld& self, const py::object& trm, const py::object& sta
                      const py::object& progress, const py::object& ignore) {
   RotationArgs a(trm, starts, origins, axes, angles, mask, axis, startSolid);
   std::vector<cmkit::WorldTraceResult> out(a.size);
-  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
-  const cmkit::EntityFilter filter{ignored, {}};
-  Hook hook(threads, progress);
-  runBatch([&] {
-    const std::shared_lock lock(self.mutex);
-    return cmkit::rotateBatch(self.world, a.batch, out, hook.options, filter);
-  });
+  runWorldBatch(self, threads, progress, ignore,
+                [&](const cmkit::BatchOptions& options, const cmkit::EntityFilter& filter) {
+                  return cmkit::rotateBatch(self.world, a.batch, out, options, filter);
+                });
   py::dict d = traceArrays(tracesOf(out));
   d["entity"] = entityArray(out);
   return d;
@@ -155,13 +164,10 @@ py::dict castRaysWorld(PyWorld& self, const py::object& starts, const py::object
                        int threads, const py::object& progress, const py::object& ignore) {
   RayArgs a(starts, ends, mask);
   std::vector<cmkit::WorldRayHit> out(a.size);
-  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
-  const cmkit::EntityFilter filter{ignored, {}};
-  Hook hook(threads, progress);
-  runBatch([&] {
-    const std::shared_lock lock(self.mutex);
-    return cmkit::castRayBatch(self.world, a.batch, out, hook.options, filter);
-  });
+  runWorldBatch(self, threads, progress, ignore,
+                [&](const cmkit::BatchOptions& options, const cmkit::EntityFilter& filter) {
+                  return cmkit::castRayBatch(self.world, a.batch, out, options, filter);
+                });
   std::vector<cmkit::RayHit> hits(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) hits[i] = out[i].hit;
   py::dict d = rayArrays(hits);
@@ -173,13 +179,10 @@ py::dict pointContentsWorld(PyWorld& self, const py::object& points, int threads
                             const py::object& ignore) {
   PointArgs a(points);
   std::vector<cmkit::WorldPointContentsResult> out(a.size);
-  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
-  const cmkit::EntityFilter filter{ignored, {}};
-  Hook hook(threads, progress);
-  runBatch([&] {
-    const std::shared_lock lock(self.mutex);
-    return cmkit::pointContentsBatch(self.world, a.batch, out, hook.options, filter);
-  });
+  runWorldBatch(self, threads, progress, ignore,
+                [&](const cmkit::BatchOptions& options, const cmkit::EntityFilter& filter) {
+                  return cmkit::pointContentsBatch(self.world, a.batch, out, options, filter);
+                });
   std::vector<std::uint32_t> contents(out.size());
   std::vector<cmkit::QueryStatus> status(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) {
@@ -196,13 +199,10 @@ py::dict contentsWorld(PyWorld& self, const py::object& trm, const py::object& p
                        const py::object& ignore) {
   ContentsArgs a(trm, positions, mask, axis);
   std::vector<cmkit::WorldContentsResult> out(a.size);
-  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
-  const cmkit::EntityFilter filter{ignored, {}};
-  Hook hook(threads, progress);
-  runBatch([&] {
-    const std::shared_lock lock(self.mutex);
-    return cmkit::contentsBatch(self.world, a.batch, out, hook.options, filter);
-  });
+  runWorldBatch(self, threads, progress, ignore,
+                [&](const cmkit::BatchOptions& options, const cmkit::EntityFilter& filter) {
+                  return cmkit::contentsBatch(self.world, a.batch, out, options, filter);
+                });
   std::vector<cmkit::ContentsResult> results(out.size());
   for (std::size_t i = 0; i < out.size(); ++i) results[i] = out[i].result;
   py::dict d = contentsArrays(results);
@@ -216,13 +216,10 @@ py::dict contactsWorld(PyWorld& self, const py::object& trm, const py::object& s
                        const py::object& progress, const py::object& ignore) {
   ContactsArgs a(trm, starts, dirs, depth, maxContacts, origins, axes, angles, mask, axis);
   std::vector<cmkit::WorldContactsResult> out(a.size);
-  const std::vector<cmkit::EntityId> ignored = ignoreList(self, ignore);
-  const cmkit::EntityFilter filter{ignored, {}};
-  Hook hook(threads, progress);
-  runBatch([&] {
-    const std::shared_lock lock(self.mutex);
-    return cmkit::contactsBatch(self.world, a.batch, out, hook.options, filter);
-  });
+  runWorldBatch(self, threads, progress, ignore,
+                [&](const cmkit::BatchOptions& options, const cmkit::EntityFilter& filter) {
+                  return cmkit::contactsBatch(self.world, a.batch, out, options, filter);
+                });
   const std::size_t m = std::size_t(maxContacts);
   std::vector<cmkit::ContactsResult> results(out.size());
   auto entity = py::array_t<std::int32_t>({py::ssize_t(out.size()), py::ssize_t(m)});

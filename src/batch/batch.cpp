@@ -5,16 +5,15 @@
 #include <algorithm>
 #include <string>
 
-#include "batch/run_chunks.h"
+#include "batch/batch_queries.h"
 
 namespace cmkit {
 
-using detail::checkOut;
 using detail::kMaxRayChunk;
 using detail::kMinChunk;
 using detail::kRayChunksPerBatch;
-using detail::pick;
 using detail::runChunks;
+using detail::runQueries;
 
 Result<std::size_t> batchSize(std::size_t a, std::size_t b, const char* what) {
   if (a == b || b == 1) return a;
@@ -23,87 +22,42 @@ Result<std::size_t> batchSize(std::size_t a, std::size_t b, const char* what) {
                " and " + std::to_string(b) + "; each must be 1 or the batch size)");
 }
 
-using detail::pairedSize;
-
 Status translateBatch(const CollisionModel& model, const TranslationBatch& batch, std::span<TraceResult> out,
                       const BatchOptions& options) {
-  const auto n = pairedSize(batch.starts.size(), batch.ends.size(), "starts and ends", out.size());
-  if (!n) return n.error();
-  return runChunks<QueryWork>(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    TranslationQuery q = batch.query;
-    for (std::size_t i = begin; i < end; ++i) {
-      q.start = pick(batch.starts, i);
-      q.end = pick(batch.ends, i);
-      out[i] = translate(model, q, work);
-    }
+  return runQueries<QueryWork>(batch, out, options, [&](const TranslationQuery& q, QueryWork& work) {
+    return translate(model, q, work);
   });
 }
 
 Status rotateBatch(const CollisionModel& model, const RotationBatch& batch, std::span<TraceResult> out,
                    const BatchOptions& options) {
-  const auto n = pairedSize(batch.starts.size(), batch.rotations.size(), "starts and rotations", out.size());
-  if (!n) return n.error();
-  return runChunks<QueryWork>(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    RotationQuery q = batch.query;
-    for (std::size_t i = begin; i < end; ++i) {
-      q.start = pick(batch.starts, i);
-      q.rotation = pick(batch.rotations, i);
-      out[i] = rotate(model, q, work);
-    }
-  });
+  return runQueries<QueryWork>(
+      batch, out, options, [&](const RotationQuery& q, QueryWork& work) { return rotate(model, q, work); });
 }
 
 Status contentsBatch(const CollisionModel& model, const ContentsBatch& batch, std::span<ContentsResult> out,
                      const BatchOptions& options) {
-  if (auto s = checkOut(out.size(), batch.positions.size()); !s) return s;
-  return runChunks<QueryWork>(batch.positions.size(), options,
-                              [&](std::size_t begin, std::size_t end, QueryWork& work) {
-                                ContentsQuery q = batch.query;
-                                for (std::size_t i = begin; i < end; ++i) {
-                                  q.position = batch.positions[i];
-                                  out[i] = contentsTest(model, q, work);
-                                }
-                              });
+  return runQueries<QueryWork>(batch, out, options, [&](const ContentsQuery& q, QueryWork& work) {
+    return contentsTest(model, q, work);
+  });
 }
 
 Status contactsBatch(const CollisionModel& model, const ContactsBatch& batch, std::span<ContactsResult> out,
                      const BatchOptions& options) {
-  // starts, dirs (unless rotations stand without them) and rotations (when
-  // given): each 1 or N.
-  const bool turning = !batch.rotations.empty();
-  const bool sharedDir = turning && batch.dirs.empty();
-  Result<std::size_t> n = batch.starts.size();
-  if (!sharedDir) n = batchSize(*n, batch.dirs.size(), "starts and dirs");
-  if (n && turning) n = batchSize(*n, batch.rotations.size(), "starts, dirs and rotations");
-  if (!n) return n.error();
-  if (auto s = checkOut(out.size(), *n); !s) return s;
-  return runChunks<QueryWork>(*n, options, [&](std::size_t begin, std::size_t end, QueryWork& work) {
-    ContactsQuery q = batch.query;
-    for (std::size_t i = begin; i < end; ++i) {
-      q.start = pick(batch.starts, i);
-      if (!sharedDir) q.dir = pick(batch.dirs, i);
-      if (turning) q.rotation = pick(batch.rotations, i);
-      out[i] = contacts(model, q, work);
-    }
-  });
+  return runQueries<QueryWork>(
+      batch, out, options, [&](const ContactsQuery& q, QueryWork& work) { return contacts(model, q, work); });
 }
 
 Status pointContentsBatch(const CollisionModel& model, const PointContentsBatch& batch,
                           std::span<PointContentsResult> out, const BatchOptions& options) {
-  if (auto s = checkOut(out.size(), batch.points.size()); !s) return s;
-  return runChunks<QueryWork>(batch.points.size(), options,
-                              [&](std::size_t begin, std::size_t end, QueryWork& work) {
-                                PointContentsQuery q = batch.query;
-                                for (std::size_t i = begin; i < end; ++i) {
-                                  q.point = batch.points[i];
-                                  out[i] = pointContents(model, q, work);
-                                }
-                              });
+  return runQueries<QueryWork>(batch, out, options, [&](const PointContentsQuery& q, QueryWork& work) {
+    return pointContents(model, q, work);
+  });
 }
 
 Status castRayBatch(const RayIndex& index, const RayBatch& batch, std::span<RayHit> out,
                     const BatchOptions& options) {
-  const auto n = pairedSize(batch.starts.size(), batch.ends.size(), "starts and ends", out.size());
+  const auto n = detail::queryCount(batch, out.size());
   if (!n) return n.error();
   // Larger chunks than the other batches': RayIndex::castMany sorts each
   // chunk's rays into packets, and more rays give more coherent packets.
