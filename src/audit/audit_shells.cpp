@@ -3,6 +3,7 @@
 // that leaves the world's bounds where rays kAuditCrackProbe to both sides
 // of it stop close by has found a crack narrower than the player.
 #include <array>
+#include <initializer_list>
 #include <optional>
 
 #include "audit/audit_impl.h"
@@ -38,6 +39,18 @@ class CrackRays {
     return ctx_.world.castRay(q, work_);
   }
 
+  /// Where an escaping ray from `q` is flanked: for the first of `sides`
+  /// whose rays from q + side and q - side both stop close by (`close`), the
+  /// middle of their two hit points; none when no side does.
+  template <class Close>
+  static std::optional<Vec3> between(const Vec3& q, std::initializer_list<Vec3> sides, const Close& close) {
+    for (const Vec3& side : sides) {
+      Vec3 a, b;
+      if (close(q + side, a) && close(q - side, b)) return (a + b) * Real(0.5);
+    }
+    return std::nullopt;
+  }
+
   /// A crack under the cell's square: a down ray that escapes between two
   /// that meet the floor.
   std::optional<RawFinding> down(const SearchCell& cell, std::int32_t id) {
@@ -58,14 +71,11 @@ class CrackRays {
         const Vec3 q{centre.x - half + (Real(ix) + Real(0.5)) * kAuditCrackSpacing,
                      centre.y - half + (Real(iy) + Real(0.5)) * kAuditCrackSpacing, top};
         if (cast(q, downDir, length).hit.hit()) continue;
-        for (const Vec3& side : {Vec3{kAuditCrackProbe, 0, 0}, Vec3{0, kAuditCrackProbe, 0}}) {
-          Vec3 a, b;
-          if (close(q + side, a) && close(q - side, b))
-            return RawFinding{AuditKind::OpenShell, AuditSeverity::Medium, (a + b) * Real(0.5),
-                              "a point falls through a crack in the floor out of the world (under " +
-                                  pointText(cell.position) + ")",
-                              id};
-        }
+        if (const auto at = between(q, {Vec3{kAuditCrackProbe, 0, 0}, Vec3{0, kAuditCrackProbe, 0}}, close))
+          return RawFinding{AuditKind::OpenShell, AuditSeverity::Medium, *at,
+                            "a point falls through a crack in the floor out of the world (under " +
+                                pointText(cell.position) + ")",
+                            id};
       }
     return std::nullopt;
   }
@@ -94,14 +104,11 @@ class CrackRays {
           const Real offset = -half + (Real(k) + Real(0.5)) * kAuditCrackSpacing;
           const Vec3 q = Vec3{centre.x, centre.y, cell.position.z + f * height} + perp * offset;
           if (cast(q, dir, far_).hit.hit()) continue;
-          for (const Vec3& side : {perp * kAuditCrackProbe, Vec3{0, 0, kAuditCrackProbe}}) {
-            Vec3 a, b;
-            if (close(q + side, a) && close(q - side, b))
-              return RawFinding{AuditKind::OpenShell, AuditSeverity::Medium, (a + b) * Real(0.5),
-                                "a point passes through a crack in a wall out of the world (from " +
-                                    pointText(cell.position) + ")",
-                                id};
-          }
+          if (const auto at = between(q, {perp * kAuditCrackProbe, Vec3{0, 0, kAuditCrackProbe}}, close))
+            return RawFinding{AuditKind::OpenShell, AuditSeverity::Medium, *at,
+                              "a point passes through a crack in a wall out of the world (from " +
+                                  pointText(cell.position) + ")",
+                              id};
         }
     }
     return std::nullopt;
