@@ -115,13 +115,12 @@ RayIndex& RayIndex::operator=(RayIndex&&) noexcept = default;
 
 bool RayIndex::usesAvx2() const { return data_ && data_->avx2; }
 std::size_t RayIndex::numNodes() const { return data_ ? data_->nodes.size() : 0; }
-std::size_t RayIndex::numPolygons() const { return data_ ? data_->polygons.size() : 0; }
+std::size_t RayIndex::numPolygons() const { return data_ ? data_->details.size() : 0; }
 
 std::size_t RayIndex::memoryBytes() const {
   if (!data_) return 0;
   const detail::RayIndexData& d = *data_;
-  return d.nodes.capacity() * sizeof(d.nodes[0]) + d.leaves.capacity() * sizeof(d.leaves[0]) +
-         d.polygons.capacity() * sizeof(d.polygons[0]) + d.edges.capacity() * sizeof(d.edges[0]) +
+  return d.nodes.capacity() * sizeof(d.nodes[0]) + d.leafChunks.capacity() * sizeof(d.leafChunks[0]) +
          d.details.capacity() * sizeof(d.details[0]);
 }
 
@@ -176,11 +175,11 @@ RayHit hitOf(const detail::RayIndexData& d, const detail::Crossing& found, const
              const Vec3& worldEnd, const Placement& placement, bool rotated) {
   RayHit result;
   if (found.slot < 0) return result;
-  const detail::RayLayout::Polygon& best = d.polygons[std::size_t(found.slot)];
+  const detail::RayLayout::PolygonDetail& best = d.details[std::size_t(found.slot)];
   result.fraction = found.t;
   result.polygon = best.index;
   result.contents = best.contents;
-  result.material = d.details[std::size_t(found.slot)].material;
+  result.material = best.material;
   result.point = worldStart + (worldEnd - worldStart) * found.t;
   result.normal = rotated ? best.normal * placement.axis : best.normal;
   result.dist = best.dist + placement.origin.dot(result.normal);
@@ -188,7 +187,7 @@ RayHit hitOf(const detail::RayIndexData& d, const detail::Crossing& found, const
 }
 
 detail::Arrays arraysOf(const detail::RayIndexData& d) {
-  return {d.nodes.data(), d.leaves.data(), d.polygons.data(), d.edges.data(), d.details.data()};
+  return {d.nodes.data(), d.leafChunks.data(), d.details.data()};
 }
 
 /// Bits of the start cell and of the direction in castMany's sort key.

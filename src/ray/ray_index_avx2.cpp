@@ -98,13 +98,13 @@ class PacketPlanes {
   }
   /// Of the rays in `lanes`, those that may cross polygon p before their
   /// best (bestT), with where in tOut (written only when some ray may).
-  std::uint32_t candidates(const RayLayout::Polygon& p, const float* bestT, std::uint32_t lanes,
-                           float* tOut) const {
+  std::uint32_t candidates(const RayLayout::LeafHead& h, std::uint32_t k, const float* bestT,
+                           std::uint32_t lanes, float* tOut) const {
     if constexpr (!kFloatLanes) {
       return lanes;
     } else {
-      const __m256 nx = _mm256_set1_ps(float(p.normal.x)), ny = _mm256_set1_ps(float(p.normal.y));
-      const __m256 nz = _mm256_set1_ps(float(p.normal.z)), dist = _mm256_set1_ps(float(p.dist));
+      const __m256 nx = _mm256_set1_ps(float(h.x[k])), ny = _mm256_set1_ps(float(h.y[k]));
+      const __m256 nz = _mm256_set1_ps(float(h.z[k])), dist = _mm256_set1_ps(float(h.dist[k]));
       const auto dot = [&](const __m256* v) {
         return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, v[0]), _mm256_mul_ps(ny, v[1])),
                              _mm256_mul_ps(nz, v[2]));
@@ -129,18 +129,20 @@ class PacketPlanes {
   /// Of the rays in `lanes`, those passing inside every edge of polygon p:
   /// insideEdges for eight rays at once (the same products in the same
   /// order, so the same signs). Float lanes only (kFloatLanes).
-  std::uint32_t insideEdges(const Arrays& index, const RayLayout::Polygon& p, std::uint32_t lanes) const {
-    const RayLayout::EdgeLine* lines = index.edges + p.firstEdge;
-    for (std::uint32_t j = 0; j < p.numEdges && lanes; ++j) {
-      const Real* l = lines[j].p;
-      const auto term = [&](int e, int r) { return _mm256_mul_ps(_mm256_set1_ps(float(l[e])), line_[r]); };
+  std::uint32_t insideEdges(const RayLayout::LeafHead& h, std::uint32_t k, std::uint32_t lanes) const {
+    const RayLayout::EdgeRow* rows = edgeRows(h);
+    for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
+      const RayLayout::EdgeRow& row = rows[j];
+      const auto term = [&](int e, int r) {
+        return _mm256_mul_ps(_mm256_set1_ps(float(row.p[e][k])), line_[r]);
+      };
       __m256 product = _mm256_add_ps(term(0, 4), term(1, 5));
       product = _mm256_add_ps(product, term(2, 3));
       product = _mm256_add_ps(product, term(4, 0));
       product = _mm256_add_ps(product, term(5, 1));
       product = _mm256_add_ps(product, term(3, 2));
       const auto negative = std::uint32_t(_mm256_movemask_ps(product));
-      lanes &= lines[j].reversed ? negative : ~negative;  // inside: the sign the edge's use asks
+      lanes &= row.reversed[k] ? negative : ~negative;  // inside: the sign the edge's use asks
     }
     return lanes;
   }
@@ -182,27 +184,31 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
   std::uint32_t lanes = allLanes;
   for (;;) {
     if (ref & RayLayout::kLeaf) {
-      const RayLayout::Leaf& leaf = index.leaves[ref & ~RayLayout::kLeaf];
-      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-        const RayLayout::Polygon& poly = index.polygons[i];
-        if (!(poly.contents & mask)) continue;
+      const RayLayout::LeafHead& h = leafHead(index, ref);
+      const std::uint32_t count = leafCount(ref);
+      for (std::uint32_t i = 0; i < count; ++i) {
+        if (!(h.contents[i] & mask)) continue;
+        const std::uint32_t detail = h.firstDetail + i;
         alignas(32) float t[kPacket];
-        std::uint32_t l = planes.candidates(poly, bestT, lanes, t);
+        std::uint32_t l = planes.candidates(h, i, bestT, lanes, t);
         if constexpr (PacketPlanes::kFloatLanes) {
           // Several rays: their edge tests at once; one: its own.
           const bool several = (l & (l - 1)) != 0;
-          if (several) l = planes.insideEdges(index, poly, l);
+          if (several) l = planes.insideEdges(h, i, l);
           for (; l; l &= l - 1) {
             const int k = __builtin_ctz(l);
-            if (notBeyondBest(index, i, t[k], best[k], bestIndex[k]) &&
-                (several || insideEdges(index, i, rays[k])))
-              keepCrossing(index, i, rays[k], t[k], best[k], bestIndex[k]);
+            if (notBeyondBest(index, detail, t[k], best[k], bestIndex[k]) &&
+                (several || insideEdges(h, i, rays[k])))
+              keepCrossing(index, detail, rays[k], t[k], best[k], bestIndex[k]);
             bestT[k] = float(best[k].t);
           }
         } else {
           for (; l; l &= l - 1) {
             const int k = __builtin_ctz(l);
-            testPolygon(index, i, rays[k], best[k], bestIndex[k]);
+            Real tk;
+            if (crossesPlane(h, i, rays[k], tk) && notBeyondBest(index, detail, tk, best[k], bestIndex[k]) &&
+                insideEdges(h, i, rays[k]))
+              keepCrossing(index, detail, rays[k], tk, best[k], bestIndex[k]);
             bestT[k] = float(best[k].t);
           }
         }

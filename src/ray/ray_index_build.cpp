@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <new>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -24,7 +26,7 @@ constexpr int kWidth = RayLayout::kWidth;
 
 /// Polygons per leaf the builder aims for (the surface-area heuristic may
 /// stop earlier); more than this and a node is always split.
-constexpr std::uint32_t kMaxLeafPolygons = 4;
+constexpr std::uint32_t kMaxLeafPolygons = RayLayout::kLeafLanes;
 /// Below this depth splits follow the surface-area heuristic; deeper ones cut
 /// at the median, so that no input (at most 2^32 polygons) makes the
 /// hierarchy deeper than kSahDepthLimit + 32 = detail::kMaxDepth, which
@@ -200,30 +202,51 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
   const BinaryBuilder binary(boxes, std::move(contents));
   const std::vector<BinaryNode>& bn = binary.nodes();
 
-  // Polygons and their edge lines in leaf order.
-  d.polygons.reserve(usable.size());
+  // Each leaf: its head and edge rows in whole chunks, its polygons'
+  // details in leaf order.
   d.details.reserve(usable.size());
-  for (const std::uint32_t k : binary.order()) {
-    const CmPolygon& p = model.polygons()[usable[k]];
-    Index::Polygon r;
-    r.normal = p.plane.normal;
-    r.dist = p.plane.dist;
-    r.contents = p.contents;
-    r.index = std::int32_t(usable[k]);
-    r.firstEdge = std::uint32_t(d.edges.size());
-    r.numEdges = p.numEdges;
-    for (const std::int32_t e : model.edgesOf(p)) {
-      const CmEdge& edge = model.edges()[std::size_t(std::abs(e))];
-      const Pluecker line = Pluecker::fromLine(model.vertices()[std::size_t(edge.vertex[0])],
-                                               model.vertices()[std::size_t(edge.vertex[1])]);
-      Index::EdgeLine l{};
-      for (int c = 0; c < 6; ++c) l.p[c] = line[c];
-      l.reversed = e < 0;
-      d.edges.push_back(l);
+  const auto addLeaf = [&](const BinaryNode& leaf) {
+    using Head = Index::LeafHead;
+    using Row = Index::EdgeRow;
+    std::uint32_t rows = 0;
+    for (std::uint32_t lane = 0; lane < leaf.count; ++lane)
+      rows =
+          std::max(rows, std::uint32_t(model.polygons()[usable[binary.order()[leaf.first + lane]]].numEdges));
+    const std::size_t chunk = d.leafChunks.size();
+    if (chunk >= (Index::kLeaf >> Index::kLeafCountBits))  // (over 500 million leaves)
+      throw std::length_error("RayIndex: too many polygons");
+    const std::size_t bytes = sizeof(Head) + rows * sizeof(Row);
+    d.leafChunks.resize(chunk + (bytes + sizeof(Index::LeafChunk) - 1) / sizeof(Index::LeafChunk));
+    auto* head = new (d.leafChunks.data() + chunk) Head{};
+    auto* row = new (head + 1) Row[rows]{};
+    head->firstDetail = std::uint32_t(d.details.size());
+    head->numEdgeRows = rows;
+    for (std::uint32_t lane = 0; lane < leaf.count; ++lane) {
+      const std::uint32_t k = binary.order()[leaf.first + lane];
+      const CmPolygon& p = model.polygons()[usable[k]];
+      head->x[lane] = p.plane.normal.x;
+      head->y[lane] = p.plane.normal.y;
+      head->z[lane] = p.plane.normal.z;
+      head->dist[lane] = p.plane.dist;
+      head->contents[lane] = p.contents;
+      std::uint32_t j = 0;
+      for (const std::int32_t e : model.edgesOf(p)) {
+        const CmEdge& edge = model.edges()[std::size_t(std::abs(e))];
+        const Pluecker line = Pluecker::fromLine(model.vertices()[std::size_t(edge.vertex[0])],
+                                                 model.vertices()[std::size_t(edge.vertex[1])]);
+        for (int c = 0; c < 6; ++c) row[j].p[c][lane] = line[c];
+        row[j].reversed[lane] = e < 0;
+        ++j;
+      }
+      for (; j < rows; ++j) {  // a polygon of fewer edges repeats its first
+        for (int c = 0; c < 6; ++c) row[j].p[c][lane] = row[0].p[c][lane];
+        row[j].reversed[lane] = row[0].reversed[lane];
+      }
+      d.details.push_back(
+          {p.plane.normal, p.plane.dist, boxes[k], p.contents, std::int32_t(usable[k]), p.material});
     }
-    d.polygons.push_back(r);
-    d.details.push_back({boxes[k], p.material});
-  }
+    return Index::kLeaf | std::uint32_t(chunk) << Index::kLeafCountBits | (leaf.count - 1);
+  };
 
   // Collapse: each 8-wide node takes the binary node's children, then opens
   // the largest inner child until it has eight.
@@ -253,8 +276,7 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
     for (std::size_t k = 0; k < n; ++k) {
       const BinaryNode& c = bn[kids[k]];
       if (c.count) {
-        refs[k] = Index::kLeaf | std::uint32_t(d.leaves.size());
-        d.leaves.push_back({c.first, c.count});
+        refs[k] = addLeaf(c);
       } else {
         refs[k] = self(self, kids[k]);
       }

@@ -14,10 +14,8 @@ namespace cmkit::detail {
 /// What a RayIndex holds (built once, then shared by its copies).
 struct RayIndexData : RayLayout {
   std::vector<Node> nodes;
-  std::vector<Leaf> leaves;
-  std::vector<Polygon> polygons;
-  std::vector<EdgeLine> edges;
-  std::vector<PolygonDetail> details;  ///< parallel to polygons
+  std::vector<LeafChunk> leafChunks;   ///< the leaves, each a LeafHead and its EdgeRows
+  std::vector<PolygonDetail> details;  ///< the polygons indexed, in leaf order
   bool avx2 = false;
 };
 

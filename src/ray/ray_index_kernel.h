@@ -31,9 +31,7 @@ namespace cmkit::detail {
 /// What the walk reads of a RayIndex.
 struct Arrays {
   const RayLayout::Node* nodes;
-  const RayLayout::Leaf* leaves;
-  const RayLayout::Polygon* polygons;
-  const RayLayout::EdgeLine* edges;
+  const RayLayout::LeafChunk* leafChunks;
   const RayLayout::PolygonDetail* details;
 };
 
@@ -52,7 +50,7 @@ struct Ray {
 };
 
 /// The first crossing found: where, and the polygon's position in the
-/// index's polygon array (-1: none).
+/// index's details array (-1: none).
 struct Crossing {
   Real t;
   std::int32_t slot;
@@ -100,66 +98,116 @@ static inline bool signBit(double x) {
   return (bits >> 63) != 0;
 }
 
-/// Whether the ray passes inside every edge of the polygon in `slot` (the
-/// sign of each edge line's product with the ray's line).
-static inline bool insideEdges(const Arrays& index, std::uint32_t slot, const Ray& r) {
-  const RayLayout::Polygon& p = index.polygons[slot];
-  const RayLayout::EdgeLine* lines = index.edges + p.firstEdge;
-  const Real* ray = r.line;
-  for (std::uint32_t j = 0; j < p.numEdges; ++j) {
-    const Real* l = lines[j].p;
-    const Real product =
-        l[0] * ray[4] + l[1] * ray[5] + l[2] * ray[3] + l[4] * ray[0] + l[5] * ray[1] + l[3] * ray[2];
-    if (lines[j].reversed ^ std::uint32_t(signBit(product))) return false;  // outside this edge
-  }
+/// The leaf of a child reference: its head (its edge rows follow it) and
+/// how many of its lanes hold a polygon.
+static inline const RayLayout::LeafHead& leafHead(const Arrays& index, std::uint32_t ref) {
+  const std::uint32_t chunk = (ref & ~RayLayout::kLeaf) >> RayLayout::kLeafCountBits;
+  return *reinterpret_cast<const RayLayout::LeafHead*>(index.leafChunks + chunk);
+}
+static inline std::uint32_t leafCount(std::uint32_t ref) { return (ref & (RayLayout::kLeafLanes - 1)) + 1; }
+static inline const RayLayout::EdgeRow* edgeRows(const RayLayout::LeafHead& head) {
+  return reinterpret_cast<const RayLayout::EdgeRow*>(&head + 1);
+}
+
+/// The product of edge row `row`'s line in `lane` with a ray's line (the
+/// order of Pluecker::permutedInnerProduct): its sign says on which side of
+/// the edge the ray passes.
+static inline Real edgeProduct(const RayLayout::EdgeRow& row, std::uint32_t lane, const Real* ray) {
+  return row.p[0][lane] * ray[4] + row.p[1][lane] * ray[5] + row.p[2][lane] * ray[3] +
+         row.p[4][lane] * ray[0] + row.p[5][lane] * ray[1] + row.p[3][lane] * ray[2];
+}
+
+/// Whether the ray passes inside every edge of the polygon in `lane` of
+/// the leaf (the sign of each edge line's product with the ray's line).
+static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r) {
+  const RayLayout::EdgeRow* rows = edgeRows(head);
+  for (std::uint32_t j = 0; j < head.numEdgeRows; ++j)
+    if (rows[j].reversed[lane] ^ std::uint32_t(signBit(edgeProduct(rows[j], lane, r.line))))
+      return false;  // outside this edge
   return true;
 }
 
-/// Whether a crossing at t of the polygon in `slot` may replace `best`: not
+/// Whether a crossing at t of the polygon `detail` may replace `best`: not
 /// beyond it, and at the same t only from a lower polygon index.
-static inline bool notBeyondBest(const Arrays& index, std::uint32_t slot, Real t, const Crossing& best,
+static inline bool notBeyondBest(const Arrays& index, std::uint32_t detail, Real t, const Crossing& best,
                                  std::int32_t bestIndex) {
-  return !(t > best.t || (t == best.t && index.polygons[slot].index > bestIndex));
+  return !(t > best.t || (t == best.t && index.details[detail].index > bestIndex));
 }
 
-/// The last part of acceptCrossing, for a crossing at t inside every edge
-/// of the polygon in `slot` and not beyond the best: keeps it as `best`
-/// when it lies in the polygon's acceptance box.
-static inline void keepCrossing(const Arrays& index, std::uint32_t slot, const Ray& r, Real t, Crossing& best,
-                                std::int32_t& bestIndex) {
-  const Bounds& box = index.details[slot].acceptBox;
+/// The last part of a polygon's test, for a crossing at t inside every
+/// edge of the polygon `detail` and not beyond the best: keeps it as
+/// `best` when it lies in the polygon's acceptance box.
+static inline void keepCrossing(const Arrays& index, std::uint32_t detail, const Ray& r, Real t,
+                                Crossing& best, std::int32_t& bestIndex) {
+  const Bounds& box = index.details[detail].acceptBox;
   const Real x = r.start[0] + r.dir[0] * t, y = r.start[1] + r.dir[1] * t, z = r.start[2] + r.dir[2] * t;
   if (x < box.min.x || y < box.min.y || z < box.min.z || x > box.max.x || y > box.max.y || z > box.max.z)
     return;
   best.t = t;
-  best.slot = std::int32_t(slot);
-  bestIndex = index.polygons[slot].index;
+  best.slot = std::int32_t(detail);
+  bestIndex = index.details[detail].index;
 }
 
-/// The second half of testPolygon: the ray crosses the plane of the
-/// polygon in `slot` at t (front face, start not behind, end not in front);
-/// keeps it as `best` when it is not beyond the best so far and the polygon
-/// accepts it (inside every edge, within the acceptance box).
-static inline void acceptCrossing(const Arrays& index, std::uint32_t slot, const Ray& r, Real t,
-                                  Crossing& best, std::int32_t& bestIndex) {
-  if (notBeyondBest(index, slot, t, best, bestIndex) && insideEdges(index, slot, r))
-    keepCrossing(index, slot, r, t, best, bestIndex);
-}
-
-/// Tests one polygon (by slot), keeping `best` the first crossing; equal
-/// crossings go to the lower model polygon index (`bestIndex`).
-static inline void testPolygon(const Arrays& index, std::uint32_t slot, const Ray& r, Crossing& best,
-                               std::int32_t& bestIndex) {
-  const RayLayout::Polygon& p = index.polygons[slot];
-  const Vec3& n = p.normal;
-  if (!(n.x * r.dir[0] + n.y * r.dir[1] + n.z * r.dir[2] < 0)) return;  // only front faces
-  const Real d1 = n.x * r.start[0] + n.y * r.start[1] + n.z * r.start[2] - p.dist;
-  if (d1 < 0) return;  // starts behind
-  const Real d2 = n.x * r.end[0] + n.y * r.end[1] + n.z * r.end[2] - p.dist;
-  if (d2 > 0) return;  // ends in front
+/// The plane part of a polygon's test for lane k of a leaf: whether the ray
+/// crosses the front face (front face, start not behind, end not in front,
+/// a crossing), and where (t; meaningful only then).
+static inline bool crossesPlane(const RayLayout::LeafHead& h, std::uint32_t k, const Ray& r, Real& t) {
+  const Real facing = h.x[k] * r.dir[0] + h.y[k] * r.dir[1] + h.z[k] * r.dir[2];
+  const Real d1 = h.x[k] * r.start[0] + h.y[k] * r.start[1] + h.z[k] * r.start[2] - h.dist[k];
+  const Real d2 = h.x[k] * r.end[0] + h.y[k] * r.end[1] + h.z[k] * r.end[2] - h.dist[k];
   const Real denom = d1 - d2;
-  if (!(denom > 0)) return;
-  acceptCrossing(index, slot, r, d1 / denom, best, bestIndex);
+  t = d1 / denom;
+  return (facing < 0) & !(d1 < 0) & !(d2 > 0) & (denom > 0);
+}
+
+/// Tests the polygons of a leaf (reference `ref`), keeping `best` the first
+/// crossing; equal crossings go to the lower model polygon index
+/// (`bestIndex`). Every step on all lanes alike, as plain lane loops
+/// without branches (the compiler may make them SIMD): the planes and
+/// contents, then, while some lane is left, the edge rows. A lane's answer
+/// is that of testing its polygon alone (the same operations in the same
+/// order), and lanes are kept in order, so a leaf answers as its polygons
+/// tested one by one.
+static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r, Crossing& best,
+                            std::int32_t& bestIndex) {
+  constexpr std::uint32_t kLanes = RayLayout::kLeafLanes;
+  const RayLayout::LeafHead& h = leafHead(index, ref);
+  Real t[kLanes];
+  std::uint32_t lanes = 0;
+  for (std::uint32_t k = 0; k < kLanes; ++k) {
+    const bool crosses = crossesPlane(h, k, r, t[k]);
+    lanes |= std::uint32_t(crosses & ((h.contents[k] & r.mask) != 0) & !(t[k] > best.t)) << k;
+  }
+  if (!lanes) return;
+  // The first candidate's details are read if it passes its edges: their
+  // load overlaps the edge tests.
+  __builtin_prefetch(index.details + h.firstDetail + __builtin_ctz(lanes));
+  const RayLayout::EdgeRow* rows = edgeRows(h);
+  for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
+    std::uint32_t outside = 0;
+    for (std::uint32_t k = 0; k < kLanes; ++k)
+      outside |= (rows[j].reversed[k] ^ std::uint32_t(signBit(edgeProduct(rows[j], k, r.line)))) << k;
+    lanes &= ~outside;
+  }
+  for (; lanes; lanes &= lanes - 1) {
+    const auto k = std::uint32_t(__builtin_ctz(lanes));
+    const std::uint32_t detail = h.firstDetail + k;
+    if (notBeyondBest(index, detail, t[k], best, bestIndex))
+      keepCrossing(index, detail, r, t[k], best, bestIndex);
+  }
+}
+
+/// Asks for the first cache lines of the children in `hits` (bit k: child
+/// k) before the walk reads them: the nearest at once, the others after
+/// it, and a node's or leaf's first lines are what its test reads first.
+static inline void prefetchChildren(const Arrays& index, const RayLayout::Node& n, unsigned hits) {
+  for (; hits; hits &= hits - 1) {
+    const std::uint32_t ref = n.child[__builtin_ctz(hits)];
+    const char* p = (ref & RayLayout::kLeaf) ? reinterpret_cast<const char*>(&leafHead(index, ref))
+                                             : reinterpret_cast<const char*>(index.nodes + ref);
+    __builtin_prefetch(p);
+    __builtin_prefetch(p + 64);
+  }
 }
 
 /// The walk: front to back, nearest child first, children entered beyond
@@ -179,14 +227,13 @@ static Crossing walk(const Arrays& index, const Ray& r, EnteredChildren enteredC
   std::uint32_t ref = 0;
   for (;;) {
     if (ref & RayLayout::kLeaf) {
-      const RayLayout::Leaf& leaf = index.leaves[ref & ~RayLayout::kLeaf];
-      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
-        if (index.polygons[i].contents & r.mask) testPolygon(index, i, r, best, bestIndex);
+      testLeaf(index, ref, r, best, bestIndex);
     } else {
       const RayLayout::Node& n = index.nodes[ref];
       alignas(32) float entry[kWidth];
       const auto hits = unsigned(enteredChildren(n, r, float(best.t), entry));
       if (hits) {
+        prefetchChildren(index, n, unsigned(hits));
         const int first = __builtin_ctz(hits);
         const unsigned rest = hits & (hits - 1);
         if (rest == 0) {  // one child: no ordering

@@ -15,7 +15,7 @@
 
 namespace cmkit::detail {
 
-/// The layout of a RayIndex: its nodes, leaves, polygons and edge lines.
+/// The layout of a RayIndex: its nodes, leaves and polygon details.
 struct RayLayout {
   /// Children per node.
   static constexpr int kWidth = 8;
@@ -30,30 +30,46 @@ struct RayLayout {
   };
   static constexpr std::uint32_t kLeaf = 0x80000000u;
 
-  /// A leaf: a run of polygons.
-  struct Leaf {
-    std::uint32_t first = 0;
-    std::uint32_t count = 0;
+  /// Polygons per leaf at most: the lanes of a leaf's blocks.
+  static constexpr std::uint32_t kLeafLanes = 4;
+  /// A child reference to a leaf is kLeaf | chunk << kLeafCountBits |
+  /// (count - 1): the leaf is stored from leafChunks[chunk] on (a LeafHead,
+  /// then its EdgeRows), its polygons are lanes 0 .. count - 1.
+  static constexpr int kLeafCountBits = 2;
+  static_assert(1u << kLeafCountBits == kLeafLanes);
+  /// The unit leaves are stored in (a cache line).
+  struct alignas(64) LeafChunk {
+    unsigned char bytes[64];
   };
-  /// What the crossing test needs of a polygon, in leaf order (32 bytes).
-  struct Polygon {
+  /// A leaf's polygons side by side, lane k one polygon: their planes,
+  /// contents, where their details start and how many edge rows follow.
+  /// The walk tests every lane at once (no branch per polygon) from one
+  /// run of memory that holds all it reads of a leaf (float builds: the
+  /// head in two cache lines, each edge row in under two), in place of a
+  /// polygon record and edge lines elsewhere. Unused lanes have a zero
+  /// normal (it faces no ray) and contents 0.
+  struct alignas(64) LeafHead {
+    Real x[kLeafLanes], y[kLeafLanes], z[kLeafLanes], dist[kLeafLanes];
+    std::uint32_t contents[kLeafLanes];
+    std::uint32_t firstDetail;  ///< details[] index of lane 0 (lane k: + k)
+    std::uint32_t numEdgeRows;  ///< the most edges of a lane's polygon
+  };
+  /// Edge j of each lane's polygon: its line (Pluecker coordinates, in the
+  /// model's stored direction; p[c][k] coordinate c of lane k) and whether
+  /// the polygon uses it reversed. A polygon with fewer edges repeats its
+  /// first edge (the same test again, so no other answer).
+  struct alignas(16) EdgeRow {
+    Real p[6][kLeafLanes];
+    std::uint32_t reversed[kLeafLanes];
+  };
+  /// What is read of a polygon that accepts a crossing (and for the answer).
+  struct PolygonDetail {
     Vec3 normal;
     Real dist = 0;
+    Bounds acceptBox;  ///< where the polygon accepts a crossing
     std::uint32_t contents = 0;
     std::int32_t index = 0;  ///< in the model
-    std::uint32_t firstEdge = 0;
-    std::uint32_t numEdges = 0;
-  };
-  /// What is read only for a polygon that accepts a crossing.
-  struct PolygonDetail {
-    Bounds acceptBox;  ///< where the polygon accepts a crossing
     std::int32_t material = -1;
-  };
-  /// An edge line of a polygon, in the model's stored direction, and whether
-  /// the polygon uses it reversed.
-  struct EdgeLine {
-    Real p[6];
-    std::uint32_t reversed;
   };
 };
 
