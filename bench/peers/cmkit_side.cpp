@@ -53,6 +53,11 @@ bool CmkitEngine::buildModel(const Scene& scene) {
 void CmkitEngine::buildRayIndex() { s_->rays = std::make_unique<cmkit::RayIndex>(*s_->model); }
 
 bool CmkitEngine::rayIndexUsesAvx2() const { return s_->rays && s_->rays->usesAvx2(); }
+std::string CmkitEngine::rayIndexSize() const {
+  if (!s_->rays) return "none";
+  return std::to_string(s_->rays->numPolygons()) + " polygons, " + std::to_string(s_->rays->numNodes()) +
+         " nodes, " + std::to_string(s_->rays->memoryBytes() / 1024) + " KB";
+}
 
 bool CmkitEngine::prepare(const char* trmSpec, const float (&axis)[9], ShapeSpec& spec) {
   auto trm = cmkit::TraceModel::parse(trmSpec);

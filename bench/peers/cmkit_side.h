@@ -4,6 +4,8 @@
 // rays through RayIndex::cast().
 #pragma once
 
+#include <string>
+
 #include <memory>
 #include <span>
 
@@ -22,6 +24,8 @@ class CmkitEngine {
   void buildRayIndex();
   /// Whether the ray index uses the AVX2 node test.
   bool rayIndexUsesAvx2() const;
+  /// The ray index's size: "N polygons, M nodes, K KB".
+  std::string rayIndexSize() const;
   /// The moving shape: a cmkit::TraceModel::parse spec ("point",
   /// "box:...", "cylinder:8:...") turned by `axis` (rows = the shape's
   /// axes). Fills `spec` with what the peers get. False on a bad spec.

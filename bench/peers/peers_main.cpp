@@ -268,6 +268,7 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
   r.buildMs[kCmkit] = fastest(buildPasses, 1, [&] { ok = cmkit.buildModel(scene); }) * 1e-6;
   if (!ok) return r;
   r.rayIndexMs = fastest(buildPasses, 1, [&] { cmkit.buildRayIndex(); }) * 1e-6;
+  if (verbose) std::printf("  cmkit's ray index: %s\n", cmkit.rayIndexSize().c_str());
   for (int e = kJolt; e < kEngines; ++e)
     if (peers[e]) {
       r.present[e] = true;
@@ -367,7 +368,8 @@ void help() {
       "  --map MAP     the map of the lt4 scene (default: lt4.map of the shared data or data/)\n"
       "  --markdown    print the tables as Markdown\n"
       "  --threads N   threads of the reference (not timed; default 2)\n"
-      "  --verbose     the reference's time and each engine's largest distance error per kind\n"
+      "  --verbose     the reference's time and each engine's largest distance error per kind;\n"
+      "                the size of cmkit's ray index\n"
       "  --list        also every query on which an engine disagrees (before its kind's line)\n"
       "  --kinds K,..  only these kinds (point ray, box, box+axis, cylinder:8, cylinder:8+axis;\n"
       "                default all), e.g. --kinds 'point ray,box+axis'\n"
