@@ -178,25 +178,21 @@ bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum, double
 /// near-double root) could not fall inside either.
 constexpr double kNoRootMargin = 1e-9;
 
-namespace {
-
-/// Whether a u^2 + 2 b u + c clearly keeps one sign on [lo, hi]: most calls
-/// have no root before hi (the nearest hit so far), and when it has the
-/// same sign, clearly, at both ends and no extremum between them (its slope
-/// a u + b has one sign) it has none. Deciding that takes a few products
-/// instead of a square root and two divisions.
-bool clearlyNoRootBetween(double a, double b, double c, double lo, double hi) {
-  if (!std::isfinite(hi)) return false;
-  const double gLo = (a * lo + 2 * b) * lo + c, gHi = (a * hi + 2 * b) * hi + c;
-  const double sizeLo = (std::fabs(a) * lo + 2 * std::fabs(b)) * lo + std::fabs(c);
-  const double sizeHi = (std::fabs(a) * hi + 2 * std::fabs(b)) * hi + std::fabs(c);
-  const bool oneSign = gLo * gHi > 0 && (a * lo + b) * (a * hi + b) > 0;
-  return oneSign && std::fabs(gLo) > kNoRootMargin * sizeLo && std::fabs(gHi) > kNoRootMargin * sizeHi;
-}
-
-/// Both roots of a u^2 + 2 b u + c = 0 (r1 <= r2; r2 infinite when a = 0):
-/// false when it has no crossing.
-bool quadraticRoots(double a, double b, double c, QuadraticRoots& roots) {
+bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root) {
+  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
+  // Most calls have no root before hi (the nearest hit so far): the
+  // quadratic keeps one sign on [lo, hi] when it has the same sign, clearly,
+  // at both ends and no extremum between them (its slope a u + b has one
+  // sign). Deciding that takes a few products instead of a square root and
+  // two divisions.
+  if (std::isfinite(hi)) {
+    const double gLo = (a * lo + 2 * b) * lo + c, gHi = (a * hi + 2 * b) * hi + c;
+    const double sizeLo = (std::fabs(a) * lo + 2 * std::fabs(b)) * lo + std::fabs(c);
+    const double sizeHi = (std::fabs(a) * hi + 2 * std::fabs(b)) * hi + std::fabs(c);
+    const bool oneSign = gLo * gHi > 0 && (a * lo + b) * (a * hi + b) > 0;
+    if (oneSign && std::fabs(gLo) > kNoRootMargin * sizeLo && std::fabs(gHi) > kNoRootMargin * sizeHi)
+      return false;
+  }
   double r1, r2;
   if (a == 0) {
     if (b == 0) return false;
@@ -211,37 +207,15 @@ bool quadraticRoots(double a, double b, double c, QuadraticRoots& roots) {
     r2 = c / q;
   }
   if (r2 < r1) std::swap(r1, r2);
-  roots = {r1, r2};
-  return true;
-}
-
-/// The smaller of the roots in [lo, hi).
-bool rootWithin(const QuadraticRoots& roots, double lo, double hi, double& root) {
-  for (const double r : {roots.r1, roots.r2})
-    if (r >= lo && r < hi && std::isfinite(r)) {
-      root = r;
-      return true;
-    }
+  if (r1 >= lo && r1 < hi && std::isfinite(r1)) {
+    root = r1;
+    return true;
+  }
+  if (r2 >= lo && r2 < hi && std::isfinite(r2)) {
+    root = r2;
+    return true;
+  }
   return false;
-}
-
-}  // namespace
-
-bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root,
-                        QuadraticRoots* roots) {
-  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
-  if (clearlyNoRootBetween(a, b, c, lo, hi)) return false;
-  QuadraticRoots found;
-  if (!quadraticRoots(a, b, c, found)) return false;
-  if (roots) *roots = found;
-  return rootWithin(found, lo, hi, root);
-}
-
-bool firstQuadraticRootOf(double a, double b, double c, const QuadraticRoots& roots, double lo, double hi,
-                          double& root) {
-  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
-  if (clearlyNoRootBetween(a, b, c, lo, hi)) return false;
-  return rootWithin(roots, lo, hi, root);
 }
 
 Vec3 rotateByTanHalf(const Vec3& p, const Vec3& origin, const Vec3& axis, double tanHalf) {

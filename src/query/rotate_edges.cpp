@@ -107,8 +107,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   const double f1 = lines.line.atStart(turn);
   const double f2 = lines.lineIn.atStart(turn);
   double u;
-  Sinusoid curve;             // the product whose root u is (none when u = 0 in the band)
-  QuadraticRoots curveRoots;  // both of its roots
+  Sinusoid curve;  // the product whose root u is (none when u = 0 in the band)
   bool hasCurve = true;
   const bool inBand = (f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0);
   if (inBand) {
@@ -125,11 +124,11 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
       const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
       curve = lines.lineIn.sinusoid(turn, sign);
-      if (!sinusoidRoot(curve, furthest, rw.maxTan, u, &curveRoots)) return;
+      if (!sinusoidRoot(curve, furthest, rw.maxTan, u)) return;
     }
   } else {
     curve = lines.lineEps.sinusoid(turn, sign);
-    if (!sinusoidRoot(curve, 0, rw.maxTan, u, &curveRoots)) return;
+    if (!sinusoidRoot(curve, 0, rw.maxTan, u)) return;
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
@@ -140,8 +139,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
     // original stopped at the first root: a trace-model edge swept past the
     // model edge's line outside it, then across the edge itself, went
     // through the corner unseen.)
-    // (The roots of the first search: no second square root.)
-    if (!hasCurve || !nextSinusoidRoot(curve, curveRoots, std::nextafter(u, kInfinity), rw.maxTan, u)) return;
+    if (!hasCurve || !sinusoidRoot(curve, std::nextafter(u, kInfinity), rw.maxTan, u)) return;
     a = rotateByTanHalf(te.start, rw.origin, rw.axis, sign * u);
     b = rotateByTanHalf(te.end, rw.origin, rw.axis, sign * u);
     // At a root the two lines meet: whether within both segments is decided

@@ -231,19 +231,7 @@ struct Sinusoid {
 /// `root`. False when there is none. Numerically careful (no cancellation,
 /// no division by zero): never produces NaN or Inf. A double root (the
 /// curve only touches zero) is no crossing.
-/// Both roots of such a quadratic, r1 <= r2 (r2 infinite when a = 0).
-struct QuadraticRoots {
-  double r1 = 0, r2 = 0;
-};
-/// `roots`, when given, receives both roots whenever they were computed
-/// (always when the answer is true).
-bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root,
-                        QuadraticRoots* roots = nullptr);
-/// firstQuadraticRoot(a, b, c, lo, hi, root) bit for bit, given the roots a
-/// call with the same a, b, c computed (no square root, no division):
-/// for a second root of the same quadratic after a first.
-bool firstQuadraticRootOf(double a, double b, double c, const QuadraticRoots& roots, double lo, double hi,
-                          double& root);
+bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root);
 
 /// p turned about the line (origin, unit axis) by the angle whose half has
 /// the tangent `tanHalf` (signed: positive = the positive-angle direction).
@@ -258,17 +246,9 @@ inline double firstExtremumTan(double v1, double v2) {
   return k >= 0 ? 1 / (k + s) : s - k;  // the cancellation-free form of -k + s
 }
 
-/// First u in [lo, maxTan) where the sinusoid is zero (`roots`, when
-/// given: as firstQuadraticRoot's).
-inline bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u,
-                         QuadraticRoots* roots = nullptr) {
-  return firstQuadraticRoot(s.v0 - s.v2, s.v1, s.v0 + s.v2, lo, maxTan, u, roots);
-}
-/// sinusoidRoot(s, lo, maxTan, u) bit for bit, given the roots an earlier
-/// sinusoidRoot of s found.
-inline bool nextSinusoidRoot(const Sinusoid& s, const QuadraticRoots& roots, double lo, double maxTan,
-                             double& u) {
-  return firstQuadraticRootOf(s.v0 - s.v2, s.v1, s.v0 + s.v2, roots, lo, maxTan, u);
+/// First u in [lo, maxTan) where the sinusoid is zero.
+inline bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u) {
+  return firstQuadraticRoot(s.v0 - s.v2, s.v1, s.v0 + s.v2, lo, maxTan, u);
 }
 
 /// Records the contact a rotation test found on `poly` as the query's.
