@@ -118,15 +118,25 @@ struct Soak::Impl {
   /// start did not (by the exact separating-axis depth, deeper than
   /// kPrecisionDepth) whose faces to cross all have polygons is a missed
   /// collision whatever penetration() or the move's angle say, so neither
-  /// the precision nor the grazing class can hide one.
+  /// the precision nor the grazing class can hide one. Next, an end that
+  /// overlaps (by any depth) a brush the start did not, entered where a face
+  /// to cross has no polygon at all, is brush-face: nothing could stop the
+  /// move there (lt4's visportal brushes: the walker slid 0.0001 to 0.1
+  /// units through their visportal side, a precision or grazing case
+  /// before), so precision and grazing are left to faces with polygons.
   /// `detail` (when given) gets the brushes entered: number, depth, closed or open.
   Finding classify(Ctx& c, const Shape& s, const Vec3& from, const Vec3& end,
                    std::string* detail = nullptr) const;
 
-  /// Whether every face the trace model had to cross to get into the brush
-  /// has a polygon: the planes the whole trace model was in front of at the
-  /// start (all planes if there is none).
-  bool closedForMove(const CmBrush& brush, const std::vector<Vec3>& vFrom) const;
+  /// The faces the trace model had to cross to get into the brush (the
+  /// planes the whole trace model was in front of at the start; all planes
+  /// if there is none): closed when every one is covered by polygons, bare
+  /// when one has no polygon at all (WorldFacts::faceBare).
+  struct EntryCover {
+    bool closed = false;
+    bool bare = false;
+  };
+  EntryCover entryCover(const CmBrush& brush, const std::vector<Vec3>& vFrom) const;
 
   void sweep(Ctx& c, const Shape& shape) const;
 
