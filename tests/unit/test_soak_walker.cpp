@@ -4,7 +4,9 @@
 // with its wish direction into it is `cornered` (the walk's), one in a pit
 // a little wider than the box is `no-room` (the map's), and walkers whose
 // step moves them (in the open, or sliding along a wall) are `unexplained`
-// (the class a query fault would show as; these walkers are not stuck).
+// (the class a query fault would show as; these walkers are not stuck),
+// but one wishing within 3 degrees of a wall's normal creeps along it:
+// `pressing` (the walk's).
 // And the class of a walker's slide that ends in a brush through a side
 // without polygons (lt4's visportal brushes): brush-face, the map's.
 #if CMKIT_TEST_SOAK
@@ -122,6 +124,22 @@ TEST_F(SoakWalker, WishAlongAWallIsNotCornered) {
   EXPECT_EQ(diagnose({-239.75f, -239.75f, 0.25f}, wishToward(-1, 0.5f), detail), StuckCause::Unexplained)
       << detail;
   EXPECT_EQ(diagnose({0, 0, 0.25f}, wishToward(1, 0), detail), StuckCause::Unexplained) << detail;
+}
+
+// Against the room's -y wall (0.25 units, the clip epsilon, from it) with
+// the wish 2.1 and 2.45 degrees from the wall's normal (the two stuck
+// walkers of lt4 at 200 000 steps, robust edges): the wall leaves 1.4 and
+// 1.6 units/s of each step's 36.7 along it, which the next step's friction
+// takes: the walker creeps, pressing. At 10 degrees it slides away (6.4
+// units/s a step, 0.1 units a step): not stuck, unexplained if it were.
+TEST_F(SoakWalker, WishNearlyIntoAWallIsPressing) {
+  std::string detail;
+  EXPECT_EQ(diagnose({0, -239.75f, 0.25f}, wishToward(-0.037f, -0.999f), detail), StuckCause::Pressing)
+      << detail;
+  EXPECT_EQ(diagnose({0, -239.75f, 0.25f}, wishToward(0.043f, -0.999f), detail), StuckCause::Pressing)
+      << detail;
+  EXPECT_EQ(diagnose({0, -239.75f, 0.25f}, wishToward(-0.174f, -0.985f), detail), StuckCause::Unexplained)
+      << detail;
 }
 
 // In the pit the box can move 0.25 units along an axis (0.35 diagonally),

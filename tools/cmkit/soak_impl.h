@@ -43,6 +43,16 @@ constexpr int kMaxSlidePlanes = move::kMaxClipPlanes;
 /// kRoomProbe units) along each of kRoomDirections horizontal directions,
 /// flat or lifted by the player's step height.
 constexpr Real kRoomProbe = 4.0f;
+/// A stuck walker whose wish is within this many degrees of the (inward)
+/// normal of a plane its step from rest stops on is pressing into a wall
+/// (movement.h): each step friction first takes the speed the last one left
+/// (6 x 100 units/s a second below the stop speed, 10 a step), then the
+/// acceleration adds 10 x 220 / 60 = 36.7 units/s along the wish, of which
+/// the wall leaves 36.7 sin(angle) along it: within 3 degrees, under 1.92
+/// units a second (60 steps; cmkit walk measures 1.92 at 3 degrees, 0.96 at
+/// 1.5), so a window of kStuckSteps that also holds part of another wish, or
+/// an angle under 1.56 degrees, makes less than kStuckDistance of progress.
+constexpr Real kPressingDegrees = 3.0f;
 constexpr int kRoomDirections = 8;
 constexpr Real kTwoPi = 6.2831853f;
 
@@ -187,6 +197,9 @@ struct Soak::Impl {
   ///              contact planes clipped the velocity to ~0 while another
   ///              direction has room (the walk's: its wish pointed into a
   ///              corner or crease);
+  ///  pressing    else, the wish is within kPressingDegrees of the inward
+  ///              normal of a plane that stops its step from rest (the
+  ///              walk's: the player creeps along the wall, movement.h);
   ///  unexplained else: the steps moved the box, yet it made no progress
   ///              (would hint at a query fault).
   /// Half, not all: the wish direction changes every 40 steps, so a walker
