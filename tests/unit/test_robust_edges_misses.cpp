@@ -300,8 +300,9 @@ TEST(RobustEdgesMisses, PointTraceAcrossTJunctionOnADiagonal) {
 }
 
 // The T-junction's vertex welded 0.0015 units off a's edge: a sliver
-// between the tops that every point trace through it crosses, in any
-// precision. Robust edges cut a at the welded vertex.
+// between the tops that every point trace through it crosses. Robust edges
+// cut a at the welded vertex. (The original's answer is pinned in the float
+// build, where the sliver was measured.)
 TEST(RobustEdgesMisses, PointTraceThroughAWeldedTJunction) {
   const Vec3 start{85.7608337f, 35.5007401f, 79.2730255f}, end{90.8596497f, 32.3238106f, 58.7553291f};
   QueryWork work;
@@ -311,6 +312,7 @@ TEST(RobustEdgesMisses, PointTraceThroughAWeldedTJunction) {
   const PointTrace r = tracePoint(*robust, start, end, work);
   EXPECT_LT(r.r.fraction, 1);
   EXPECT_EQ(r.atEnd, 0u) << "fraction " << r.r.fraction;
+  if constexpr (kDoublePrecision) return;
   const PointTrace o = tracePoint(*original, start, end, work);
   EXPECT_EQ(o.r.fraction, 1) << "the original's edges: the point passes through the sliver";
   EXPECT_NE(o.atEnd, 0u);
@@ -365,5 +367,7 @@ TEST(RobustEdgesMisses, PointTracesAcrossCoplanarSeams) {
     if (mapOriginalMisses)
       std::printf("  %s: the original's edges let %d of %d through\n", map.name, mapOriginalMisses, run);
   }
-  EXPECT_GT(originalMisses, 0) << "the seams of these maps are the original's cracks";
+  if constexpr (!kDoublePrecision) {
+    EXPECT_GT(originalMisses, 0) << "the seams of these maps are the original's cracks";
+  }
 }
