@@ -48,9 +48,14 @@ struct BuildOptions {
   /// polygons as one sheet: the line a two-sided polygon shares with its
   /// reversed copy is not a sharp fold, so its epsilon edge lies 0.25 units
   /// out, not the original's 0.83 (and more where neighbours add to it), and
-  /// traces stop 0.25 units from a two-sided surface. The .cm file does not
-  /// store edge normals: a .cm written from such a model loads with the
-  /// original's. See docs/reliability.md and docs/fidelity.md.
+  /// traces stop 0.25 units from a two-sided surface. And it cuts a polygon
+  /// where a vertex of a coplanar polygon lies on its edge (a T-junction:
+  /// a face against two, a face chopped where a brush stands on it), so that
+  /// the seam is made of shared edges and a point trace cannot pass between
+  /// the two (map models only; lt4's world model has half again as many
+  /// polygons). The .cm file does not store edge normals: a .cm written from
+  /// such a model loads with the original's. See docs/reliability.md and
+  /// docs/fidelity.md.
   bool robustEdges = false;
 };
 

@@ -81,6 +81,12 @@ inline constexpr Real kContinuousEpsilon = 0.005f;
 /// brush planes of overlapping brushes are coplanar to float precision, and
 /// genuine creases are far steeper.
 inline constexpr Real kRobustEdgeParallelDot = 0.99996f;
+/// BuildOptions::robustEdges: a vertex of a coplanar polygon (normals as
+/// kRobustEdgeParallelDot, planes this close) this near to a polygon's edge,
+/// and this far from its ends, splits the polygon there (a T-junction). The
+/// welding distance: vertices this close are one vertex elsewhere, and
+/// welding moves a junction's vertex off its edge by up to this.
+inline constexpr Real kTJunctionEpsilon = kVertexEpsilon;
 /// original: polygon planes this close (normal components and distance) are
 /// treated as coplanar when merging.
 inline constexpr Real kNormalEpsilon = 0.01f;

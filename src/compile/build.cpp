@@ -29,6 +29,9 @@ ModelPtr ModelBuilder::build() {
     convertPrimitivesToPolygons(brushPrims);
   }
   mergePolygons();
+  // Robust edges, maps only: T-junctions between coplanar polygons split, so
+  // that their seams are shared edges (t_junctions.cpp; not the original's).
+  if (robustEdges_ && !mesh_) splitPolygonsAtTJunctions();
   markInternalEdges();
   // The immutable layout: compacted arrays, the tree flattened in pre-order.
   ModelArrays model;

@@ -58,6 +58,11 @@ inline Real normalizeLikeOriginal(Vec3& v) {
   return inv * sq;
 }
 
+/// The edge hash's key of the directed vertex pair (v0, v1).
+inline std::uint64_t edgeKey(int v0, int v1) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v0)) << 32) | static_cast<std::uint32_t>(v1);
+}
+
 /// "None" for the int indices of the build state: no node, no reference, no
 /// material, the end of a reference list.
 inline constexpr int kNone = -1;
@@ -223,6 +228,8 @@ class ModelBuilder {
   /// search, a new vertex if none matches.
   bool findOrAddVertex(const Vec3& vert, int& vertexNum);
   bool getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1num);
+  /// A new edge from v1num to v2num with one user, in the edge hash.
+  int addEdge(int v1num, int v2num);
   void createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum);
   void polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum);
   void warn(const std::string& message);
@@ -291,6 +298,32 @@ class ModelBuilder {
   bool walkReaches(int node, const Bounds& bounds) const;
   int tryMergePolygons(int p1, int p2);
   void replacePolygons(int node, int p1, int p2, int newp);
+
+  // ---- t_junctions.cpp (robust edges only)
+  /// A vertex to insert into a polygon's edge: where along it (0..1), which.
+  struct EdgeSplit {
+    double t = 0;
+    int vertexNum = kNone;
+  };
+  /// Polygons with a vertex of a coplanar neighbour on an edge, replaced by
+  /// convex pieces whose outlines include that vertex.
+  void splitPolygonsAtTJunctions();
+  /// Per edge of the polygon, the coplanar neighbours' vertices on it.
+  std::vector<std::vector<int>> tJunctionsOf(int polygon);
+  /// Those of `verts` on the edge (within kTJunctionEpsilon, away from its
+  /// ends), in order along it as the signed edge number runs.
+  std::vector<EdgeSplit> splitsAlong(int edgeNum, const std::vector<int>& verts) const;
+  void cutPolygon(int polygon, const std::vector<std::vector<EdgeSplit>>& splits);
+  /// The edge a piece runs along from vertex `from` to `to`: one whose only
+  /// user runs the other way (shared), else a new one. (getEdge assumes an
+  /// edge's one user runs it as stored; once cut polygons have given up
+  /// their edges, the one left may run it backwards.)
+  int pieceEdge(int from, int to);
+  /// Per edge, while T-junctions are split: +1 or -1, the direction its one
+  /// user runs it (0: not one user).
+  std::vector<std::int8_t> soleUse_;
+  /// Drops the polygon from the reference lists of the nodes below `node`.
+  void unlinkPolygon(int node, int polygon);
 
   // ---- internal_edges.cpp
   /// Edges that a trace can never touch first, marked internal.

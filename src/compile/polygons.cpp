@@ -41,10 +41,6 @@ Real floorOf(Real x) {
   return t > x ? t - 1 : t;
 }
 
-std::uint64_t edgeKey(int v0, int v1) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(v0)) << 32) | static_cast<std::uint32_t>(v1);
-}
-
 }  // namespace
 
 void ModelBuilder::prepareVertexHash() {
@@ -183,6 +179,11 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
       return true;
     }
   }
+  edgeNum = addEdge(v1num, v2num);
+  return false;
+}
+
+int ModelBuilder::addEdge(int v1num, int v2num) {
   BEdge newEdge;
   newEdge.v[0] = v1num;
   newEdge.v[1] = v2num;
@@ -192,8 +193,7 @@ bool ModelBuilder::getEdge(const Vec3& v1, const Vec3& v2, int& edgeNum, int v1n
   int& head = edgeHashHead_.at(edgeKey(v1num, v2num));
   edgeHashNext_.push_back(head);  // kNone (IntHashMap::kEmpty) for the first
   head = e;
-  edgeNum = e;
-  return false;
+  return e;
 }
 
 void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum) {

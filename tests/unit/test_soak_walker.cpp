@@ -4,7 +4,11 @@
 // with its wish direction into it is `cornered` (the walk's), one in a pit
 // a little wider than the box is `no-room` (the map's), and walkers whose
 // step moves them (in the open, or sliding along a wall) are `unexplained`
-// (the class a query fault would show as; these walkers are not stuck).
+// (the class a query fault would show as; these walkers are not stuck),
+// but one wishing within 3 degrees of a wall's normal creeps along it:
+// `pressing` (the walk's).
+// And the class of a walker's slide that ends in a brush through a side
+// without polygons (lt4's visportal brushes): brush-face, the map's.
 #if CMKIT_TEST_SOAK
 #include <gtest/gtest.h>
 
@@ -30,18 +34,24 @@ using cmkit::cli::StuckCause;
 
 namespace {
 
-std::string box(const Vec3& lo, const Vec3& hi) {
-  auto face = [&](const char* n, Real d) {
+/// A box brush of `material`, its +x side of `plusX` (default: the same).
+std::string box(const Vec3& lo, const Vec3& hi, const char* material = "textures/base_wall/lfwall27d",
+                const char* plusX = nullptr) {
+  auto face = [&](const char* n, Real d, const char* m) {
     return "  ( " + std::string(n) + " " + std::to_string(d) +
-           " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"textures/base_wall/lfwall27d\" 0 0 0\n";
+           " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + m + "\" 0 0 0\n";
   };
-  return "{\n brushDef3\n {\n" + face("0 0 1", -hi.z) + face("0 0 -1", lo.z) + face("1 0 0", -hi.x) +
-         face("-1 0 0", lo.x) + face("0 1 0", -hi.y) + face("0 -1 0", lo.y) + " }\n}\n";
+  return "{\n brushDef3\n {\n" + face("0 0 1", -hi.z, material) + face("0 0 -1", lo.z, material) +
+         face("1 0 0", -hi.x, plusX ? plusX : material) + face("-1 0 0", lo.x, material) +
+         face("0 1 0", -hi.y, material) + face("0 -1 0", lo.y, material) + " }\n}\n";
 }
 
 /// A closed room, inside x, y in [-256, 256], z in [0, 256], and in it a
 /// pit 33 x 33 units wide (x, y in [111.5, 144.5]) with walls 128 high:
-/// the 32 x 32 box has half a unit of room in it.
+/// the 32 x 32 box has half a unit of room in it. Against the -x wall a
+/// visportal brush as lt4 has them (x in [-200, -184], y in [-64, 64], z in
+/// [0, 200]): nodraw sides (solid by the built-in material rules) and a
+/// visportal side at x = -184, which makes no polygon.
 ModelPtr roomWithPit() {
   std::string text = "Version 2\n{\n\"classname\" \"worldspawn\"\n";
   text += box({-272, -272, -16}, {272, 272, 0});    // floor
@@ -54,6 +64,7 @@ ModelPtr roomWithPit() {
   text += box({144.5f, 95.5f, 0}, {160.5f, 160.5f, 128});
   text += box({111.5f, 95.5f, 0}, {144.5f, 111.5f, 128});
   text += box({111.5f, 144.5f, 0}, {144.5f, 160.5f, 128});
+  text += box({-200, -64, 0}, {-184, 64, 200}, "textures/common/nodraw", "textures/editor/visportal");
   text += "}\n";
   auto map = parseMapText(text);
   EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
@@ -115,11 +126,49 @@ TEST_F(SoakWalker, WishAlongAWallIsNotCornered) {
   EXPECT_EQ(diagnose({0, 0, 0.25f}, wishToward(1, 0), detail), StuckCause::Unexplained) << detail;
 }
 
+// Against the room's -y wall (0.25 units, the clip epsilon, from it) with
+// the wish 2.1 and 2.45 degrees from the wall's normal (the two stuck
+// walkers of lt4 at 200 000 steps, robust edges): the wall leaves 1.4 and
+// 1.6 units/s of each step's 36.7 along it, which the next step's friction
+// takes: the walker creeps, pressing. At 10 degrees it slides away (6.4
+// units/s a step, 0.1 units a step): not stuck, unexplained if it were.
+TEST_F(SoakWalker, WishNearlyIntoAWallIsPressing) {
+  std::string detail;
+  EXPECT_EQ(diagnose({0, -239.75f, 0.25f}, wishToward(-0.037f, -0.999f), detail), StuckCause::Pressing)
+      << detail;
+  EXPECT_EQ(diagnose({0, -239.75f, 0.25f}, wishToward(0.043f, -0.999f), detail), StuckCause::Pressing)
+      << detail;
+  EXPECT_EQ(diagnose({0, -239.75f, 0.25f}, wishToward(-0.174f, -0.985f), detail), StuckCause::Unexplained)
+      << detail;
+}
+
 // In the pit the box can move 0.25 units along an axis (0.35 diagonally),
 // and its walls are higher than a step up: no-room, whatever the wish.
 TEST_F(SoakWalker, NarrowPitIsNoRoom) {
   std::string detail;
   for (const Vec3& wish : {wishToward(1, 0), wishToward(-1, -1), wishToward(0.2f, 1)})
     EXPECT_EQ(diagnose({128, 128, 0.25f}, wish, detail), StuckCause::NoRoom) << detail;
+}
+
+// The three walker slides of lt4 (robust edges, 200 000 steps) that were
+// classed precision (0.0001 and 0.002 units deep) and grazing (0.1 deep,
+// edge-on to the face) ended in a visportal brush (brush 2671, x in [408,
+// 424]) entered through its visportal side, which has no polygon: nothing
+// could stop them, so they are the map's (brush-face), not cmkit's. The
+// same moves, shifted from x = 424 to the room's visportal side at x = -184.
+TEST_F(SoakWalker, SlideThroughAVisportalSideIsBrushFace) {
+  const Real shift = -184 - 424;
+  const struct {
+    Vec3 from, to;
+  } slides[] = {
+      {{440.34787f, 0, 50}, {439.99988f, 0, 49.85364f}},          // was precision
+      {{440.0998f, 0, 100}, {439.99814f, 3.2698f, 93.9297f}},     // was precision
+      {{440.05136f, 0, 100}, {439.90216f, -3.9495f, 85.37937f}},  // was grazing
+  };
+  for (const auto& m : slides) {
+    const Vec3 from{m.from.x + shift, m.from.y, m.from.z}, to{m.to.x + shift, m.to.y, m.to.z};
+    const std::string found = soak->replay(walker, from, to, work);
+    EXPECT_EQ(found.rfind("brush-face (fraction 1,", 0), 0u) << found;
+  }
 }
 #endif

@@ -186,7 +186,9 @@ int runSoak(const SoakOptions& o) {
     fmt::print("\n");
   }
   if (total.counts[std::size_t(Finding::WalkerStuck)] > 0) {
-    fmt::print("walker-stuck by cause (cornered: the walk's; no-room: the map's; unexplained: neither):");
+    fmt::print(
+        "walker-stuck by cause (cornered, pressing: the walk's; no-room: the map's; unexplained: none of "
+        "them):");
     for (std::size_t k = 0; k < kNumStuckCauses; ++k)
       if (total.stuckCauses[k] > 0) fmt::print(" {} {}", kStuckCauseNames[k], total.stuckCauses[k]);
     fmt::print("\n");
@@ -258,6 +260,9 @@ void registerSoak(CLI::App& app) {
       "  cornered       at least 30 of the 60 steps were blocked (each moved it less than 1/60\n"
       "                 unit, its slide stopped on a plane: the contact planes clipped the velocity\n"
       "                 to ~0 in a corner or crease; another direction has room): the walk's\n"
+      "  pressing       the wish is within 3 degrees of the normal of the wall its step from rest\n"
+      "                 stops on: friction takes what each step adds along the wall, and it\n"
+      "                 creeps (under 2 units a second): the walk's\n"
       "  unexplained    the steps moved it, yet it made no progress (a query fault?; printed\n"
       "                 first)\n"
       "Prints the count per class and the first --examples cases of each as query lines (the\n"

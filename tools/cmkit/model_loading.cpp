@@ -25,8 +25,10 @@ void addRobustEdgesFlag(CLI::App* cmd, bool& robustEdges) {
                 "for a .map or mesh: internal-edge marking that never hides an edge of a brush's\n"
                 "shell (not the original's: where brushes overlap with coplanar faces the original\n"
                 "hides the corner edges of both, and trace-model edges pass through the corner),\n"
-                "and edge normals that make a two-sided surface one sheet (traces stop 0.25 from\n"
-                "it, not up to 0.83 and more as in the original)");
+                "edge normals that make a two-sided surface one sheet (traces stop 0.25 from\n"
+                "it, not up to 0.83 and more as in the original), and, for a .map, polygons cut\n"
+                "where a coplanar face's corner lies on their edge (T-junctions), so that point\n"
+                "traces cannot pass between them");
 }
 
 Result<ProcForCli> loadProcForCli(const std::string& mapPath, bool noProc,

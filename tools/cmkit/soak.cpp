@@ -164,20 +164,28 @@ Finding Soak::Impl::classify(Ctx& c, const Shape& s, const Vec3& from, const Vec
   const std::vector<Vec3> vFrom = placedVertices(s, from);
   const Bounds bEnd = boundsOf(vEnd).expanded(1);
   // The brushes the end overlaps (exact separating-axis test) that the start did not.
-  bool anyOpen = false, anyClosed = false;
+  bool anyOpen = false, anyClosed = false, anyBare = false;
   for (std::size_t b = 0; b < world_.brushes().size(); ++b) {
     const CmBrush& brush = world_.brushes()[b];
     if (!(brush.contents & o_.mask) || !brush.bounds.intersects(bEnd)) continue;
     const double depth = overlapDepth(world_, brush, s, end);
-    if (depth <= kPrecisionDepth) continue;
+    if (depth <= 0) continue;
     if (overlapDepth(world_, brush, s, from) > 0) continue;  // started inside it
-    const bool closed = closedForMove(brush, vFrom);
-    (closed ? anyClosed : anyOpen) = true;
+    const EntryCover entry = entryCover(brush, vFrom);
+    // Entered by any depth through a face without a polygon: nothing there
+    // could stop the move, however deep or edge-on (before precision and
+    // grazing, which would otherwise take such an end).
+    anyBare |= entry.bare;
+    if (depth <= kPrecisionDepth && !entry.bare) continue;
+    (entry.closed ? anyClosed : anyOpen) = true;
     if (detail)
       *detail += fmt::format("{}brush {} depth {:.4f} {}", detail->empty() ? "" : ", ", b, depth,
-                             closed ? "closed" : "open");
+                             entry.bare     ? "open (a face to cross has no polygon)"
+                             : entry.closed ? "closed"
+                                            : "open");
   }
   if (anyClosed) return Finding::ClosedBrush;
+  if (anyBare) return Finding::BrushFace;
   const ContentsQuery q = at(s, end);
   const PenetrationResult pen =
       penetration(world_, {q.trm, q.trmAxis, q.position, q.contentMask, q.placement}, c.work);
@@ -205,20 +213,22 @@ Finding Soak::Impl::classify(Ctx& c, const Shape& s, const Vec3& from, const Vec
   return Finding::OtherPolygon;
 }
 
-bool Soak::Impl::closedForMove(const CmBrush& brush, const std::vector<Vec3>& vFrom) const {
-  bool anyEntry = false, allHave = true, entryHave = true;
+Soak::Impl::EntryCover Soak::Impl::entryCover(const CmBrush& brush, const std::vector<Vec3>& vFrom) const {
+  bool anyEntry = false, allHave = true, entryHave = true, anyBare = false, entryBare = false;
   for (std::uint32_t k = 0; k < brush.numPlanes; ++k) {
     const Plane& plane = world_.brushPlanes()[brush.firstPlane + k];
     Real lowest = std::numeric_limits<Real>::max();
     for (const Vec3& v : vFrom) lowest = std::min(lowest, plane.normal.dot(v) - plane.dist);
-    const bool has = facts_.faceCovered(brush, k);
+    const bool has = facts_.faceCovered(brush, k), bare = facts_.faceBare(brush, k);
     allHave &= has;
+    anyBare |= bare;
     if (lowest >= 0) {
       anyEntry = true;
       entryHave &= has;
+      entryBare |= bare;
     }
   }
-  return anyEntry ? entryHave : allHave;
+  return anyEntry ? EntryCover{entryHave, entryBare} : EntryCover{allHave, anyBare};
 }
 
 void Soak::Impl::sweep(Ctx& c, const Shape& shape) const {

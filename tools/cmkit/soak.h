@@ -67,15 +67,19 @@ enum class StuckCause : std::uint8_t {
   Unexplained,  // none of the below: would hint at a query fault
   Cornered,     // the walk's: contact planes clipped the velocity to ~0 for most steps
   NoRoom,       // the map's: the box cannot move 1 unit in any of 8 horizontal directions
+  Pressing,     // the walk's: the wish within kPressingDegrees of a wall's normal (it creeps)
   Count
 };
 inline constexpr std::size_t kNumStuckCauses = std::size_t(StuckCause::Count);
-inline const char* const kStuckCauseNames[kNumStuckCauses] = {"unexplained", "cornered", "no-room"};
+inline const char* const kStuckCauseNames[kNumStuckCauses] = {"unexplained", "cornered", "no-room",
+                                                              "pressing"};
 inline const char* const kStuckCauseMeaning[kNumStuckCauses] = {
-    "neither below: the steps moved the box, yet it made no progress (a query fault?)",
+    "none below: the steps moved the box, yet it made no progress (a query fault?)",
     ("the walk's: for at least half of the steps the slide planes clipped the velocity to ~0 "
      "(a corner or crease), though another direction has room"),
     "the map's: the box cannot move 1 unit in any of 8 horizontal directions, flat or 16 up",
+    ("the walk's: the wish is within 3 degrees of the normal of the wall that stops it; friction "
+     "takes what each step adds along the wall, and it creeps (under 2 units a second)"),
 };
 
 struct SoakOptions {

@@ -78,13 +78,13 @@ std::vector<D3> faceOutline(const CollisionModel& world, const CmBrush& brush, s
 }
 
 WorldFacts::WorldFacts(const CollisionModel& world, std::uint32_t mask) : world_(world) {
-  faceCovered_.resize(world.brushPlanes().size());
+  cover_.resize(world.brushPlanes().size());
   for (const CmBrush& brush : world.brushes()) {
     bool all = true;
     for (std::uint32_t k = 0; k < brush.numPlanes; ++k) {
-      const bool has = covered(brush, k, mask);
-      faceCovered_[brush.firstPlane + k] = has;
-      all &= has;
+      const Cover has = cover(brush, k, mask);
+      cover_[brush.firstPlane + k] = has;
+      all &= has == Cover::Whole;
     }
     numClosed_ += all;
   }
@@ -107,7 +107,7 @@ bool WorldFacts::inPolygon(const CmPolygon& poly, const D3& p) const {
   return pos == 0 || neg == 0;
 }
 
-bool WorldFacts::covered(const CmBrush& brush, std::uint32_t k, std::uint32_t mask) const {
+WorldFacts::Cover WorldFacts::cover(const CmBrush& brush, std::uint32_t k, std::uint32_t mask) const {
   const Plane& plane = world_.brushPlanes()[brush.firstPlane + k];
   std::vector<const CmPolygon*> candidates;
   for (const CmPolygon& p : world_.polygons()) {
@@ -118,8 +118,8 @@ bool WorldFacts::covered(const CmBrush& brush, std::uint32_t k, std::uint32_t ma
     candidates.push_back(&p);
   }
   const std::vector<D3> outline = faceOutline(world_, brush, k);
-  if (outline.size() < 3) return true;  // no face: nothing to cross
-  if (candidates.empty()) return false;
+  if (outline.size() < 3) return Cover::Whole;  // no face: nothing to cross
+  if (candidates.empty()) return Cover::None;
   // Samples: a grid over the outline's box in the face plane, kept inside
   // the outline by the margin.
   const D3 n = d3(plane.normal);
@@ -149,6 +149,7 @@ bool WorldFacts::covered(const CmBrush& brush, std::uint32_t k, std::uint32_t ma
   };
   const double du = std::max(kFaceSampleStep, (umax - umin) / kFaceSamples);
   const double dv = std::max(kFaceSampleStep, (vmax - vmin) / kFaceSamples);
+  bool anyIn = false, anyOut = false;
   for (double a = umin + du / 2; a < umax; a += du) {
     for (double b = vmin + dv / 2; b < vmax; b += dv) {
       const D3 p{n[0] * nd + a * u[0] + b * v[0], n[1] * nd + a * u[1] + b * v[1],
@@ -156,10 +157,11 @@ bool WorldFacts::covered(const CmBrush& brush, std::uint32_t k, std::uint32_t ma
       if (!insideOutline(p)) continue;
       bool in = false;
       for (const CmPolygon* poly : candidates) in = in || inPolygon(*poly, p);
-      if (!in) return false;
+      (in ? anyIn : anyOut) = true;
+      if (anyIn && anyOut) return Cover::Part;
     }
   }
-  return true;
+  return anyOut ? Cover::None : Cover::Whole;
 }
 
 /// The trace model's vertices placed at `pos` (one vertex for a point).

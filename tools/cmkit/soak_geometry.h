@@ -32,21 +32,31 @@ std::vector<D3> faceOutline(const CollisionModel& world, const CmBrush& brush, s
 /// the mask in the face's plane (normal dot > 0.9999, |dist difference| <
 /// 0.01). A face only partly covered (the compiler drops the parts of faces
 /// that other brushes cover) lets a move into the brush through the gap.
+/// A bare face has no polygon at any sample point: nothing there can stop
+/// a move (a side whose material has no contents, such as a visportal's,
+/// makes no polygon, while the brush's other sides make it solid).
 class WorldFacts {
  public:
   /// Samples every face of every brush (polygons of `mask` cover faces).
   WorldFacts(const CollisionModel& world, std::uint32_t mask);
-  bool faceCovered(const CmBrush& brush, std::uint32_t k) const { return faceCovered_[brush.firstPlane + k]; }
+  bool faceCovered(const CmBrush& brush, std::uint32_t k) const {
+    return cover_[brush.firstPlane + k] == Cover::Whole;
+  }
+  bool faceBare(const CmBrush& brush, std::uint32_t k) const {
+    return cover_[brush.firstPlane + k] == Cover::None;
+  }
   /// Brushes every face of which is covered.
   std::size_t numClosed() const { return numClosed_; }
 
  private:
   /// True when p (in the polygon's plane) is inside the polygon, within kSamePlaneDist.
   bool inPolygon(const CmPolygon& poly, const D3& p) const;
-  bool covered(const CmBrush& brush, std::uint32_t k, std::uint32_t mask) const;
+  /// How much of a face its plane's polygons cover, by the samples.
+  enum class Cover : std::uint8_t { None, Part, Whole };
+  Cover cover(const CmBrush& brush, std::uint32_t k, std::uint32_t mask) const;
 
   const CollisionModel& world_;
-  std::vector<bool> faceCovered_;
+  std::vector<Cover> cover_;
   std::size_t numClosed_ = 0;
 };
 

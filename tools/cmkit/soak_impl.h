@@ -43,6 +43,16 @@ constexpr int kMaxSlidePlanes = move::kMaxClipPlanes;
 /// kRoomProbe units) along each of kRoomDirections horizontal directions,
 /// flat or lifted by the player's step height.
 constexpr Real kRoomProbe = 4.0f;
+/// A stuck walker whose wish is within this many degrees of the (inward)
+/// normal of a plane its step from rest stops on is pressing into a wall
+/// (movement.h): each step friction first takes the speed the last one left
+/// (6 x 100 units/s a second below the stop speed, 10 a step), then the
+/// acceleration adds 10 x 220 / 60 = 36.7 units/s along the wish, of which
+/// the wall leaves 36.7 sin(angle) along it: within 3 degrees, under 1.92
+/// units a second (60 steps; cmkit walk measures 1.92 at 3 degrees, 0.96 at
+/// 1.5), so a window of kStuckSteps that also holds part of another wish, or
+/// an angle under 1.56 degrees, makes less than kStuckDistance of progress.
+constexpr Real kPressingDegrees = 3.0f;
 constexpr int kRoomDirections = 8;
 constexpr Real kTwoPi = 6.2831853f;
 
@@ -118,15 +128,25 @@ struct Soak::Impl {
   /// start did not (by the exact separating-axis depth, deeper than
   /// kPrecisionDepth) whose faces to cross all have polygons is a missed
   /// collision whatever penetration() or the move's angle say, so neither
-  /// the precision nor the grazing class can hide one.
+  /// the precision nor the grazing class can hide one. Next, an end that
+  /// overlaps (by any depth) a brush the start did not, entered where a face
+  /// to cross has no polygon at all, is brush-face: nothing could stop the
+  /// move there (lt4's visportal brushes: the walker slid 0.0001 to 0.1
+  /// units through their visportal side, a precision or grazing case
+  /// before), so precision and grazing are left to faces with polygons.
   /// `detail` (when given) gets the brushes entered: number, depth, closed or open.
   Finding classify(Ctx& c, const Shape& s, const Vec3& from, const Vec3& end,
                    std::string* detail = nullptr) const;
 
-  /// Whether every face the trace model had to cross to get into the brush
-  /// has a polygon: the planes the whole trace model was in front of at the
-  /// start (all planes if there is none).
-  bool closedForMove(const CmBrush& brush, const std::vector<Vec3>& vFrom) const;
+  /// The faces the trace model had to cross to get into the brush (the
+  /// planes the whole trace model was in front of at the start; all planes
+  /// if there is none): closed when every one is covered by polygons, bare
+  /// when one has no polygon at all (WorldFacts::faceBare).
+  struct EntryCover {
+    bool closed = false;
+    bool bare = false;
+  };
+  EntryCover entryCover(const CmBrush& brush, const std::vector<Vec3>& vFrom) const;
 
   void sweep(Ctx& c, const Shape& shape) const;
 
@@ -177,6 +197,9 @@ struct Soak::Impl {
   ///              contact planes clipped the velocity to ~0 while another
   ///              direction has room (the walk's: its wish pointed into a
   ///              corner or crease);
+  ///  pressing    else, the wish is within kPressingDegrees of the inward
+  ///              normal of a plane that stops its step from rest (the
+  ///              walk's: the player creeps along the wall, movement.h);
   ///  unexplained else: the steps moved the box, yet it made no progress
   ///              (would hint at a query fault).
   /// Half, not all: the wish direction changes every 40 steps, so a walker

@@ -96,13 +96,23 @@ StuckCause Soak::Impl::diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, 
   const Vec3 stepped = ok ? info.state.origin : pos;
   const Real moved = (stepped - pos).length();
   if (blockedSteps < 0) blockedSteps = ok && blockedStep(pos, stepped, info) ? kStuckSteps : 0;
+  // The plane of the step nearest to facing the wish: the angle between the
+  // wish and its inward normal, in the horizontal plane.
+  const Vec3 wishDir = walkerInput(wish, false).wishDir;
+  Real facing = -1;
+  for (int i = 0; i < info.planes.count; ++i) {
+    const Vec3& n = info.planes.normals[i];
+    const Real flat = std::sqrt(n.x * n.x + n.y * n.y);
+    if (flat > 0) facing = std::max(facing, -(wishDir.x * n.x + wishDir.y * n.y) / flat);
+  }
   StuckCause cause = StuckCause::Unexplained;
   if (most < kStuckDistance)
     cause = StuckCause::NoRoom;
   else if (2 * blockedSteps >= kStuckSteps)
     cause = StuckCause::Cornered;
+  else if (facing >= std::cos(kPressingDegrees * (kTwoPi / 360)))
+    cause = StuckCause::Pressing;
   if (detail) {
-    const Vec3 wishDir = walkerInput(wish, false).wishDir;
     std::string planes;
     for (int i = 0; i < info.planes.count; ++i) {
       const Vec3& n = info.planes.normals[i];
@@ -110,9 +120,13 @@ StuckCause Soak::Impl::diagnoseStuck(Ctx& c, const Vec3& pos, const Vec3& wish, 
     }
     *detail = fmt::format(
         "{} of {} steps blocked; {}, wish ({:.3f} {:.3f}): a step from rest moves it {:.5f} against {} "
-        "plane(s) {}; room along the wish {:.3f}, most room {:.3f} toward ({:.3f} {:.3f})",
+        "plane(s) {}{}; room along the wish {:.3f}, most room {:.3f} toward ({:.3f} {:.3f})",
         blockedSteps, kStuckSteps, info.state.onGround ? "on the ground" : "in the air", wishDir.x, wishDir.y,
-        moved, info.planes.count, planes, roomAlong(c, pos, wishDir), most, mostDir.x, mostDir.y);
+        moved, info.planes.count, planes,
+        facing > -1 ? fmt::format(" (the wish {:.2f} degrees from the nearest one's normal)",
+                                  std::acos(std::min(facing, Real(1))) * (360 / kTwoPi))
+                    : "",
+        roomAlong(c, pos, wishDir), most, mostDir.x, mostDir.y);
   }
   return cause;
 }
