@@ -13,7 +13,6 @@
 // (Inserting the vertex alone would not do: the polygon would keep two
 // edges on one line, whose products again round independently.)
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <unordered_map>
@@ -21,6 +20,7 @@
 #include <vector>
 
 #include "compile/builder.h"
+#include "math/dvec3.h"
 
 namespace cmkit::detail {
 
@@ -120,18 +120,18 @@ std::vector<ModelBuilder::EdgeSplit> ModelBuilder::splitsAlong(int edgeNum,
                                                                const std::vector<int>& verts) const {
   std::vector<EdgeSplit> splits;
   const int v0 = edge(edgeNum).v[edgeNum < 0 ? 1 : 0], v1 = edge(edgeNum).v[edgeNum < 0 ? 0 : 1];
-  const Vec3 a = vertex(v0), b = vertex(v1);
-  const double dx = double(b.x) - a.x, dy = double(b.y) - a.y, dz = double(b.z) - a.z;
-  const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const DVec3 a(vertex(v0)), d = DVec3(vertex(v1)) - a;
+  const double length = d.length();
   if (!(length > 2 * tol::kTJunctionEpsilon)) return splits;
   for (const int v : verts) {
     if (v == v0 || v == v1) continue;
-    const Vec3 c = vertex(v);
-    const double px = double(c.x) - a.x, py = double(c.y) - a.y, pz = double(c.z) - a.z;
-    const double along = (px * dx + py * dy + pz * dz) / length;
+    const DVec3 p = DVec3(vertex(v)) - a;
+    const double along = p.dot(d) / length;
     if (along <= tol::kTJunctionEpsilon || along >= length - tol::kTJunctionEpsilon) continue;
-    const double ox = px - dx * along / length, oy = py - dy * along / length, oz = pz - dz * along / length;
-    if (ox * ox + oy * oy + oz * oz > double(tol::kTJunctionEpsilon) * tol::kTJunctionEpsilon) continue;
+    DVec3 offset = d * along;
+    offset /= length;
+    offset = p - offset;  // from the edge's line
+    if (offset.dot(offset) > double(tol::kTJunctionEpsilon) * tol::kTJunctionEpsilon) continue;
     splits.push_back({along / length, v});
   }
   std::sort(splits.begin(), splits.end(), [](const EdgeSplit& l, const EdgeSplit& r) { return l.t < r.t; });
@@ -140,16 +140,11 @@ std::vector<ModelBuilder::EdgeSplit> ModelBuilder::splitsAlong(int edgeNum,
 
 namespace {
 
-using D3 = std::array<double, 3>;
-D3 d3(const Vec3& v) { return {v.x, v.y, v.z}; }
-D3 minus(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double lengthOf(const D3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 /// Distance of c from the line through a and b (0 when a == b).
-double distanceFromLine(const D3& a, const D3& b, const D3& c) {
-  const D3 ab = minus(b, a), ac = minus(c, a);
-  const D3 cr{ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]};
-  const double len = lengthOf(ab);
-  return len > 0 ? lengthOf(cr) / len : 0;
+double distanceFromLine(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const DVec3 ab = DVec3(b) - DVec3(a), ac = DVec3(c) - DVec3(a);
+  const double len = ab.length();
+  return len > 0 ? ab.cross(ac).length() / len : 0;
 }
 
 }  // namespace
@@ -182,12 +177,12 @@ void ModelBuilder::cutPolygon(int polygonNum, const std::vector<std::vector<Edge
       const auto at = std::find(loop.begin(), loop.end(), t);
       if (at == loop.end()) continue;
       const std::size_t n = loop.size(), i = std::size_t(at - loop.begin());
-      const D3 prev = d3(vertex(loop[(i + n - 1) % n])), next = d3(vertex(loop[(i + 1) % n]));
-      if (distanceFromLine(prev, next, d3(vertex(t))) > tol::kTJunctionEpsilon) continue;  // a corner here
+      const Vec3 prev = vertex(loop[(i + n - 1) % n]), next = vertex(loop[(i + 1) % n]);
+      if (distanceFromLine(prev, next, vertex(t)) > tol::kTJunctionEpsilon) continue;  // a corner here
       std::size_t far = i;
       double farthest = 0;
       for (std::size_t j = 0; j < n; ++j) {
-        const double d = distanceFromLine(prev, next, d3(vertex(loop[j])));
+        const double d = distanceFromLine(prev, next, vertex(loop[j]));
         if (j != i && d > farthest) farthest = d, far = j;
       }
       if (farthest <= tol::kTJunctionEpsilon) break;  // a sliver: nothing to cut
