@@ -73,16 +73,17 @@ struct PacketRays {
   __m256 inv[3];
 };
 
-/// The plane part of testPolygon for the eight rays of a packet at once:
+/// The plane part of a polygon's test (crossesPlane, ray_index_kernel.h)
+/// for the eight rays of a packet at once:
 /// which rays may cross the polygon before their best crossing (front face,
 /// start not behind, end not in front, crossing not beyond the best) and
 /// where (t), by the same float operations in the same order as
-/// testPolygon, so the rays it passes go on with the t testPolygon would
+/// crossesPlane, so the rays it passes go on with the t crossesPlane would
 /// compute; and the edge tests of several rays at once. A double build
-/// (Real is double) does not filter: every ray goes to testPolygon.
+/// (Real is double) does not filter: every ray goes to crossesPlane.
 class PacketPlanes {
  public:
-  /// Whether Real is float, so that the lanes compute what testPolygon does.
+  /// Whether Real is float, so that the lanes compute what crossesPlane does.
   static constexpr bool kFloatLanes = sizeof(Real) == sizeof(float);
 
   PacketPlanes(const Ray* rays, unsigned count) {

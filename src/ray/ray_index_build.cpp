@@ -1,8 +1,8 @@
 // The build of a RayIndex (ray_index.cpp has the casts): a binary hierarchy
 // by binned surface-area heuristic over the padded boxes of the polygons that
 // can be crossed, collapsed into 8-wide nodes whose boxes are padded again
-// (float on purpose: ray_index_layout.h), and the polygons with their edge
-// lines in leaf order.
+// (float on purpose: ray_index_layout.h), and each leaf's polygons (planes,
+// contents, edge lines) in one run of chunks.
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -68,7 +68,7 @@ constexpr unsigned kPacket = 8;
 /// Walks `count` (1 to kPacket) rays of one content mask together through
 /// the index: a node's children are tested against every ray of the packet
 /// that reached it, a leaf's polygons against all of those rays (the plane
-/// and edge tests of testPolygon, eight rays per instruction). out[k] is what castAvx2(index, rays[k])
+/// and edge tests of testLeaf's lanes, eight rays per instruction). out[k] is what castAvx2(index, rays[k])
 /// returns, bit for bit: a ray's answer is the first crossing (ties: the lower polygon index) of all the
 /// polygons that accept it, whatever order they are tested in, and every node test lets through each box
 /// holding such a crossing before the ray's best so far (the boxes are padded beyond the slab tests'
@@ -117,13 +117,18 @@ static inline Real edgeProduct(const RayLayout::EdgeRow& row, std::uint32_t lane
          row.p[4][lane] * ray[0] + row.p[5][lane] * ray[1] + row.p[3][lane] * ray[2];
 }
 
+/// 1 when the ray passes outside the edge of row `row` in `lane` (the sign
+/// of the product is not the one the polygon's use of the edge asks), else 0.
+static inline std::uint32_t outsideEdge(const RayLayout::EdgeRow& row, std::uint32_t lane, const Ray& r) {
+  return row.reversed[lane] ^ std::uint32_t(signBit(edgeProduct(row, lane, r.line)));
+}
+
 /// Whether the ray passes inside every edge of the polygon in `lane` of
 /// the leaf (the sign of each edge line's product with the ray's line).
 static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r) {
   const RayLayout::EdgeRow* rows = edgeRows(head);
   for (std::uint32_t j = 0; j < head.numEdgeRows; ++j)
-    if (rows[j].reversed[lane] ^ std::uint32_t(signBit(edgeProduct(rows[j], lane, r.line))))
-      return false;  // outside this edge
+    if (outsideEdge(rows[j], lane, r)) return false;
   return true;
 }
 
@@ -185,8 +190,7 @@ static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r
   const RayLayout::EdgeRow* rows = edgeRows(h);
   for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
     std::uint32_t outside = 0;
-    for (std::uint32_t k = 0; k < kLanes; ++k)
-      outside |= (rows[j].reversed[k] ^ std::uint32_t(signBit(edgeProduct(rows[j], k, r.line)))) << k;
+    for (std::uint32_t k = 0; k < kLanes; ++k) outside |= outsideEdge(rows[j], k, r) << k;
     lanes &= ~outside;
   }
   for (; lanes; lanes &= lanes - 1) {
