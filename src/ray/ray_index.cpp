@@ -144,29 +144,37 @@ bool modelSegment(const Vec3& worldStart, const Vec3& worldEnd, const Placement&
   return (end - start).isFinite();
 }
 
+/// Whom prepareRay prepares a ray for: the single walk (castBaseline,
+/// castAvx2: the node rows, no line) or the packet walk (castPacketAvx2:
+/// the line, no rows).
+enum class RayUse { Single, Packet };
+
 /// The model-space ray of the world segment worldStart -> worldEnd with its
 /// per-ray constants; false when it cannot hit.
 bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask, const Placement& placement,
-                bool rotated, detail::Ray& ray, bool rows = true) {
+                bool rotated, detail::Ray& ray, RayUse use) {
   Vec3 start, end;
   if (!modelSegment(worldStart, worldEnd, placement, rotated, start, end)) return false;
   const Vec3 dir = end - start;
-  const Pluecker line = Pluecker::fromRay(start, dir);
-  for (int c = 0; c < 6; ++c) ray.line[c] = line[c];
   for (int k = 0; k < 3; ++k) {
     ray.start[k] = start[k];
     ray.end[k] = end[k];
     ray.dir[k] = dir[k];
     ray.inv[k] =
         std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
-    if (!rows) continue;  // the packet walk does not read them
+  }
+  ray.mask = mask;
+  if (use == RayUse::Packet) {
+    detail::rayLine(ray.start, ray.dir, ray.line);
+    return true;
+  }
+  for (int k = 0; k < 3; ++k) {
     const bool negative = dir[k] < 0;
     ray.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
                               : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
     ray.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
                              : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
   }
-  ray.mask = mask;
   return true;
 }
 
@@ -265,7 +273,8 @@ RayHit RayIndex::cast(const RayCastQuery& query) const {
   const detail::RayIndexData& d = *data_;
   const bool rotated = !query.placement.axis.isIdentity();
   detail::Ray ray;
-  if (!prepareRay(query.start, query.end, query.contentMask, query.placement, rotated, ray)) return {};
+  if (!prepareRay(query.start, query.end, query.contentMask, query.placement, rotated, ray, RayUse::Single))
+    return {};
   const detail::Arrays arrays = arraysOf(d);
   const detail::Crossing found = d.avx2 ? detail::castAvx2(arrays, ray) : detail::castBaseline(arrays, ray);
   return hitOf(d, found, query.start, query.end, query.placement, rotated);
@@ -327,7 +336,8 @@ void RayIndex::castMany(const RayBatch& batch, std::span<RayHit> out) const {
     unsigned count = 0;
     for (; first < order.size() && count < packetSize; ++first) {  // skips the rays that cannot hit
       const auto i = std::size_t(order[first] & 0xffffffffu);
-      if (prepareRay(pick(starts, i), pick(ends, i), contentMask, placement, rotated, packet[count], !d.avx2))
+      if (prepareRay(pick(starts, i), pick(ends, i), contentMask, placement, rotated, packet[count],
+                     d.avx2 ? RayUse::Packet : RayUse::Single))
         index[count++] = i;
     }
     if (count == 0) break;

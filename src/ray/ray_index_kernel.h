@@ -42,12 +42,25 @@ struct Arrays {
 struct Ray {
   Real start[3];
   Real end[3];
-  Real dir[3];   ///< end - start
-  Real line[6];  ///< Pluecker coordinates of the ray (Pluecker::fromRay)
-  float inv[3];  ///< 1 / dir, finite
-  std::size_t nearRow[3], farRow[3];
+  Real dir[3];                        ///< end - start
+  Real line[6];                       ///< Pluecker coordinates of the ray (rayLine); set for packets only
+  float inv[3];                       ///< 1 / dir, finite
+  std::size_t nearRow[3], farRow[3];  ///< single casts only
   std::uint32_t mask;
 };
+
+/// The Pluecker coordinates of the line start -> start + dir, by the
+/// arithmetic of Pluecker::fromRay (so the same values). A single cast makes
+/// them only when a leaf's plane is crossed (most casts never get there);
+/// a packet's rays have them in Ray::line.
+static inline void rayLine(const Real* s, const Real* dir, Real* line) {
+  line[0] = s[0] * dir[1] - s[1] * dir[0];
+  line[1] = s[0] * dir[2] - s[2] * dir[0];
+  line[2] = -dir[0];
+  line[3] = s[1] * dir[2] - s[2] * dir[1];
+  line[4] = -dir[2];
+  line[5] = dir[1];
+}
 
 /// The first crossing found: where, and the polygon's position in the
 /// index's details array (-1: none).
@@ -117,18 +130,19 @@ static inline Real edgeProduct(const RayLayout::EdgeRow& row, std::uint32_t lane
          row.p[4][lane] * ray[0] + row.p[5][lane] * ray[1] + row.p[3][lane] * ray[2];
 }
 
-/// 1 when the ray passes outside the edge of row `row` in `lane` (the sign
-/// of the product is not the one the polygon's use of the edge asks), else 0.
-static inline std::uint32_t outsideEdge(const RayLayout::EdgeRow& row, std::uint32_t lane, const Ray& r) {
-  return row.reversed[lane] ^ std::uint32_t(signBit(edgeProduct(row, lane, r.line)));
+/// 1 when the ray of Pluecker coordinates `line` passes outside the edge of
+/// row `row` in `lane` (the sign of the product is not the one the
+/// polygon's use of the edge asks), else 0.
+static inline std::uint32_t outsideEdge(const RayLayout::EdgeRow& row, std::uint32_t lane, const Real* line) {
+  return row.reversed[lane] ^ std::uint32_t(signBit(edgeProduct(row, lane, line)));
 }
 
-/// Whether the ray passes inside every edge of the polygon in `lane` of
-/// the leaf (the sign of each edge line's product with the ray's line).
+/// Whether a packet's ray passes inside every edge of the polygon in `lane`
+/// of the leaf (the sign of each edge line's product with the ray's line).
 static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r) {
   const RayLayout::EdgeRow* rows = edgeRows(head);
   for (std::uint32_t j = 0; j < head.numEdgeRows; ++j)
-    if (outsideEdge(rows[j], lane, r)) return false;
+    if (outsideEdge(rows[j], lane, r.line)) return false;
   return true;
 }
 
@@ -187,10 +201,12 @@ static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r
   // The first candidate's details are read if it passes its edges: their
   // load overlaps the edge tests.
   __builtin_prefetch(index.details + h.firstDetail + __builtin_ctz(lanes));
+  Real line[6];
+  rayLine(r.start, r.dir, line);
   const RayLayout::EdgeRow* rows = edgeRows(h);
   for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
     std::uint32_t outside = 0;
-    for (std::uint32_t k = 0; k < kLanes; ++k) outside |= outsideEdge(rows[j], k, r) << k;
+    for (std::uint32_t k = 0; k < kLanes; ++k) outside |= outsideEdge(rows[j], k, line) << k;
     lanes &= ~outside;
   }
   for (; lanes; lanes &= lanes - 1) {
