@@ -73,17 +73,18 @@ struct PacketRays {
   __m256 inv[3];
 };
 
-/// The plane part of a polygon's test (crossesPlane, ray_index_kernel.h)
+/// The plane part of a polygon's test (crossesPlanes, ray_index_kernel.h)
 /// for the eight rays of a packet at once:
-/// which rays may cross the polygon before their best crossing (front face,
-/// start not behind, end not in front, crossing not beyond the best) and
-/// where (t), by the same float operations in the same order as
-/// crossesPlane, so the rays it passes go on with the t crossesPlane would
-/// compute; and the edge tests of several rays at once. A double build
-/// (Real is double) does not filter: every ray goes to crossesPlane.
+/// which rays may cross the polygon (or with `twin` the lane's twin) before
+/// their best crossing (front face, start not behind, end not in front,
+/// crossing not beyond the best) and where (t), by the same float
+/// operations in the same order as crossesPlanes, so the rays it passes go
+/// on with the t crossesPlanes would compute; and the edge tests of several
+/// rays at once. A double build (Real is double) does not filter: every ray
+/// goes to crossesPlanes.
 class PacketPlanes {
  public:
-  /// Whether Real is float, so that the lanes compute what crossesPlane does.
+  /// Whether Real is float, so that the lanes compute what crossesPlanes does.
   static constexpr bool kFloatLanes = sizeof(Real) == sizeof(float);
 
   PacketPlanes(const Ray* rays, unsigned count) {
@@ -97,9 +98,10 @@ class PacketPlanes {
         line_[c] = packetLanes(rays, count, [c](const Ray& r) { return r.line[c]; });
     }
   }
-  /// Of the rays in `lanes`, those that may cross polygon p before their
-  /// best (bestT), with where in tOut (written only when some ray may).
-  std::uint32_t candidates(const RayLayout::LeafHead& h, std::uint32_t k, const float* bestT,
+  /// Of the rays in `lanes`, those that may cross lane k's polygon (with
+  /// `twin`: its twin, every sign of the test reversed) before their best
+  /// (bestT), with where in tOut (written only when some ray may).
+  std::uint32_t candidates(const RayLayout::LeafHead& h, std::uint32_t k, bool twin, const float* bestT,
                            std::uint32_t lanes, float* tOut) const {
     if constexpr (!kFloatLanes) {
       return lanes;
@@ -111,13 +113,22 @@ class PacketPlanes {
                              _mm256_mul_ps(nz, v[2]));
       };
       const __m256 zero = _mm256_setzero_ps();
-      const __m256 front = _mm256_cmp_ps(dot(dir_), zero, _CMP_LT_OQ);
+      const __m256 facing = dot(dir_);
       const __m256 d1 = _mm256_sub_ps(dot(start_), dist);
       const __m256 d2 = _mm256_sub_ps(dot(end_), dist);
       const __m256 denom = _mm256_sub_ps(d1, d2);
-      __m256 ok = _mm256_and_ps(front, _mm256_cmp_ps(d1, zero, _CMP_NLT_UQ));  // !(d1 < 0)
-      ok = _mm256_and_ps(ok, _mm256_cmp_ps(d2, zero, _CMP_NGT_UQ));            // !(d2 > 0)
-      ok = _mm256_and_ps(ok, _mm256_cmp_ps(denom, zero, _CMP_GT_OQ));          // denom > 0
+      __m256 ok;
+      if (!twin) {
+        ok = _mm256_cmp_ps(facing, zero, _CMP_LT_OQ);                    // facing < 0
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(d1, zero, _CMP_NLT_UQ));    // !(d1 < 0)
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(d2, zero, _CMP_NGT_UQ));    // !(d2 > 0)
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(denom, zero, _CMP_GT_OQ));  // denom > 0
+      } else {
+        ok = _mm256_cmp_ps(facing, zero, _CMP_GT_OQ);                    // facing > 0
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(d1, zero, _CMP_NGT_UQ));    // !(d1 > 0)
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(d2, zero, _CMP_NLT_UQ));    // !(d2 < 0)
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(denom, zero, _CMP_LT_OQ));  // denom < 0
+      }
       // Most polygons of a leaf face away from every ray or are not reached:
       // the division only when some ray crosses the plane.
       if (!(std::uint32_t(_mm256_movemask_ps(ok)) & lanes)) return 0;
@@ -127,10 +138,12 @@ class PacketPlanes {
       return std::uint32_t(_mm256_movemask_ps(ok)) & lanes;
     }
   }
-  /// Of the rays in `lanes`, those passing inside every edge of polygon p:
-  /// insideEdges for eight rays at once (the same products in the same
-  /// order, so the same signs). Float lanes only (kFloatLanes).
-  std::uint32_t insideEdges(const RayLayout::LeafHead& h, std::uint32_t k, std::uint32_t lanes) const {
+  /// Of the rays in `lanes`, those passing inside every edge of lane k's
+  /// polygon (with `twin`: of its twin, outside every edge of the lane's
+  /// rows): insideEdges for eight rays at once (the same products in the
+  /// same order, so the same signs). Float lanes only (kFloatLanes).
+  std::uint32_t insideEdges(const RayLayout::LeafHead& h, std::uint32_t k, bool twin,
+                            std::uint32_t lanes) const {
     const RayLayout::EdgeRow* rows = edgeRows(h);
     for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
       const RayLayout::EdgeRow& row = rows[j];
@@ -143,7 +156,8 @@ class PacketPlanes {
       product = _mm256_add_ps(product, term(5, 1));
       product = _mm256_add_ps(product, term(3, 2));
       const auto negative = std::uint32_t(_mm256_movemask_ps(product));
-      lanes &= row.reversed[k] ? negative : ~negative;  // inside: the sign the edge's use asks
+      // Inside: the sign the edge's use asks (a twin uses it reversed).
+      lanes &= (row.reversed[k] != std::uint32_t(twin)) ? negative : ~negative;
     }
     return lanes;
   }
@@ -187,19 +201,22 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
     if (ref & RayLayout::kLeaf) {
       const RayLayout::LeafHead& h = leafHead(index, ref);
       const std::uint32_t count = leafCount(ref);
-      for (std::uint32_t i = 0; i < count; ++i) {
-        if (!(h.contents[i] & mask)) continue;
-        const std::uint32_t detail = h.firstDetail + i;
+      // Each lane's polygon, then its twin if it has one.
+      for (std::uint32_t side = 0; side < 2 * count; ++side) {
+        const std::uint32_t i = side >> 1;
+        const bool twin = (side & 1) != 0;
+        if (!(h.contents[i] & mask) || (twin && !((h.twins >> i) & 1))) continue;
+        const std::uint32_t detail = twin ? twinDetail(h, ref, i) : h.firstDetail + i;
         alignas(32) float t[kPacket];
-        std::uint32_t l = planes.candidates(h, i, bestT, lanes, t);
+        std::uint32_t l = planes.candidates(h, i, twin, bestT, lanes, t);
         if constexpr (PacketPlanes::kFloatLanes) {
           // Several rays: their edge tests at once; one: its own.
           const bool several = (l & (l - 1)) != 0;
-          if (several) l = planes.insideEdges(h, i, l);
+          if (several) l = planes.insideEdges(h, i, twin, l);
           for (; l; l &= l - 1) {
             const int k = __builtin_ctz(l);
             if (notBeyondBest(index, detail, t[k], best[k], bestIndex[k]) &&
-                (several || insideEdges(h, i, rays[k])))
+                (several || insideEdges(h, i, rays[k], twin)))
               keepCrossing(index, detail, rays[k], t[k], best[k], bestIndex[k]);
             bestT[k] = float(best[k].t);
           }
@@ -207,8 +224,10 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
           for (; l; l &= l - 1) {
             const int k = __builtin_ctz(l);
             Real tk;
-            if (crossesPlane(h, i, rays[k], tk) && notBeyondBest(index, detail, tk, best[k], bestIndex[k]) &&
-                insideEdges(h, i, rays[k]))
+            bool front, back;
+            crossesPlanes(h, i, rays[k], tk, front, back);
+            if ((twin ? back : front) && notBeyondBest(index, detail, tk, best[k], bestIndex[k]) &&
+                insideEdges(h, i, rays[k], twin))
               keepCrossing(index, detail, rays[k], tk, best[k], bestIndex[k]);
             bestT[k] = float(best[k].t);
           }

@@ -138,12 +138,20 @@ static inline std::uint32_t outsideEdge(const RayLayout::EdgeRow& row, std::uint
 }
 
 /// Whether a packet's ray passes inside every edge of the polygon in `lane`
-/// of the leaf (the sign of each edge line's product with the ray's line).
-static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r) {
+/// of the leaf (the sign of each edge line's product with the ray's line),
+/// or with `twin` inside every edge of the lane's twin (outside every edge
+/// of the lane's rows: RayLayout::LeafHead::twins).
+static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r, bool twin) {
   const RayLayout::EdgeRow* rows = edgeRows(head);
   for (std::uint32_t j = 0; j < head.numEdgeRows; ++j)
-    if (outsideEdge(rows[j], lane, r.line)) return false;
+    if (outsideEdge(rows[j], lane, r.line) != std::uint32_t(twin)) return false;
   return true;
+}
+
+/// The details[] index of the twin of lane k of the leaf `ref` (bit k of
+/// head.twins set): after the leaf's lanes, one per twin in lane order.
+static inline std::uint32_t twinDetail(const RayLayout::LeafHead& head, std::uint32_t ref, std::uint32_t k) {
+  return head.firstDetail + leafCount(ref) + std::uint32_t(__builtin_popcount(head.twins & ((1u << k) - 1)));
 }
 
 /// Whether a crossing at t of the polygon `detail` may replace `best`: not
@@ -167,16 +175,21 @@ static inline void keepCrossing(const Arrays& index, std::uint32_t detail, const
   bestIndex = index.details[detail].index;
 }
 
-/// The plane part of a polygon's test for lane k of a leaf: whether the ray
-/// crosses the front face (front face, start not behind, end not in front,
-/// a crossing), and where (t; meaningful only then).
-static inline bool crossesPlane(const RayLayout::LeafHead& h, std::uint32_t k, const Ray& r, Real& t) {
+/// The plane part of the tests of lane k's polygon and of its twin: whether
+/// the ray crosses the polygon's front face (`front`: front face, start not
+/// behind, end not in front, a crossing) or its twin's (`back`: the same
+/// with every sign reversed, which is what the twin's exactly negated plane
+/// computes, whether or not the lane has a twin), and where (t, the same
+/// for both; meaningful only then).
+static inline void crossesPlanes(const RayLayout::LeafHead& h, std::uint32_t k, const Ray& r, Real& t,
+                                 bool& front, bool& back) {
   const Real facing = h.x[k] * r.dir[0] + h.y[k] * r.dir[1] + h.z[k] * r.dir[2];
   const Real d1 = h.x[k] * r.start[0] + h.y[k] * r.start[1] + h.z[k] * r.start[2] - h.dist[k];
   const Real d2 = h.x[k] * r.end[0] + h.y[k] * r.end[1] + h.z[k] * r.end[2] - h.dist[k];
   const Real denom = d1 - d2;
   t = d1 / denom;
-  return (facing < 0) & !(d1 < 0) & !(d2 > 0) & (denom > 0);
+  front = (facing < 0) & !(d1 < 0) & !(d2 > 0) & (denom > 0);
+  back = (facing > 0) & !(d1 > 0) & !(d2 < 0) & (denom < 0);
 }
 
 /// Tests the polygons of a leaf (reference `ref`), keeping `best` the first
@@ -185,33 +198,46 @@ static inline bool crossesPlane(const RayLayout::LeafHead& h, std::uint32_t k, c
 /// without branches (the compiler may make them SIMD): the planes and
 /// contents, then, while some lane is left, the edge rows. A lane's answer
 /// is that of testing its polygon alone (the same operations in the same
-/// order), and lanes are kept in order, so a leaf answers as its polygons
-/// tested one by one.
+/// order; for its twin the same values with their signs reversed), and the
+/// best kept is the first crossing, lowest index on ties, whatever the
+/// order, so a leaf answers as its polygons tested one by one.
 static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r, Crossing& best,
                             std::int32_t& bestIndex) {
   constexpr std::uint32_t kLanes = RayLayout::kLeafLanes;
   const RayLayout::LeafHead& h = leafHead(index, ref);
   Real t[kLanes];
-  std::uint32_t lanes = 0;
+  std::uint32_t lanes = 0, twinLanes = 0;  // bit k: lane k's polygon / its twin still a candidate
   for (std::uint32_t k = 0; k < kLanes; ++k) {
-    const bool crosses = crossesPlane(h, k, r, t[k]);
-    lanes |= std::uint32_t(crosses & ((h.contents[k] & r.mask) != 0) & !(t[k] > best.t)) << k;
+    bool front, back;
+    crossesPlanes(h, k, r, t[k], front, back);
+    const bool open = ((h.contents[k] & r.mask) != 0) & !(t[k] > best.t);
+    lanes |= std::uint32_t(front & open) << k;
+    twinLanes |= std::uint32_t(back & open) << k;
   }
-  if (!lanes) return;
+  twinLanes &= h.twins;
+  if (!(lanes | twinLanes)) return;
   // The first candidate's details are read if it passes its edges: their
   // load overlaps the edge tests.
-  __builtin_prefetch(index.details + h.firstDetail + __builtin_ctz(lanes));
+  __builtin_prefetch(index.details + (lanes ? h.firstDetail + __builtin_ctz(lanes)
+                                            : twinDetail(h, ref, std::uint32_t(__builtin_ctz(twinLanes)))));
   Real line[6];
   rayLine(r.start, r.dir, line);
   const RayLayout::EdgeRow* rows = edgeRows(h);
-  for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
+  for (std::uint32_t j = 0; j < h.numEdgeRows && (lanes | twinLanes); ++j) {
     std::uint32_t outside = 0;
     for (std::uint32_t k = 0; k < kLanes; ++k) outside |= outsideEdge(rows[j], k, line) << k;
     lanes &= ~outside;
+    twinLanes &= outside;  // a twin is inside where the lane's polygon is outside
   }
   for (; lanes; lanes &= lanes - 1) {
     const auto k = std::uint32_t(__builtin_ctz(lanes));
     const std::uint32_t detail = h.firstDetail + k;
+    if (notBeyondBest(index, detail, t[k], best, bestIndex))
+      keepCrossing(index, detail, r, t[k], best, bestIndex);
+  }
+  for (; twinLanes; twinLanes &= twinLanes - 1) {
+    const auto k = std::uint32_t(__builtin_ctz(twinLanes));
+    const std::uint32_t detail = twinDetail(h, ref, k);
     if (notBeyondBest(index, detail, t[k], best, bestIndex))
       keepCrossing(index, detail, r, t[k], best, bestIndex);
   }

@@ -48,11 +48,22 @@ struct RayLayout {
   /// head in two cache lines, each edge row in under two), in place of a
   /// polygon record and edge lines elsewhere. Unused lanes have a zero
   /// normal (it faces no ray) and contents 0.
+  ///
+  /// A lane may also hold its polygon's reversed twin (bit k of `twins`):
+  /// a polygon of the same contents whose plane is the lane's negated
+  /// exactly and whose edges are the lane's used the other way round, as
+  /// the two sides of a two-sided surface are. Its plane test is the
+  /// lane's with every sign reversed and the same t, its edge test
+  /// "outside every edge" of the lane's rows, so one lane tests both
+  /// (a ray crosses at most one of them) in half the memory of two.
   struct alignas(64) LeafHead {
     Real x[kLeafLanes], y[kLeafLanes], z[kLeafLanes], dist[kLeafLanes];
     std::uint32_t contents[kLeafLanes];
     std::uint32_t firstDetail;  ///< details[] index of lane 0 (lane k: + k)
     std::uint32_t numEdgeRows;  ///< the most edges of a lane's polygon
+    /// Lanes holding a twin (bit k: lane k). The twins' details follow the
+    /// lanes', in lane order (twinDetail in ray_index_kernel.h).
+    std::uint32_t twins;
   };
   /// Edge j of each lane's polygon: its line (Pluecker coordinates, in the
   /// model's stored direction; p[c][k] coordinate c of lane k) and whether
