@@ -130,20 +130,6 @@ Crossing castBaseline(const Arrays& index, const Ray& ray) { return walk(index, 
 
 namespace {
 
-/// The segment worldStart -> worldEnd in the model's space; false when it
-/// cannot hit (non-finite, or no length).
-bool modelSegment(const Vec3& worldStart, const Vec3& worldEnd, const Placement& placement, bool rotated,
-                  Vec3& start, Vec3& end) {
-  if (!worldStart.isFinite() || !worldEnd.isFinite() || worldStart == worldEnd) return false;
-  start = worldStart - placement.origin;
-  end = worldEnd - placement.origin;
-  if (rotated) {
-    start = placement.axis * start;
-    end = placement.axis * end;
-  }
-  return (end - start).isFinite();
-}
-
 /// Whom prepareRay prepares a ray for: the single walk (castBaseline,
 /// castAvx2: the node rows, no line) or the packet walk (castPacketAvx2:
 /// the line, no rows).
@@ -153,9 +139,17 @@ enum class RayUse { Single, Packet };
 /// per-ray constants; false when it cannot hit.
 bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask, const Placement& placement,
                 bool rotated, detail::Ray& ray, RayUse use) {
-  Vec3 start, end;
-  if (!modelSegment(worldStart, worldEnd, placement, rotated, start, end)) return false;
+  // The segment in the model's space. One finiteness check, of its
+  // direction, covers both ends: a non-finite end (or origin, or an
+  // overflow of the rotation) makes every coordinate of that end non-finite
+  // (inf - x, 0 * inf, NaN), and so the direction's, whatever the other end.
+  Vec3 start = worldStart - placement.origin, end = worldEnd - placement.origin;
+  if (rotated) {
+    start = placement.axis * start;
+    end = placement.axis * end;
+  }
   const Vec3 dir = end - start;
+  if (!dir.isFinite() || worldStart == worldEnd) return false;
   for (int k = 0; k < 3; ++k) {
     ray.start[k] = start[k];
     ray.end[k] = end[k];
@@ -168,12 +162,14 @@ bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask
     detail::rayLine(ray.start, ray.dir, ray.line);
     return true;
   }
+  // The near face of each axis is its min row, or its max row when the ray
+  // runs down the axis (and the far face the other).
+  constexpr std::size_t kRowBytes = sizeof(Node::min[0]);
+  constexpr std::size_t kMinToMax = offsetof(Node, max) - offsetof(Node, min);
   for (int k = 0; k < 3; ++k) {
-    const bool negative = dir[k] < 0;
-    ray.nearRow[k] = negative ? offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0])
-                              : offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0]);
-    ray.farRow[k] = negative ? offsetof(Node, min) + std::size_t(k) * sizeof(Node::min[0])
-                             : offsetof(Node, max) + std::size_t(k) * sizeof(Node::max[0]);
+    const std::size_t down = dir[k] < 0 ? kMinToMax : 0;
+    ray.nearRow[k] = offsetof(Node, min) + std::size_t(k) * kRowBytes + down;
+    ray.farRow[k] = offsetof(Node, max) + std::size_t(k) * kRowBytes - down;
   }
   return true;
 }
