@@ -396,6 +396,10 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
     return me;
   };
   collapse(collapse, 0);
+  // The leaves grew chunk by chunk: up to twice their size was reserved
+  // (and RayIndex::memoryBytes counts what is held).
+  d.leafChunks.shrink_to_fit();
+  d.nodes.shrink_to_fit();
 }
 
 }  // namespace cmkit::detail
