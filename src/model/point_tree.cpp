@@ -9,13 +9,14 @@ namespace cmkit::detail {
 
 PointTree buildPointTree(const ModelArrays& m) {
   PointTree t;
-  // Children numbers take 29 bits (the walk's node word).
-  constexpr std::size_t kMaxNodes = std::size_t(1) << 29;
+  // Children numbers take 28 bits (the walk's node word).
+  constexpr std::size_t kMaxNodes = std::size_t(1) << (32 - PointNode::kFrontShift);
   if (m.nodes.empty() || m.nodes.size() >= kMaxNodes) return t;
   // (A tree of n nodes takes n places, every inner node placing two
   // children; room for two more guards a malformed one.)
   t.nodes.resize(m.nodes.size() + 2);
   t.brushes.resize(m.nodes.size() + 2);
+  t.modelNodes.resize(m.nodes.size() + 2);
   // Depth first: a node's children get the next two free places when the
   // node is placed, and their subtrees follow (front first).
   std::vector<std::pair<std::int32_t, std::uint32_t>> pending;  // model node, its place
@@ -28,24 +29,26 @@ PointTree buildPointTree(const ModelArrays& m) {
     const CmNode& n = m.nodes[std::size_t(nodeNum)];
     PointNode& out = t.nodes[place];
     t.brushes[place] = {n.firstBrushRef, n.numBrushRefs};
-    const std::uint32_t brushBit = n.numBrushRefs != 0 ? PointNode::kHasBrushes : 0;
+    t.modelNodes[place] = std::uint32_t(nodeNum);
+    const std::uint32_t itemBits = (n.numBrushRefs != 0 ? PointNode::kHasBrushes : 0) |
+                                   (n.numPolygonRefs != 0 ? PointNode::kHasPolygons : 0);
     if (n.isLeaf()) {
-      out = {0, PointNode::kLeafAxis | brushBit};
+      out = {0, PointNode::kLeafAxis | itemBits};
       continue;
     }
     const std::uint32_t front = next;
     next += 2;
     if (next > t.nodes.size()) {  // more places than nodes: not a tree
-      t.nodes.clear();
-      t.brushes.clear();
+      t = PointTree{};
       return t;
     }
-    out = {n.planeDist, std::uint32_t(n.planeType) | brushBit | (front << 3)};
+    out = {n.planeDist, std::uint32_t(n.planeType) | itemBits | (front << PointNode::kFrontShift)};
     pending.emplace_back(n.children[1], front + 1);  // (popped after the front subtree)
     pending.emplace_back(n.children[0], front);
   }
   t.nodes.resize(next);
   t.brushes.resize(next);
+  t.modelNodes.resize(next);
   return t;
 }
 

@@ -1,5 +1,5 @@
-// Internal: the BSP tree as point contents walk it, made once with the
-// model (query_data.h): 8 bytes a node, a node's two children side by side,
+// Internal: the BSP tree as point contents and position tests walk it, made
+// once with the model (query_data.h): 8 bytes a node, a node's two children side by side,
 // the pairs in depth-first order (a walk down a subtree stays near its
 // root's line), so that a walk from the root to a point's leaf reads a few
 // cache lines instead of a node's 36 bytes each, and picks a child by
@@ -17,15 +17,19 @@ namespace cmkit::detail {
 struct PointNode {
   Real dist;  ///< the split plane's coordinate (0 in a leaf)
   /// Bits 0-1: the split axis (kLeafAxis: a leaf); bit 2: the node lists
-  /// brushes (PointTree::brushes); bits 3-31: the front child's number (the
-  /// back child's is the next).
+  /// brushes (PointTree::brushes); bit 3: it lists polygons; bits 4-31: the
+  /// front child's number (the back child's is the next).
   std::uint32_t word;
 
   static constexpr std::uint32_t kLeafAxis = 3;
   static constexpr std::uint32_t kHasBrushes = 4;
+  static constexpr std::uint32_t kHasPolygons = 8;
+  static constexpr int kFrontShift = 4;
   std::uint32_t axis() const { return word & 3u; }
   bool hasBrushes() const { return (word & kHasBrushes) != 0; }
-  std::uint32_t front() const { return word >> 3; }
+  /// The node lists brushes or polygons (PointTree::modelNodes names it).
+  bool hasItems() const { return (word & (kHasBrushes | kHasPolygons)) != 0; }
+  std::uint32_t front() const { return word >> kFrontShift; }
 };
 
 /// The brush list of a node (CmNode's, into the model's brushRefs).
@@ -39,11 +43,20 @@ struct PointTree {
   std::vector<PointNode> nodes;
   /// Per node: its brushes (read only where PointNode::hasBrushes).
   std::vector<PointBrushes> brushes;
+  /// Per node: the model's node it is (read only where PointNode::hasItems:
+  /// a position test tests that node's brushes and polygons).
+  std::vector<std::uint32_t> modelNodes;
   bool empty() const { return nodes.empty(); }
 };
 
+/// Models with at most this many nodes are walked from their own nodes: a
+/// small tree is in the cache either way, and fetching the point tree cost
+/// more than it saved (point contents of the small reference maps take
+/// 10-60 ns).
+constexpr std::size_t kPointTreeMinNodes = 256;
+
 /// The point tree of a model's BSP tree (numbers in range, children below
-/// 2^29; a tree with more nodes gets none: the walk then reads the model's).
+/// 2^28; a tree with more nodes gets none: the walks then read the model's).
 PointTree buildPointTree(const ModelArrays& m);
 
 }  // namespace cmkit::detail

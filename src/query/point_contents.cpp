@@ -110,12 +110,6 @@ std::uint32_t pointContentsThroughTree(const CollisionModel& model, const PointT
 
 }  // namespace
 
-/// Models with at most this many nodes are walked from their own nodes: a
-/// small tree is in the cache either way, and fetching the point tree cost
-/// more than it saved (point contents of the small reference maps take
-/// 10-60 ns).
-constexpr std::size_t kPointTreeMinNodes = 256;
-
 /// pointContentsMasked for a point already in the model's frame.
 std::uint32_t pointContentsInModel(const CollisionModel& model, const Vec3& p, std::uint32_t mask) {
   const std::span<const CmNode> nodes = model.nodes();

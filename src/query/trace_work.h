@@ -105,6 +105,8 @@ struct QueryScratch {
   };
   std::vector<WalkSegment> walkStack;   ///< the far sides the tree walk has still to visit
   std::vector<std::int32_t> nodeStack;  ///< nodes a box walk has still to visit (penetration)
+  /// Point-tree nodes a position test or a rotation's box walk has still to visit.
+  std::vector<std::uint32_t> pointStack;
   /// A child of the polygons' hierarchy still to visit, and the fraction at
   /// which the move reaches its (grown) box.
   struct BvhEntry {

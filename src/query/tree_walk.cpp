@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/point_tree.h"
+#include "model/query_data.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
@@ -61,6 +63,92 @@ void walkBox(TraceWork& tw, std::int32_t nodeNum, const Bounds& box) {
     const bool back = box.min[axis] <= node.planeDist;
     if (front && back) walkBox<Items>(tw, node.children[0], box);
     nodeNum = back ? node.children[1] : node.children[0];
+  }
+}
+
+// The model's point tree (model/point_tree.h) where the walks below read it
+// instead of the model's nodes: a model of more than kPointTreeMinNodes nodes.
+const PointTree* pointTreeOf(const TraceWork& tw) {
+  if (tw.queryData == nullptr || tw.model.nodes().size() <= kPointTreeMinNodes) return nullptr;
+  const PointTree& t = tw.queryData->pointTree;
+  return t.empty() ? nullptr : &t;
+}
+
+// walkBox through the point tree: the same nodes in the same order (a node's
+// items, its front subtree, then its back one) and the same tests, reading a
+// node's 8 bytes (near its parent's) instead of the model's 36, and a model
+// node only where items are listed. The back sides wait on a stack in the
+// caller's scratch. (A node whose box test fails on both sides, an inverted
+// box, goes to the front child, as walkBox does.)
+template <class Items>
+void walkBoxThroughPointTree(TraceWork& tw, const PointTree& t, const Bounds& box) {
+  std::vector<std::uint32_t>& pending = tw.scratch.pointStack;
+  std::size_t numPending = 0;
+  std::uint32_t n = 0;
+  for (;;) {
+    for (;;) {
+      // (walkBox returns at every level once blocked: the walk is over.)
+      if (tw.quickExit || tw.fraction == 0) return;
+      const PointNode node = t.nodes[n];
+      count(tw.scratch, &QueryStats::nodesVisited);
+      if (node.hasItems()) {
+        const CmNode& items = tw.model.nodes()[t.modelNodes[n]];
+        if (Items::has(items)) Items::test(tw, items);
+      }
+      const std::uint32_t axis = node.axis();
+      if (axis == PointNode::kLeafAxis) break;
+      const bool front = box.max[int(axis)] >= node.dist;
+      const bool back = box.min[int(axis)] <= node.dist;
+      if (front && back) {
+        if (numPending == pending.size()) pending.resize(2 * numPending + 32);
+        pending[numPending++] = node.front() + 1;
+      }
+      n = back && !front ? node.front() + 1 : node.front();
+    }
+    if (numPending == 0) return;
+    n = pending[--numPending];
+  }
+}
+
+// walkSegment<PositionItems> of a position test (a segment of no length,
+// from tw.start to tw.start) through the point tree: the same nodes in the
+// same order and the same tests. With no length the segment's ends are the
+// start at every node, and the walk ends once the trace model is stuck.
+void positionWalkThroughPointTree(TraceWork& tw, const PointTree& t) {
+  std::vector<std::uint32_t>& pending = tw.scratch.pointStack;
+  std::size_t numPending = 0;
+  const Real start[3] = {tw.start.x, tw.start.y, tw.start.z};
+  std::uint32_t n = 0;
+  for (;;) {
+    for (;;) {
+      if (tw.quickExit || tw.fraction <= 0) return;
+      const PointNode node = t.nodes[n];
+      count(tw.scratch, &QueryStats::nodesVisited);
+      if (node.hasItems()) {
+        PositionItems::test(tw, tw.model.nodes()[t.modelNodes[n]]);
+        if (tw.fraction == 0) return;
+      }
+      const std::uint32_t axis = node.axis();
+      if (axis == PointNode::kLeafAxis) break;
+      // walkSegment's test with both ends at the start: farther than the
+      // extent on one side visits that side only, else the front side now
+      // and the back side later.
+      const Real d = start[axis] - node.dist;
+      const Real offset = tw.extents[int(axis)];
+      if (d >= offset) {
+        n = node.front();
+        continue;
+      }
+      if (d < -offset) {
+        n = node.front() + 1;
+        continue;
+      }
+      if (numPending == pending.size()) pending.resize(2 * numPending + 32);
+      pending[numPending++] = node.front() + 1;
+      n = node.front();
+    }
+    if (numPending == 0) return;
+    n = pending[--numPending];
   }
 }
 
@@ -174,12 +262,18 @@ void translateThroughModel(TraceWork& tw) {
 
 void positionTestThroughModel(TraceWork& tw) {
   if (tw.model.nodes().empty()) return;
-  walkSegment<PositionItems>(tw);
+  if (const PointTree* t = pointTreeOf(tw))
+    positionWalkThroughPointTree(tw, *t);
+  else
+    walkSegment<PositionItems>(tw);
 }
 
 void rotateThroughBox(TraceWork& tw, const Bounds& box) {
   if (tw.model.nodes().empty()) return;
-  walkBox<RotateItems>(tw, 0, box);
+  if (const PointTree* t = pointTreeOf(tw))
+    walkBoxThroughPointTree<RotateItems>(tw, *t, box);
+  else
+    walkBox<RotateItems>(tw, 0, box);
 }
 
 }  // namespace cmkit::detail

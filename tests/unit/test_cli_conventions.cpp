@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include "test_support.h"
@@ -119,6 +120,40 @@ TEST_F(CliConventions, StandardInputAndSniffedFormats) {
   const std::string both = test::runCapture("true | " + cli() + " query - - 2>&1", rc);
   EXPECT_EQ(rc, 2);
   EXPECT_NE(both.find("cannot both be standard input"), std::string::npos) << both;
+}
+
+// bench --suite --slowest: each kind's N slowest queries, by their line in
+// the file (lines that are not queries counted), slowest first.
+TEST_F(CliConventions, BenchSuiteSlowestNamesTheQueriesLines) {
+  fs::create_directories(dir_ / "suite" / "reference");
+  fs::create_directories(dir_ / "suite" / "maps" / "m");
+  fs::copy_file(map_, dir_ / "suite" / "maps" / "m" / "features.map");
+  std::ofstream(dir_ / "suite" / "reference" / "features.queries.txt")
+      << "# a comment: line 1\n"
+         "translation trm=box:-8,-8,0,8,8,16 start=0,0,64 end=0,0,-64\n"
+         "pointcontents pos=0,0,0\n"
+         "translation trm=point start=0,0,64 end=0,0,63\n"
+         "translation trm=cylinder:8:-8,-8,0,8,8,16 start=0,0,64 end=64,0,-64\n";
+  int rc = -1;
+  const std::string out = test::runCapture(
+      cli() + " bench --suite " + q(dir_ / "suite" / "reference") + " --slowest 2 --repeat 3 2>&1", rc);
+  ASSERT_EQ(rc, 0) << out;
+  const std::regex head(
+      R"(slowest 2 of 3 translation queries in features\.queries\.txt \([0-9.]+ % of their time)");
+  EXPECT_TRUE(std::regex_search(out, head)) << out;
+  EXPECT_NE(out.find("slowest 1 of 1 pointcontents queries"), std::string::npos) << out;
+  std::smatch m;
+  std::string rest = out.substr(out.find("translation queries"));
+  std::vector<std::pair<double, int>> rows;  // ns, line
+  const std::regex row(R"(\n +([0-9]+) ns  line ([0-9]+))");
+  for (int k = 0; k < 2 && std::regex_search(rest, m, row); ++k) {
+    rows.emplace_back(std::stod(m[1]), std::stoi(m[2]));
+    rest = m.suffix();
+  }
+  ASSERT_EQ(rows.size(), 2u) << out;
+  EXPECT_GE(rows[0].first, rows[1].first) << out;  // slowest first
+  for (const auto& [ns, line] : rows) EXPECT_TRUE(line == 2 || line == 4 || line == 5) << out;
+  EXPECT_NE(rows[0].second, rows[1].second) << out;
 }
 
 TEST_F(CliConventions, CompileReadsAMapFromStandardInput) {

@@ -136,6 +136,8 @@ void checkPointNode(const CollisionModel& m, const PointTree& t, std::int32_t no
   const CmNode& n = m.nodes()[std::size_t(nodeNum)];
   const PointNode& p = t.nodes[place];
   EXPECT_EQ(p.hasBrushes(), n.numBrushRefs != 0);
+  EXPECT_EQ(p.hasItems(), n.numBrushRefs != 0 || n.numPolygonRefs != 0);
+  EXPECT_EQ(t.modelNodes[place], std::uint32_t(nodeNum));
   EXPECT_EQ(t.brushes[place].firstBrushRef, n.firstBrushRef);
   EXPECT_EQ(t.brushes[place].numBrushRefs, n.numBrushRefs);
   if (n.isLeaf()) {

@@ -268,6 +268,15 @@ TEST(Rotation, QuadraticSolverFindsTheFirstRootInItsInterval) {
   EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 1.2, 2.5, u));
   EXPECT_EQ(u, 2.0);
   EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, 2.5, 9, u));  // both before
+  // The second crossing after a first at 0 (lo the least double, subnormal:
+  // solved, not ruled out from the ends' signs): u (u - 0.5) = u^2 + 2 (-0.25) u.
+  const double afterZero = std::nextafter(0.0, 1.0);
+  EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -0.25, 0, afterZero, 1, u));
+  EXPECT_EQ(u, 0.5);
+  EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -0.25, 0, afterZero, 0.4, u));
+  EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, afterZero, 0.99, u));  // (u - 1)(u - 2)
+  EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, afterZero, 1.5, u));
+  EXPECT_EQ(u, 1.0);
 
   // Random quadratics a (u - r1)(u - r2) and intervals: the root found (or
   // none) is the first of r1, r2 in [lo, hi), whichever way the solver

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "bench_report.h"
@@ -40,6 +41,7 @@ struct BenchOptions {
   int repeat = 1;
   bool json = false;
   bool stats = false;  ///< --stats
+  int slowest = 0;     ///< --slowest: the N slowest queries of each kind and file
   bool noRotation = false;
   bool world = false;  ///< --world
   int rounds = 15;     ///< --rounds (--world)
@@ -158,6 +160,38 @@ std::string jsonKinds(const std::map<QueryOp, KindTime>& kinds) {
   return out + "}";
 }
 
+/// --slowest: times each query of one kind of a file on its own (--repeat
+/// times in a row, the fastest counting: the caches warm, as in the passes)
+/// and prints the N slowest with their lines and their share of the kind's
+/// time. Returns the results' sum (kept alive by the caller).
+double printSlowest(std::span<const ModelPtr> models, const std::vector<ParsedQuery>& queries,
+                    const std::vector<int>& lines, const fs::path& file, QueryOp op, const BenchOptions& o,
+                    QueryWork& work, std::vector<ContactInfo>& contacts) {
+  double sink = 0;
+  std::vector<std::pair<double, std::size_t>> times;  // ns, query
+  double total = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int pass = 0; pass < o.repeat; ++pass) {
+      const auto t0 = Clock::now();
+      sink += runParsedQueryUnformatted(models, queries[i], work, contacts);
+      best = std::min(best, std::chrono::duration<double, std::nano>(Clock::now() - t0).count());
+    }
+    times.emplace_back(best, i);
+    total += best;
+  }
+  std::sort(times.begin(), times.end(), std::greater<>());
+  const std::size_t n = std::min(times.size(), std::size_t(o.slowest));
+  double shown = 0;
+  for (std::size_t k = 0; k < n; ++k) shown += times[k].first;
+  fmt::print("slowest {} of {} {} queries in {} ({:.1f} % of their time, each the fastest of {} runs):\n", n,
+             queries.size(), toString(op), file.filename().string(), total > 0 ? 100 * shown / total : 0.0,
+             o.repeat);
+  for (std::size_t k = 0; k < n; ++k)
+    fmt::print("  {:10.0f} ns  line {}\n", times[k].first, lines[times[k].second]);
+  return sink;
+}
+
 void printSuiteText(const std::vector<SuiteRow>& rows, const SuiteRow& all, int repeat) {
   fmt::print("ns/query per kind (parsed once, results not formatted; {} pass{}, 1 thread; (n) = queries)\n",
              repeat, repeat == 1 ? "" : "es");
@@ -266,13 +300,18 @@ int runSuite(const BenchOptions& o) {
       continue;
     }
     std::map<QueryOp, std::vector<ParsedQuery>> byKind;
+    std::map<QueryOp, std::vector<int>> lineNumbers;  // (--slowest) each query's line in the file
+    int lineNumber = 0;
     for (std::size_t pos = 0; pos < text->size();) {
       const std::size_t nl = std::min(text->find('\n', pos), text->size());
       const std::string_view line = std::string_view(*text).substr(pos, nl - pos);
       pos = nl + 1;
+      ++lineNumber;
       if (!isQueryLine(line)) continue;
       auto parsed = parseQueryLine(*models, line);
-      if (parsed) byKind[parsed->op].push_back(std::move(*parsed));
+      if (!parsed) continue;
+      lineNumbers[parsed->op].push_back(lineNumber);
+      byKind[parsed->op].push_back(std::move(*parsed));
     }
     for (QueryOp op : kSuiteOps) {
       const auto& queries = byKind[op];
@@ -294,6 +333,7 @@ int runSuite(const BenchOptions& o) {
       t.ns += ns;
       t.count += n;
       t.lines += queries.size() * std::size_t(o.repeat);
+      if (o.slowest > 0) sink += printSlowest(*models, queries, lineNumbers[op], file, op, o, work, contacts);
     }
   }
   if (o.json)
@@ -374,6 +414,7 @@ void registerBench(CLI::App& app) {
       "  cmkit bench data/maps/lt4/lt4.map --threads 2 --walk\n"
       "  cmkit bench data/maps/lt4/lt4.map --rays --no-rotation\n"
       "  cmkit bench --suite ../shared/reference --repeat 20\n"
+      "  cmkit bench --suite ../shared/reference --repeat 20 --slowest 10\n"
       "  cmkit bench --suite ../shared/reference --json\n"
       "  build/stats/bin/cmkit bench --suite ../shared/reference --stats");
   cmd->add_option("MODELS", o->models,
@@ -417,6 +458,10 @@ void registerBench(CLI::App& app) {
   cmd->add_flag("--stats", o->stats,
                 "suite: also print the work per query (nodes, polygons, feature tests) of each kind; needs a "
                 "build with -DCMKIT_QUERY_STATS=ON (cmake --preset stats)");
+  cmd->add_option("--slowest", o->slowest,
+                  "suite: also time each query on its own (--repeat runs, the fastest counting) and print "
+                  "the N slowest of each kind and file, with their line numbers and share of the time")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
   addMeshOptions(cmd, o->mesh);
