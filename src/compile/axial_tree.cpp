@@ -20,7 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <ranges>
+#include <type_traits>
 
 #include "compile/builder.h"
 #include "util/assert.h"
@@ -60,7 +60,8 @@ struct ModelBuilder::GrowingLists {
     /// parent's split, newest first (chained in `chained`).
     std::vector<int> prepended;
     std::vector<Chained> chained;
-    std::vector<Item> front, back;  ///< scratch of splitItems
+    std::vector<Item> copy;           ///< scratch of splitItems
+    std::vector<std::uint8_t> sides;  ///< scratch of splitItems: kStay, kFront, kBack
     const Item* data(const Span& s) const { return stack.data() + s.begin; }
   };
   Kind polygons;
@@ -101,6 +102,9 @@ struct ModelBuilder::GrowingLists {
 };
 
 namespace {
+
+/// Where splitItems puts an item of the split node.
+constexpr std::uint8_t kStay = 0, kFront = 1, kBack = 2;
 
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
@@ -401,32 +405,36 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
     GrowingLists::Span& span = k.at[static_cast<std::size_t>(splitNum)];
     const std::size_t n = span.count;
     GrowingLists::Item* items = k.stack.data() + span.begin;
-    // One pass without branches (which side an item is on is unpredictable):
-    // every item written to all three places, kept by the count of its own.
-    // The items that stay go to the start of the same span (never ahead of
-    // the one read).
-    if (k.front.size() < n) k.front.resize(n);
-    if (k.back.size() < n) k.back.resize(n);
-    std::size_t numStay = 0, numFront = 0, numBack = 0;
+    // Each item's side and the counts first; then each item copied once, from
+    // a copy of the span, to its place, found without branches (which side an
+    // item is on is unpredictable): those that stay first, in their order,
+    // then the back child's and on top the front child's (split first). Each
+    // child prepends its items as the list is walked from its head (the end
+    // of the array): they are in reverse array order.
+    if (k.sides.size() < n) k.sides.resize(n);
+    if (k.copy.size() < n) k.copy.resize(n);
+    std::size_t numStay = 0, numFront = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      const GrowingLists::Item it = items[i];
-      const bool inside = straddles(it.bounds, axis, dist);
-      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
-      const bool inFront = !inside & (it.bounds.min[axis] >= dist);
-      k.front[numFront] = it;
-      k.back[numBack] = it;
-      items[numStay] = it;  // (last: may be the item itself)
+      const Bounds& b = items[i].bounds;
+      const bool inside = straddles(b, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, b));
+      const bool inFront = !inside & (b.min[axis] >= dist);
+      k.sides[i] = static_cast<std::uint8_t>(inside ? kStay : inFront ? kFront : kBack);
       numStay += inside ? 1 : 0;
       numFront += inFront ? 1 : 0;
-      numBack += (!inside & !inFront) ? 1 : 0;
     }
-    // Each side prepends its items as the list is walked from its head (the
-    // end of the array): in reverse array order. The back child's items
-    // follow those that stay, the front child's (split first) are on top.
-    GrowingLists::Item* out = items + numStay;
-    std::reverse_copy(k.back.begin(), k.back.begin() + static_cast<std::ptrdiff_t>(numBack), out);
-    std::reverse_copy(k.front.begin(), k.front.begin() + static_cast<std::ptrdiff_t>(numFront),
-                      out + numBack);
+    const std::size_t numBack = n - numStay - numFront;
+    static_assert(std::is_trivially_copyable_v<GrowingLists::Item>);
+    if (n != 0) std::memcpy(k.copy.data(), items, n * sizeof(GrowingLists::Item));
+    std::size_t nextStay = 0, backEnd = numStay + numBack, frontEnd = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint8_t side = k.sides[i];
+      backEnd -= side == kBack ? 1 : 0;
+      frontEnd -= side == kFront ? 1 : 0;
+      const std::size_t to = side == kStay ? nextStay : side == kFront ? frontEnd : backEnd;
+      nextStay += side == kStay ? 1 : 0;
+      items[to] = k.copy[i];
+    }
     const auto stayEnd = static_cast<std::uint32_t>(span.begin + numStay);
     k.at[back] = {stayEnd, static_cast<std::uint32_t>(numBack)};
     k.at[front] = {static_cast<std::uint32_t>(stayEnd + numBack), static_cast<std::uint32_t>(numFront)};
