@@ -4,8 +4,10 @@
 // The original keeps each node's items in its linked list and, after every
 // split, tests every item of the split node and of all its ancestors with the
 // full "inside all children" recursion over their subtrees, following list
-// links all over memory. Here each node's items are an array of (bounds,
-// item), cheap to scan, and the recursion is replaced by what it amounts to:
+// links all over memory. Here each node's items are a run of (bounds, item)
+// on one stack per kind (GrowingLists: no array per node, nothing allocated
+// per split), cheap to scan, and the recursion is replaced by what it
+// amounts to:
 // every item of an interior node is inside all its children (the tree-filter
 // rule puts it there only then, and every split re-checks the ancestors), so
 // after a split an item of the split node or of an ancestor is still inside
@@ -18,7 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <ranges>
+#include <type_traits>
 
 #include "compile/builder.h"
 #include "util/assert.h"
@@ -26,16 +28,46 @@
 
 namespace cmkit::detail {
 
-/// Per node, its polygons and brushes with their bounds in reverse list
-/// order (the head last: prepending to a list is push_back).
+/// The items of the nodes while the tree grows. The tree grows depth first,
+/// so each kind's lists live on one stack of (bounds, item): the node being
+/// split has its items on top; below lie, from the root down, the items that
+/// stayed at each ancestor and the items of each back child still to be
+/// split. A list is stored in reverse list order (the head last: prepending
+/// is push_back). Items prepended to a node before it is split are chained
+/// beside the stack until it is; a node whose subtree is finished has its
+/// list written to the builder's references, and later items are prepended
+/// there, as the original links them.
 struct ModelBuilder::GrowingLists {
   struct Item {
     Bounds bounds;
     int item = kNone;
   };
-  using Lists = std::vector<std::vector<Item>>;
-  Lists polygons;
-  Lists brushes;
+  /// A list on the stack.
+  struct Span {
+    std::uint32_t begin = 0;
+    std::uint32_t count = 0;
+  };
+  struct Chained {
+    Item it;
+    int next = kNone;
+  };
+  struct Kind {
+    std::vector<Item> stack;
+    /// Per node: its list while it waits to be split or is an ancestor of
+    /// the node being split (what stayed at it).
+    std::vector<Span> at;
+    /// Per node waiting to be split: the items prepended to it since its
+    /// parent's split, newest first (chained in `chained`).
+    std::vector<int> prepended;
+    std::vector<Chained> chained;
+    std::vector<Item> copy;           ///< scratch of splitItems
+    std::vector<std::uint8_t> sides;  ///< scratch of splitItems: kStay, kFront, kBack
+    const Item* data(const Span& s) const { return stack.data() + s.begin; }
+  };
+  Kind polygons;
+  Kind brushes;
+  /// Per node: whether its subtree is finished (its list in the references).
+  std::vector<char> done;
   /// pushItemsDown's path: the nodes below its node down to the split
   /// node, top down, and the child off the path at each node from its node
   /// down (above the split).
@@ -49,25 +81,30 @@ struct ModelBuilder::GrowingLists {
   /// pushItemsDown to nodes off the path, which are not above the split
   /// node), so the walks up the tree skip the others.
   std::vector<std::size_t> filledAncestors;
-  std::vector<const std::vector<Item>*> sources;  ///< scratch of findSplitter
-  std::vector<Item> stay, back;                   ///< scratch of splitItems
-  /// Per node, compact for the walks up the tree: whether it may hold
-  /// items (set when it gets one, updated when it loses some).
-  std::vector<char> filled;
-  Lists& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
-  void add(Lists& all, int node, const Item& it) {
-    all[static_cast<std::size_t>(node)].push_back(it);
-    filled[static_cast<std::size_t>(node)] = 1;
+  struct Source {
+    const Item* items;
+    std::size_t count;
+  };
+  std::vector<Source> sources;  ///< scratch of findSplitter
+  Kind& of(ItemKind kind) { return kind == ItemKind::Polygon ? polygons : brushes; }
+  bool holdsItems(int node) const {
+    const auto n = static_cast<std::size_t>(node);
+    return polygons.at[n].count != 0 || brushes.at[n].count != 0;
   }
   /// Room for the nodes of the builder's tree.
-  void grow(const std::vector<BNode>& nodes) {
-    polygons.resize(nodes.size());
-    brushes.resize(nodes.size());
-    filled.resize(nodes.size(), 0);
+  void grow(std::size_t numNodes) {
+    for (Kind* k : {&polygons, &brushes}) {
+      k->at.resize(numNodes);
+      k->prepended.resize(numNodes, kNone);
+    }
+    done.resize(numNodes, 0);
   }
 };
 
 namespace {
+
+/// Where splitItems puts an item of the split node.
+constexpr std::uint8_t kStay = 0, kFront = 1, kBack = 2;
 
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
@@ -82,13 +119,14 @@ inline Real splitterT(Real lo, Real hi, Real dist) { return std::fabs((hi - dist
 /// The original's search, one candidate at a time in list order (each list
 /// from its head, the end of its array; an item's min before its max): the
 /// first candidate strictly inside lo..hi with the least t below `size`.
-template <class Item>
-bool firstMostCentred(const std::vector<const std::vector<Item>*>& sources, int type, Real lo, Real hi,
-                      Real size, Real& bestDist) {
+template <class Source>
+bool firstMostCentred(const std::vector<Source>& sources, int type, Real lo, Real hi, Real size,
+                      Real& bestDist) {
   Real bestt = size;
   bestDist = 0;
-  for (const std::vector<Item>* items : sources) {
-    for (auto it = items->rbegin(); it != items->rend(); ++it) {
+  for (const Source& source : sources) {
+    for (std::size_t k = source.count; k-- > 0;) {
+      const auto* it = source.items + k;
       for (const Real dist : {it->bounds.min[type], it->bounds.max[type]}) {
         const Real t = splitterT(lo, hi, dist);
         const bool better = (dist < hi) & (dist > lo) & (t < bestt);
@@ -105,9 +143,9 @@ bool firstMostCentred(const std::vector<const std::vector<Item>*>& sources, int 
 /// whether another plane gave the same t; only the position in list order
 /// tells apart two planes with the least t, so then (rarely) the search in
 /// list order decides.
-template <class Item>
-bool mostCentredSplitter(const std::vector<const std::vector<Item>*>& sources, int type, Real lo, Real hi,
-                         Real size, Real& bestDist) {
+template <class Source>
+bool mostCentredSplitter(const std::vector<Source>& sources, int type, Real lo, Real hi, Real size,
+                         Real& bestDist) {
 #ifdef CMKIT_FLOAT_LANES
   using simd::F4;
   const F4 loV = F4::all(lo), hiV = F4::all(hi), sizeV = F4::all(size);
@@ -125,14 +163,14 @@ bool mostCentredSplitter(const std::vector<const std::vector<Item>*>& sources, i
   // lane 3 max[type] (the bounds are six floats; these 16 bytes lie within).
   static_assert(sizeof(Bounds) == 6 * sizeof(float));
   const std::size_t offset = static_cast<std::size_t>(type) * sizeof(float);
-  auto row = [offset](const Item& item) {
+  auto row = [offset](const auto& item) {
     alignas(16) float f[4];
     std::memcpy(f, reinterpret_cast<const char*>(&item.bounds) + offset, sizeof f);
     return F4::load(f);
   };
-  for (const std::vector<Item>* items : sources) {
-    const Item* it = items->data();
-    const std::size_t n = items->size();
+  for (const Source& source : sources) {
+    const auto* it = source.items;
+    const std::size_t n = source.count;
     std::size_t k = 0;
     for (; k + 4 <= n; k += 4) {
       F4 mins = row(it[k]), r1 = row(it[k + 1]), r2 = row(it[k + 2]), maxs = row(it[k + 3]);
@@ -175,40 +213,56 @@ void ModelBuilder::createAxialBSPTree(const Bounds& bounds) {
   GrowingLists lists;
   readLists(lists);
   splitNode(lists, 0, bounds);
-  writeLists(lists);
 }
 
-void ModelBuilder::readLists(GrowingLists& lists) const {
-  lists.grow(nodes_);
-  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
-    auto& polygons = lists.polygons[static_cast<std::size_t>(n)];
-    for (const int p : polygonsAt(n)) polygons.push_back({polygon(p).bounds, p});
-    std::reverse(polygons.begin(), polygons.end());
-    auto& brushes = lists.brushes[static_cast<std::size_t>(n)];
-    for (const int b : brushesAt(n)) brushes.push_back({brush(b).bounds, b});
-    std::reverse(brushes.begin(), brushes.end());
-    lists.filled[static_cast<std::size_t>(n)] = !polygons.empty() || !brushes.empty();
-  }
-}
-
-void ModelBuilder::writeLists(const GrowingLists& lists) {
-  // The references are made anew: only the lists' order matters.
+void ModelBuilder::readLists(GrowingLists& lists) {
+  lists.grow(nodes_.size());
+  auto read = [&](GrowingLists::Kind& kind, RefList items, auto&& boundsOf) {
+    for (const int i : items) kind.stack.push_back({boundsOf(i), i});
+    std::reverse(kind.stack.begin(), kind.stack.end());
+    kind.at[0] = {0, static_cast<std::uint32_t>(kind.stack.size())};
+  };
+  read(lists.polygons, polygonsAt(0), [&](int p) { return polygon(p).bounds; });
+  read(lists.brushes, brushesAt(0), [&](int b) { return brush(b).bounds; });
+  // The references are made anew as the nodes are finished: only the lists'
+  // order matters.
   polygonRefs_.clear();
   brushRefs_.clear();
   freePolygonRef_ = kNone;
-  for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
-    BNode& here = node(n);
-    here.polygons = kNone;
-    for (const auto& it : lists.polygons[static_cast<std::size_t>(n)]) {
-      polygonRefs_.push_back({it.item, here.polygons});
-      here.polygons = static_cast<int>(polygonRefs_.size()) - 1;
-    }
-    here.brushes = kNone;
-    for (const auto& it : lists.brushes[static_cast<std::size_t>(n)]) {
-      brushRefs_.push_back({it.item, here.brushes});
-      here.brushes = static_cast<int>(brushRefs_.size()) - 1;
-    }
+  node(0).polygons = kNone;
+  node(0).brushes = kNone;
+}
+
+void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum, const Bounds& bounds,
+                                 int item) {
+  const auto n = static_cast<std::size_t>(nodeNum);
+  if (lists.done[n]) {
+    std::vector<BRef>& refs = kind == ItemKind::Polygon ? polygonRefs_ : brushRefs_;
+    int& head = kind == ItemKind::Polygon ? node(nodeNum).polygons : node(nodeNum).brushes;
+    refs.push_back({item, head});
+    head = static_cast<int>(refs.size()) - 1;
+    return;
   }
+  GrowingLists::Kind& k = lists.of(kind);
+  k.chained.push_back({{bounds, item}, k.prepended[n]});
+  k.prepended[n] = static_cast<int>(k.chained.size()) - 1;
+}
+
+void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
+  const auto n = static_cast<std::size_t>(nodeNum);
+  BNode& here = node(nodeNum);
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    GrowingLists::Kind& k = lists.of(kind);
+    std::vector<BRef>& refs = kind == ItemKind::Polygon ? polygonRefs_ : brushRefs_;
+    int& head = kind == ItemKind::Polygon ? here.polygons : here.brushes;
+    const GrowingLists::Item* items = k.data(k.at[n]);
+    for (std::uint32_t i = 0; i < k.at[n].count; ++i) {
+      refs.push_back({items[i].item, head});
+      head = static_cast<int>(refs.size()) - 1;
+    }
+    k.at[n].count = 0;
+  }
+  lists.done[n] = 1;
 }
 
 bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& bounds, int& planeType,
@@ -229,7 +283,7 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
   }
   bool forceSplit = false;
   if (size[0] < tol::kMinNodeSize) {
-    const std::size_t polyCount = lists.polygons[static_cast<std::size_t>(nodeNum)].size();
+    const std::size_t polyCount = lists.polygons.at[static_cast<std::size_t>(nodeNum)].count;
     if (polyCount > static_cast<std::size_t>(tol::kMaxNodePolygons)) forceSplit = true;
   }
   for (int i = 0; i < 3; ++i) {
@@ -238,12 +292,10 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
     if (i == 0) {
       // candidates from the brushes, then the polygons, of this node and its ancestors
       lists.sources.clear();
-      for (const GrowingLists::Lists* all : {&lists.brushes, &lists.polygons}) {
-        if (all == &lists.brushes && brushes_.empty()) continue;  // (a mesh: no brush lists to read)
+      for (const GrowingLists::Kind* kind : {&lists.brushes, &lists.polygons}) {
         auto addSource = [&](int n) {
-          if (!lists.filled[static_cast<std::size_t>(n)]) return;
-          const auto& items = (*all)[static_cast<std::size_t>(n)];
-          if (!items.empty()) lists.sources.push_back(&items);
+          const GrowingLists::Span& span = kind->at[static_cast<std::size_t>(n)];
+          if (span.count != 0) lists.sources.push_back({kind->data(span), span.count});
         };
         addSource(nodeNum);
         for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a)
@@ -271,17 +323,44 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
 }
 
 void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bounds) {
+  const auto n = static_cast<std::size_t>(nodeNum);
+  // This node's lists on top of the stacks: what its parent's split gave it
+  // (already there), then the items prepended since (the newest last).
+  std::uint32_t slotStart[2];
+  for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
+    GrowingLists::Kind& k = lists.of(kind);
+    GrowingLists::Span& span = k.at[n];
+    CMKIT_ASSERT(span.count == 0 || span.begin + span.count == k.stack.size());
+    span.begin = static_cast<std::uint32_t>(k.stack.size()) - span.count;
+    slotStart[kind == ItemKind::Polygon ? 0 : 1] = span.begin;
+    std::size_t numPrepended = 0;
+    for (int c = k.prepended[n]; c != kNone; c = k.chained[static_cast<std::size_t>(c)].next) ++numPrepended;
+    if (numPrepended != 0) {
+      std::size_t end = k.stack.size() + numPrepended;
+      k.stack.resize(end);
+      for (int c = k.prepended[n]; c != kNone; c = k.chained[static_cast<std::size_t>(c)].next)
+        k.stack[--end] = k.chained[static_cast<std::size_t>(c)].it;
+      span.count += static_cast<std::uint32_t>(numPrepended);
+      k.prepended[n] = kNone;
+    }
+  }
+  auto popSlot = [&] {
+    lists.polygons.stack.resize(slotStart[0]);
+    lists.brushes.stack.resize(slotStart[1]);
+  };
   int planeType = kNone;
   Real planeDist = 0;
   if (!findSplitter(lists, nodeNum, bounds, planeType, planeDist)) {
     node(nodeNum).planeType = kNone;
+    finishList(lists, nodeNum);
+    popSlot();
     return;
   }
   const int frontNode = allocNode();
   node(frontNode).parent = nodeNum;
   const int backNode = allocNode();
   node(backNode).parent = nodeNum;
-  lists.grow(nodes_);
+  lists.grow(nodes_.size());
   counters_.numNodes += 2;
   Bounds frontBounds = bounds;
   frontBounds.min[planeType] = planeDist;
@@ -298,18 +377,21 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   // The nearest ancestor first.
   for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a) {
     const int ancestor = lists.ancestors[*a];
-    if (!lists.filled[static_cast<std::size_t>(ancestor)]) continue;
+    if (!lists.holdsItems(ancestor)) continue;
     lists.path.assign(lists.ancestors.begin() + static_cast<std::ptrdiff_t>(*a + 1), lists.ancestors.end());
     lists.path.push_back(nodeNum);
     pushItemsDown(lists, ancestor, nodeNum);
   }
-  const bool filled = lists.filled[static_cast<std::size_t>(nodeNum)] != 0;
+  const bool filled = lists.holdsItems(nodeNum);
   if (filled) lists.filledAncestors.push_back(lists.ancestors.size());
   lists.ancestors.push_back(nodeNum);
+  // (the front child's items are on top of the stacks, the back child's below)
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
   lists.ancestors.pop_back();
   if (filled) lists.filledAncestors.pop_back();
+  finishList(lists, nodeNum);
+  popSlot();
 }
 
 void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
@@ -319,44 +401,45 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
   const auto front = static_cast<std::size_t>(split.children[0]);
   const auto back = static_cast<std::size_t>(split.children[1]);
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
-    GrowingLists::Lists& all = lists.of(kind);
-    std::vector<GrowingLists::Item> items = std::move(all[static_cast<std::size_t>(splitNum)]);
-    if (items.empty()) continue;
-    // One pass without branches (which side an item is on is unpredictable):
-    // every item written to all three places, kept by the count of its own.
-    // The front items go to the start of the same array (never ahead of the
-    // one read).
-    const std::size_t n = items.size();
-    if (lists.stay.size() < n) lists.stay.resize(n);
-    if (lists.back.size() < n) lists.back.resize(n);
-    std::size_t numStay = 0, numFront = 0, numBack = 0;
+    GrowingLists::Kind& k = lists.of(kind);
+    GrowingLists::Span& span = k.at[static_cast<std::size_t>(splitNum)];
+    const std::size_t n = span.count;
+    GrowingLists::Item* items = k.stack.data() + span.begin;
+    // Each item's side and the counts first; then each item copied once, from
+    // a copy of the span, to its place, found without branches (which side an
+    // item is on is unpredictable): those that stay first, in their order,
+    // then the back child's and on top the front child's (split first). Each
+    // child prepends its items as the list is walked from its head (the end
+    // of the array): they are in reverse array order.
+    if (k.sides.size() < n) k.sides.resize(n);
+    if (k.copy.size() < n) k.copy.resize(n);
+    std::size_t numStay = 0, numFront = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      const GrowingLists::Item& it = items[i];
-      const bool inside = straddles(it.bounds, axis, dist);
-      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
-      const bool inFront = !inside & (it.bounds.min[axis] >= dist);
-      lists.stay[numStay] = it;
-      lists.back[numBack] = it;
-      items[numFront] = it;  // (last: may be the item itself)
+      const Bounds& b = items[i].bounds;
+      const bool inside = straddles(b, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, b));
+      const bool inFront = !inside & (b.min[axis] >= dist);
+      k.sides[i] = static_cast<std::uint8_t>(inside ? kStay : inFront ? kFront : kBack);
       numStay += inside ? 1 : 0;
       numFront += inFront ? 1 : 0;
-      numBack += (!inside & !inFront) ? 1 : 0;
     }
-    // Each side prepends its items as the list is walked from its head (the
-    // end of the array): in reverse array order.
-    items.resize(numFront);
-    std::reverse(items.begin(), items.end());
-    lists.filled[front] = lists.filled[front] || numFront != 0;
-    lists.filled[back] = lists.filled[back] || numBack != 0;
-    all[front] = std::move(items);
-    const auto backEnd = lists.back.begin() + static_cast<std::ptrdiff_t>(numBack);
-    all[back].assign(std::make_reverse_iterator(backEnd), std::make_reverse_iterator(lists.back.begin()));
-    all[static_cast<std::size_t>(splitNum)].assign(lists.stay.begin(),
-                                                   lists.stay.begin() + static_cast<std::ptrdiff_t>(numStay));
+    const std::size_t numBack = n - numStay - numFront;
+    static_assert(std::is_trivially_copyable_v<GrowingLists::Item>);
+    if (n != 0) std::memcpy(k.copy.data(), items, n * sizeof(GrowingLists::Item));
+    std::size_t nextStay = 0, backEnd = numStay + numBack, frontEnd = n;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint8_t side = k.sides[i];
+      backEnd -= side == kBack ? 1 : 0;
+      frontEnd -= side == kFront ? 1 : 0;
+      const std::size_t to = side == kStay ? nextStay : side == kFront ? frontEnd : backEnd;
+      nextStay += side == kStay ? 1 : 0;
+      items[to] = k.copy[i];
+    }
+    const auto stayEnd = static_cast<std::uint32_t>(span.begin + numStay);
+    k.at[back] = {stayEnd, static_cast<std::uint32_t>(numBack)};
+    k.at[front] = {static_cast<std::uint32_t>(stayEnd + numBack), static_cast<std::uint32_t>(numFront)};
+    span.count = static_cast<std::uint32_t>(numStay);
   }
-  lists.filled[static_cast<std::size_t>(splitNum)] =
-      !lists.polygons[static_cast<std::size_t>(splitNum)].empty() ||
-      !lists.brushes[static_cast<std::size_t>(splitNum)].empty();
 }
 
 void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum) {
@@ -372,34 +455,16 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
     above = static_cast<std::size_t>(below);
   }
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
-    GrowingLists::Lists& all = lists.of(kind);
-    if (!lists.filled[static_cast<std::size_t>(nodeNum)]) return;
-    auto& here = all[static_cast<std::size_t>(nodeNum)];
-    if (here.empty()) continue;
-    // Room first: every item that leaves goes to each node off the path
-    // and to one side of the split.
-    std::size_t numLeaving = 0;
-    std::size_t numFront = 0;
-    for (const GrowingLists::Item& it : here) {
-      const bool leaves = !straddles(it.bounds, axis, dist);
-      numLeaving += leaves ? 1 : 0;
-      numFront += leaves && it.bounds.min[axis] >= dist ? 1 : 0;
-    }
-    if (numLeaving == 0) continue;
-    auto reserveMore = [&](int n, std::size_t count) {
-      auto& items = all[static_cast<std::size_t>(n)];
-      // (geometric growth: a node may get items from several ancestors)
-      if (items.size() + count > items.capacity())
-        items.reserve(std::max(items.size() + count, 2 * items.capacity()));
-    };
-    for (const int offPath : lists.offPath) reserveMore(offPath, numLeaving);
-    reserveMore(split.children[0], numFront);
-    reserveMore(split.children[1], numLeaving - numFront);
-    // In list order, from the end of the array (the original filters each
-    // item as it meets it); the items that stay keep their order.
-    std::size_t kept = here.size();
-    for (std::size_t i = here.size(); i-- > 0;) {
-      const GrowingLists::Item& it = here[i];
+    GrowingLists::Kind& k = lists.of(kind);
+    GrowingLists::Span& span = k.at[static_cast<std::size_t>(nodeNum)];
+    if (span.count == 0) continue;
+    // In list order, from the end of the span (the original filters each
+    // item as it meets it); the items that stay keep their order, at the
+    // end of the span.
+    GrowingLists::Item* here = k.stack.data() + span.begin;
+    std::uint32_t kept = span.count;
+    for (std::uint32_t i = span.count; i-- > 0;) {
+      const GrowingLists::Item it = here[i];
       const bool inside = straddles(it.bounds, axis, dist);
       CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, nodeNum, it.bounds));
       if (inside) {
@@ -408,18 +473,15 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       }
       // Through each node above the split, the child off the path, then the
       // side of the split it lies on.
-      for (const int offPath : lists.offPath) lists.add(all, offPath, it);
+      for (const int offPath : lists.offPath) prependToList(lists, kind, offPath, it.bounds, it.item);
       const int side = it.bounds.min[axis] >= dist ? split.children[0] : split.children[1];
-      lists.add(all, side, it);
+      prependToList(lists, kind, side, it.bounds, it.item);
       // the reference moves to one node; the others are new
       (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
           static_cast<int>(lists.path.size());
     }
-    here.erase(here.begin(), here.begin() + static_cast<std::ptrdiff_t>(kept));
+    span.begin += kept;
+    span.count -= kept;
   }
-  lists.filled[static_cast<std::size_t>(nodeNum)] =
-      !lists.polygons[static_cast<std::size_t>(nodeNum)].empty() ||
-      !lists.brushes[static_cast<std::size_t>(nodeNum)].empty();
 }
-
 }  // namespace cmkit::detail

@@ -274,8 +274,13 @@ class ModelBuilder {
   /// root, while it is the only node, over the items linked into it.
   void createAxialBSPTree(const Bounds& bounds);
   struct GrowingLists;
-  void readLists(GrowingLists& lists) const;
-  void writeLists(const GrowingLists& lists);
+  /// The root's lists onto the stacks; the references emptied.
+  void readLists(GrowingLists& lists);
+  /// Prepends an item to a node's list: its chain while it waits to be
+  /// split, its references once its subtree is finished.
+  void prependToList(GrowingLists& lists, ItemKind kind, int node, const Bounds& bounds, int item);
+  /// A node whose subtree is finished: its lists into the references.
+  void finishList(GrowingLists& lists, int node);
   bool findSplitter(GrowingLists& lists, int node, const Bounds& bounds, int& planeType,
                     Real& planeDist) const;
   void splitNode(GrowingLists& lists, int node, const Bounds& bounds);
