@@ -74,20 +74,22 @@ const PointTree* pointTreeOf(const TraceWork& tw) {
   return t.empty() ? nullptr : &t;
 }
 
-// walkBox through the point tree: the same nodes in the same order (a node's
-// items, its front subtree, then its back one) and the same tests, reading a
-// node's 8 bytes (near its parent's) instead of the model's 36, and a model
-// node only where items are listed. The back sides wait on a stack in the
-// caller's scratch. (A node whose box test fails on both sides, an inverted
-// box, goes to the front child, as walkBox does.)
-template <class Items>
-void walkBoxThroughPointTree(TraceWork& tw, const PointTree& t, const Bounds& box) {
+// A walk of the point tree visiting the nodes that walkBox<Items> or a
+// position test's walkSegment<PositionItems> visits, in the same order (a
+// node's items, its front subtree, then its back one), with the same tests,
+// reading a node's 8 bytes (near its parent's) instead of the model's 36,
+// and a model node only where items are listed. sides(axis, dist) says
+// which sides of a split the walk goes on to: bit 0 the front, bit 1 the
+// back (none: the front, as walkBox does for an inverted box). The back
+// sides wait on a stack in the caller's scratch. The walk is over once the
+// trace model is blocked (both walks return at every level then).
+template <class Items, class Sides>
+void walkPointTree(TraceWork& tw, const PointTree& t, Sides sides) {
   std::vector<std::uint32_t>& pending = tw.scratch.pointStack;
   std::size_t numPending = 0;
   std::uint32_t n = 0;
   for (;;) {
     for (;;) {
-      // (walkBox returns at every level once blocked: the walk is over.)
       if (tw.quickExit || tw.fraction == 0) return;
       const PointNode node = t.nodes[n];
       count(tw.scratch, &QueryStats::nodesVisited);
@@ -97,59 +99,35 @@ void walkBoxThroughPointTree(TraceWork& tw, const PointTree& t, const Bounds& bo
       }
       const std::uint32_t axis = node.axis();
       if (axis == PointNode::kLeafAxis) break;
-      const bool front = box.max[int(axis)] >= node.dist;
-      const bool back = box.min[int(axis)] <= node.dist;
-      if (front && back) {
+      const unsigned go = sides(int(axis), node.dist);
+      if (go == 3) {
         if (numPending == pending.size()) pending.resize(2 * numPending + 32);
         pending[numPending++] = node.front() + 1;
       }
-      n = back && !front ? node.front() + 1 : node.front();
+      n = go == 2 ? node.front() + 1 : node.front();
     }
     if (numPending == 0) return;
     n = pending[--numPending];
   }
 }
 
-// walkSegment<PositionItems> of a position test (a segment of no length,
-// from tw.start to tw.start) through the point tree: the same nodes in the
-// same order and the same tests. With no length the segment's ends are the
-// start at every node, and the walk ends once the trace model is stuck.
+// walkBox's sides of a split: those the box touches.
+void walkBoxThroughPointTree(TraceWork& tw, const PointTree& t, const Bounds& box) {
+  walkPointTree<RotateItems>(tw, t, [&box](int axis, Real dist) {
+    return unsigned(box.max[axis] >= dist) | unsigned(box.min[axis] <= dist) << 1;
+  });
+}
+
+// walkSegment's sides of a split for a segment of no length (a position
+// test's, from tw.start to tw.start): farther than the extent on one side,
+// that side only, else both.
 void positionWalkThroughPointTree(TraceWork& tw, const PointTree& t) {
-  std::vector<std::uint32_t>& pending = tw.scratch.pointStack;
-  std::size_t numPending = 0;
   const Real start[3] = {tw.start.x, tw.start.y, tw.start.z};
-  std::uint32_t n = 0;
-  for (;;) {
-    for (;;) {
-      if (tw.quickExit || tw.fraction <= 0) return;
-      const PointNode node = t.nodes[n];
-      count(tw.scratch, &QueryStats::nodesVisited);
-      if (node.hasItems()) {
-        PositionItems::test(tw, tw.model.nodes()[t.modelNodes[n]]);
-        if (tw.fraction == 0) return;
-      }
-      const std::uint32_t axis = node.axis();
-      if (axis == PointNode::kLeafAxis) break;
-      // walkSegment's test with both ends at the start: farther than the
-      // extent on one side visits that side only, else the front side now
-      // and the back side later.
-      const Real d = start[axis] - node.dist;
-      const Real offset = tw.extents[int(axis)];
-      if (d >= offset) {
-        n = node.front();
-        continue;
-      }
-      if (d < -offset) {
-        n = node.front() + 1;
-        continue;
-      }
-      if (numPending == pending.size()) pending.resize(2 * numPending + 32);
-      pending[numPending++] = node.front() + 1;
-      n = node.front();
-    }
-    if (numPending == 0) return;
-    n = pending[--numPending];
-  }
+  walkPointTree<PositionItems>(tw, t, [&](int axis, Real dist) {
+    const Real d = start[axis] - dist;
+    const Real offset = tw.extents[axis];
+    return d >= offset ? 1u : d < -offset ? 2u : 3u;
+  });
 }
 
 // The walk along the segment, near side before far side at every split, as
@@ -271,7 +249,7 @@ void positionTestThroughModel(TraceWork& tw) {
 void rotateThroughBox(TraceWork& tw, const Bounds& box) {
   if (tw.model.nodes().empty()) return;
   if (const PointTree* t = pointTreeOf(tw))
-    walkBoxThroughPointTree<RotateItems>(tw, *t, box);
+    walkBoxThroughPointTree(tw, *t, box);
   else
     walkBox<RotateItems>(tw, 0, box);
 }
