@@ -163,6 +163,11 @@ TEST_F(CliConventions, BenchSuiteSlowestNamesTheQueriesLines) {
   EXPECT_GE(rows[0].first, rows[1].first) << out;  // slowest first
   for (const auto& [ns, line] : rows) EXPECT_TRUE(line == 2 || line == 4 || line == 5) << out;
   EXPECT_NE(rows[0].second, rows[1].second) << out;
+  // Not with --json, whose output the text lists would break.
+  const std::string both = test::runCapture(
+      cli() + " bench --suite " + q(dir_ / "suite" / "reference") + " --slowest 2 --json 2>&1", rc);
+  EXPECT_EQ(rc, 2) << both;
+  EXPECT_NE(both.find("--json"), std::string::npos) << both;
 }
 
 TEST_F(CliConventions, CompileReadsAMapFromStandardInput) {

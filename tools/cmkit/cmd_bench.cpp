@@ -454,14 +454,17 @@ void registerBench(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat, "suite: passes over each file")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
-  cmd->add_flag("--json", o->json, "suite: print the times as JSON (for scripts) instead of the table");
+  CLI::Option* json =
+      cmd->add_flag("--json", o->json, "suite: print the times as JSON (for scripts) instead of the table");
   cmd->add_flag("--stats", o->stats,
                 "suite: also print the work per query (nodes, polygons, feature tests) of each kind; needs a "
                 "build with -DCMKIT_QUERY_STATS=ON (cmake --preset stats)");
   cmd->add_option("--slowest", o->slowest,
                   "suite: also time each query on its own (--repeat runs, the fastest counting) and print "
-                  "the N slowest of each kind and file, with their line numbers and share of the time")
-      ->check(CLI::Range(1, 1000000));
+                  "the N slowest of each kind and file, with their line numbers and share of the time (not "
+                  "with --json: the lists are text)")
+      ->check(CLI::Range(1, 1000000))
+      ->excludes(json);
   cmd->add_option("--materials", o->materials, "directory of .mtr files (default: the built-in rules)");
   addNoProcFlag(cmd, o->noProc);
   addMeshOptions(cmd, o->mesh);
