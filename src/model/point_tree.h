@@ -1,5 +1,6 @@
-// Internal: the BSP tree as point contents and position tests walk it, made
-// once with the model (query_data.h): 8 bytes a node, a node's two children side by side,
+// Internal: the BSP tree as point contents, position tests and rotations'
+// box walks read it, made once with the model (query_data.h): 8 bytes a
+// node, a node's two children side by side,
 // the pairs in depth-first order (a walk down a subtree stays near its
 // root's line), so that a walk from the root to a point's leaf reads a few
 // cache lines instead of a node's 36 bytes each, and picks a child by

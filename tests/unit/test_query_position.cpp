@@ -1,7 +1,6 @@
 // The position test's brush test (contentsTest of a trace model): which
 // trace-model vertex it reports inside a brush, and against which plane,
-// computed here vertex by vertex and plane by plane (the library tests four
-// vertices at a time in SSE2 builds).
+// computed here vertex by vertex and plane by plane.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,8 +39,7 @@ Expected firstVertexInside(const TraceModel& trm, const Vec3& position, std::spa
 }
 
 // Trace models of 3 to 20 vertices (the most a shape has within the trace
-// models' 32 edges; full and partial blocks of four: cones, cylinders, a
-// dodecahedron, flat polygons) at random
+// models' 32 edges: cones, cylinders, a dodecahedron, flat polygons) at random
 // places around a brush of 11 planes: the reported vertex and plane are
 // those of the first vertex inside, in vertex order.
 TEST(PositionTest, ReportsTheFirstVertexInsideABrushAndItsNearestPlane) {
@@ -94,7 +92,7 @@ TEST(PositionTest, ReportsTheFirstVertexInsideABrushAndItsNearestPlane) {
       EXPECT_EQ(r.trace.contact.point, trm.vertex(want.vertex) + position);
     }
   }
-  // Both outcomes, and first vertices past the first block of four.
+  // Both outcomes, and first vertices inside past the fourth.
   EXPECT_GT(inside, 500);
   EXPECT_GT(outside, 500);
   EXPECT_GT(laterBlock, 100);
