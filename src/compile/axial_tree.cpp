@@ -237,10 +237,7 @@ void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum
                                  int item) {
   const auto n = static_cast<std::size_t>(nodeNum);
   if (lists.done[n]) {
-    std::vector<BRef>& refs = kind == ItemKind::Polygon ? polygonRefs_ : brushRefs_;
-    int& head = kind == ItemKind::Polygon ? node(nodeNum).polygons : node(nodeNum).brushes;
-    refs.push_back({item, head});
-    head = static_cast<int>(refs.size()) - 1;
+    linkToNode(kind, nodeNum, item);
     return;
   }
   GrowingLists::Kind& k = lists.of(kind);
@@ -250,16 +247,10 @@ void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum
 
 void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
   const auto n = static_cast<std::size_t>(nodeNum);
-  BNode& here = node(nodeNum);
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Kind& k = lists.of(kind);
-    std::vector<BRef>& refs = kind == ItemKind::Polygon ? polygonRefs_ : brushRefs_;
-    int& head = kind == ItemKind::Polygon ? here.polygons : here.brushes;
     const GrowingLists::Item* items = k.data(k.at[n]);
-    for (std::uint32_t i = 0; i < k.at[n].count; ++i) {
-      refs.push_back({items[i].item, head});
-      head = static_cast<int>(refs.size()) - 1;
-    }
+    for (std::uint32_t i = 0; i < k.at[n].count; ++i) linkToNode(kind, nodeNum, items[i].item);
     k.at[n].count = 0;
   }
   lists.done[n] = 1;

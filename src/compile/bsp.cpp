@@ -22,7 +22,12 @@ int ModelBuilder::allocNode() {
   return static_cast<int>(nodes_.size()) - 1;
 }
 
-void ModelBuilder::addPolygonToNode(int nodeNum, int polygonNum) {
+void ModelBuilder::linkToNode(ItemKind kind, int nodeNum, int item) {
+  if (kind == ItemKind::Brush) {
+    brushRefs_.push_back({item, node(nodeNum).brushes});
+    node(nodeNum).brushes = static_cast<int>(brushRefs_.size()) - 1;
+    return;
+  }
   int r;
   if (freePolygonRef_ != kNone) {
     r = freePolygonRef_;
@@ -32,16 +37,18 @@ void ModelBuilder::addPolygonToNode(int nodeNum, int polygonNum) {
     polygonRefs_.emplace_back();
   }
   BRef& ref = polygonRef(r);
-  ref.item = polygonNum;
+  ref.item = item;
   ref.next = node(nodeNum).polygons;
   node(nodeNum).polygons = r;
+}
+
+void ModelBuilder::addPolygonToNode(int nodeNum, int polygonNum) {
+  linkToNode(ItemKind::Polygon, nodeNum, polygonNum);
   counters_.numPolygonRefs++;
 }
 
 void ModelBuilder::addBrushToNode(int nodeNum, int brushNum) {
-  const int r = static_cast<int>(brushRefs_.size());
-  brushRefs_.push_back({brushNum, node(nodeNum).brushes});
-  node(nodeNum).brushes = r;
+  linkToNode(ItemKind::Brush, nodeNum, brushNum);
   counters_.numBrushRefs++;
 }
 

@@ -265,6 +265,9 @@ class ModelBuilder {
     }
   };
   enum class ItemKind { Polygon, Brush };
+  /// Prepends an item to the node's list of its kind (a polygon reference
+  /// taken from the free list first), counting nothing: add*ToNode count.
+  void linkToNode(ItemKind kind, int node, int item);
   /// Links a new polygon or brush into every node below `node` its bounds
   /// reach by the tree-filter rule (model/tree_filter.h).
   void filterIntoTree(ItemKind kind, int node, int item);
