@@ -242,7 +242,7 @@ class Builder {
     for (std::size_t j = 0; j < kLanes; ++j) {
       const bool used = j < r.size();
       const std::int32_t polyNum = used ? items_[r.first + j].polygon : -1;
-      out_.polygons.push_back(polyNum);
+      b.polygon[j] = polyNum;
       if (!used) {
         for (int k = 0; k < 3; ++k) {
           b.min[k][j] = std::numeric_limits<float>::max();

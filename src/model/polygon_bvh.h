@@ -29,10 +29,13 @@ struct alignas(64) BvhNode {
 static_assert(sizeof(BvhNode) == 128);
 
 /// A leaf: its polygons' culls, on whole cache lines (the first two hold
-/// what the first cull reads: bounds and contents), and their planes'
-/// distances (with CullBlock::normal, the planes).
+/// what the first cull reads: bounds and contents), their planes' distances
+/// (with CullBlock::normal, the planes) and their numbers (in the leaf: in
+/// an array of their own, the number was one more load the polygon's
+/// tests waited for).
 struct alignas(64) BvhLeaf : CullBlock {
   Real dist[kLanes];
+  std::int32_t polygon[kLanes];  ///< lane j's polygon number (-1: unused)
 };
 // (Only the float builds that make the hierarchy: a double build's blocks
 // are twice as large, and it walks the BSP tree.)
@@ -45,8 +48,6 @@ struct PolygonBvh {
   /// Leaf b's polygons' culls (bounds, contents, normal); an unused lane
   /// has contents 0 and inverted bounds.
   std::vector<BvhLeaf> leaves;
-  /// The polygon number of leaf b's lane j at b * kLanes + j (-1: unused).
-  std::vector<std::int32_t> polygons;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
   std::size_t depth = 0;

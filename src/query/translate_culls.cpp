@@ -133,7 +133,7 @@ unsigned leafPlanesCrossed(const TraceWork& tw, const BvhLeaf& b) {
 bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
   const BvhLeaf& b = bvh.leaves[leaf];
   pass &= blockFacesPass(tw, b) & leafPlanesCrossed(tw, b);
-  const std::int32_t* polygons = &bvh.polygons[leaf * kLanes];
+  const std::int32_t* polygons = b.polygon;
   while (pass) {
     const int lane = std::countr_zero(pass);
     pass &= pass - 1;
@@ -150,7 +150,7 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
 #endif
 
 bool translatePointThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
-  const std::int32_t* polygons = &bvh.polygons[leaf * kLanes];
+  const std::int32_t* polygons = bvh.leaves[leaf].polygon;
   while (pass) {
     const int lane = std::countr_zero(pass);
     pass &= pass - 1;
