@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <limits>
 #include <numeric>
 
+#include "model/twins.h"
 #include "util/assert.h"
 #include "util/simd.h"
 
@@ -116,8 +118,19 @@ struct Summary {
 class Builder {
  public:
   Builder(const ModelArrays& m, PolygonBvh& out) : out_(out), model_(m) {
+    // A polygon and its reversed twin of the same bounds are one item (the
+    // lower number's), the twin held beside it in the leaf.
+    std::vector<std::uint32_t> all(m.polygons.size());
+    std::iota(all.begin(), all.end(), 0u);
+    // (Polygon numbers below BvhLeaf::kHasTwin: always, in practice.)
+    twin_ = m.polygons.size() < std::size_t(BvhLeaf::kHasTwin) ? findTwins(m, all)
+                                                               : std::vector<std::int32_t>(all.size(), -1);
+    for (std::size_t i = 0; i < twin_.size(); ++i)
+      if (twin_[i] >= 0 && !sameBounds(m.polygons[i].bounds, m.polygons[std::size_t(twin_[i])].bounds))
+        twin_[i] = -1;  // (then its twin's entry is cleared too: the test is symmetric)
     items_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
+      if (twin_[i] >= 0 && std::size_t(twin_[i]) < i) continue;  // in its twin's item
       const CmPolygon& p = m.polygons[i];
       Item item;
       for (int k = 0; k < 3; ++k) {
@@ -132,6 +145,13 @@ class Builder {
 
   void build() {
     if (items_.empty()) return;
+    buildTree();
+    if (std::all_of(out_.twins.begin(), out_.twins.end(), [](std::int32_t t) { return t < 0; }))
+      out_.twins.clear();
+    out_.twins.shrink_to_fit();
+  }
+
+  void buildTree() {
     out_.nodes.reserve(items_.size() / 2 + 1);
     out_.leaves.reserve(items_.size() / 2 + 1);
     const Range all{0, items_.size()};
@@ -242,7 +262,9 @@ class Builder {
     for (std::size_t j = 0; j < kLanes; ++j) {
       const bool used = j < r.size();
       const std::int32_t polyNum = used ? items_[r.first + j].polygon : -1;
-      b.polygon[j] = polyNum;
+      const std::int32_t twin = used ? twin_[std::size_t(polyNum)] : -1;
+      b.polygon[j] = twin >= 0 ? polyNum | BvhLeaf::kHasTwin : polyNum;
+      out_.twins.push_back(twin);
       if (!used) {
         for (int k = 0; k < 3; ++k) {
           b.min[k][j] = std::numeric_limits<float>::max();
@@ -317,9 +339,19 @@ class Builder {
     return number;
   }
 
+  /// Whether two bounds have the same bits (a twin's lane shares its culls).
+  static bool sameBounds(const Bounds& a, const Bounds& b) {
+    for (int k = 0; k < 3; ++k)
+      if (std::bit_cast<std::uint32_t>(float(a.min[k])) != std::bit_cast<std::uint32_t>(float(b.min[k])) ||
+          std::bit_cast<std::uint32_t>(float(a.max[k])) != std::bit_cast<std::uint32_t>(float(b.max[k])))
+        return false;
+    return true;
+  }
+
   PolygonBvh& out_;
   const ModelArrays& model_;
   std::vector<Item> items_;
+  std::vector<std::int32_t> twin_;  ///< per polygon: its reversed twin of the same bounds, or -1
 };
 
 }  // namespace

@@ -2,8 +2,9 @@
 // the model (query_data.h) beside the .cm file's axial BSP tree: a 4-wide
 // bounding volume hierarchy. Every polygon is in exactly one leaf (the BSP
 // tree lists a polygon at every node it straddles, so its walks mark what
-// they met); a leaf is one CullBlock of up to kLanes polygons, so the
-// culls of a leaf are one block's. Only kCullBlocks builds (float lanes)
+// they met); a leaf is one CullBlock of up to kLanes polygons (a polygon
+// and its reversed twin, the two sides of a two-sided surface, in one
+// lane), so the culls of a leaf are one block's. Only kCullBlocks builds (float lanes)
 // make one; the queries fall back to the BSP tree without it.
 #pragma once
 
@@ -31,11 +32,26 @@ static_assert(sizeof(BvhNode) == 128);
 /// A leaf: its polygons' culls, on whole cache lines (the first two hold
 /// what the first cull reads: bounds and contents), their planes' distances
 /// (with CullBlock::normal, the planes) and their numbers (in the leaf: in
-/// an array of their own, the number was one more load the polygon's
-/// tests waited for).
+/// an array of their own, the number was one more load the polygon's tests
+/// waited for), each with a flag for a reversed twin (model/twins.h): a
+/// two-sided surface's two sides take one lane, whose culls are the same
+/// for both but the facing one, which tells the sides apart (the twin's
+/// plane is exactly the lane's negated, its bounds the same).
 struct alignas(64) BvhLeaf : CullBlock {
+  /// A lane's polygon number with this bit: it has a twin (PolygonBvh::twins).
+  static constexpr std::int32_t kHasTwin = std::int32_t(1) << 30;
   Real dist[kLanes];
-  std::int32_t polygon[kLanes];  ///< lane j's polygon number (-1: unused)
+  /// Lane j's polygon number, with kHasTwin when it has a twin (-1: unused).
+  std::int32_t polygon[kLanes];
+  /// Lane j's polygon number (lane j used).
+  std::int32_t polygonAt(std::size_t j) const { return polygon[j] & ~kHasTwin; }
+  /// The used lanes whose polygon has a twin (bit j for lane j).
+  unsigned twinLanes() const {
+    unsigned lanes = 0;
+    for (std::size_t j = 0; j < kLanes; ++j)
+      lanes |= unsigned(polygon[j] >= 0 && (polygon[j] & kHasTwin)) << j;
+    return lanes;
+  }
 };
 // (Only the float builds that make the hierarchy: a double build's blocks
 // are twice as large, and it walks the BSP tree.)
@@ -48,6 +64,11 @@ struct PolygonBvh {
   /// Leaf b's polygons' culls (bounds, contents, normal); an unused lane
   /// has contents 0 and inverted bounds.
   std::vector<BvhLeaf> leaves;
+  /// The reversed twin of leaf b's lane j at b * kLanes + j, for the lanes
+  /// with BvhLeaf::kHasTwin (else -1); empty when no lane has one. (Beside
+  /// the leaves, not in them: a leaf's 192 bytes are full, and the twin is
+  /// read only when it faces the move.)
+  std::vector<std::int32_t> twins;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
   std::size_t depth = 0;

@@ -60,7 +60,8 @@ ModelMemory modelMemory(const CollisionModel& model) {
              bytes(model.nodes()) + bytes(model.polygonRefs()) + bytes(model.brushRefs());
   if (const detail::QueryData* d = detail::queryDataOf(model))
     m.queryData = bytes(d->lines) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
-                  bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) + bytes(d->pointTree.modelNodes);
+                  bytes(d->bvh.twins) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) +
+                  bytes(d->pointTree.modelNodes);
   return m;
 }
 

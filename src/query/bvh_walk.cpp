@@ -122,7 +122,8 @@ void walkPolygonBvh(TraceWork& tw, const PolygonBvh& bvh) {
       }
       const std::size_t leaf = std::size_t(~child);
       const unsigned pass = bounds.pass(bvh.leaves[leaf]);
-      count(tw.scratch, &QueryStats::polygonsMet, unsigned(std::popcount(pass)));
+      count(tw.scratch, &QueryStats::polygonsMet,
+            unsigned(std::popcount(pass) + std::popcount(pass & bvh.leaves[leaf].twinLanes())));
       if (pass && Leaves::test(tw, bvh, leaf, pass)) return;
     } else {
       const BvhNode& node = bvh.nodes[std::size_t(child)];

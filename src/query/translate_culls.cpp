@@ -68,22 +68,31 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 #ifdef CMKIT_CULL_LANES
 namespace {
 
-// The lanes of a cull block that pass the back-face and heart-plane culls
-// (each lane mayTouch's arithmetic, operation for operation, so the same
-// answers).
-[[gnu::noinline]] unsigned blockFacesPass(TraceWork& tw, const CullBlock& b) {
+/// The lanes of a cull block that pass the back-face and heart-plane culls:
+/// `front` those whose polygon faces the move, `back` those whose polygon's
+/// reversed twin would (a lane of the polygons' hierarchy may hold one:
+/// BvhLeaf::twin; the caller keeps the lanes that do).
+struct FacingLanes {
+  unsigned front, back;
+};
+
+// (Each lane mayTouch's arithmetic, operation for operation, so the same
+// answers; a twin's normal . dir is exactly the lane's negated, its bounds
+// the same.)
+[[gnu::noinline]] FacingLanes blockFacing(TraceWork& tw, const CullBlock& b) {
   if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
-  // Back faces: normal . dir > 0.
+  // Back faces: normal . dir > 0 (a twin's: normal . dir < 0).
   const F4 facing = F4::load(b.normal[0]) * F4::all(tw.dir.x) + F4::load(b.normal[1]) * F4::all(tw.dir.y) +
                     F4::load(b.normal[2]) * F4::all(tw.dir.z);
-  F4 culled = facing > F4::zero();
   // The heart planes.
   F4 centre[3], reach[3];
   blockBoxes(b, centre, reach);
-  culled = culled | boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1);
-  culled = culled | boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2);
-  return ~simd::bits(culled) & 0xFu;
+  const F4 far = boxesBeyondPlane(centre, reach, tw.heartPlane1, tw.maxDistFromHeartPlane1) |
+                 boxesBeyondPlane(centre, reach, tw.heartPlane2, tw.maxDistFromHeartPlane2);
+  return {~simd::bits(far | (facing > F4::zero())) & 0xFu, ~simd::bits(far | (facing < F4::zero())) & 0xFu};
 }
+
+unsigned blockFacesPass(TraceWork& tw, const CullBlock& b) { return blockFacing(tw, b).front; }
 
 }  // namespace
 
@@ -132,17 +141,35 @@ unsigned leafPlanesCrossed(const TraceWork& tw, const BvhLeaf& b) {
 
 bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
   const BvhLeaf& b = bvh.leaves[leaf];
-  pass &= blockFacesPass(tw, b) & leafPlanesCrossed(tw, b);
-  const std::int32_t* polygons = b.polygon;
-  while (pass) {
-    const int lane = std::countr_zero(pass);
-    pass &= pass - 1;
-    const std::int32_t polyNum = polygons[lane];
+  pass &= leafPlanesCrossed(tw, b);
+  if (!pass) return false;
+  // Each lane's polygon if it faces the move, its twin if that does (both
+  // when the move runs along their plane), in lane order.
+  const FacingLanes facing = blockFacing(tw, b);
+  unsigned front = pass & facing.front, back = pass & facing.back & b.twinLanes();
+  // A polygon's tests; false when the query is over (blocked completely).
+  // The trace bounds shrank at a hit: the lanes left are culled again.
+  const auto test = [&](std::int32_t polyNum) {
     const Real before = tw.fraction;
-    if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
-    if (tw.fraction != before && pass) {  // the trace bounds shrank: the lanes left culled again
+    if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return false;
+    if (tw.fraction != before && (front | back)) {
       const BoundsLanes bounds(tw);
-      pass &= bounds.pass(b) & leafPlanesCrossed(tw, b);
+      const unsigned left = bounds.pass(b) & leafPlanesCrossed(tw, b);
+      front &= left;
+      back &= left;
+    }
+    return true;
+  };
+  while (front | back) {
+    const int lane = std::countr_zero(front | back);
+    const unsigned bit = 1u << lane;
+    if (front & bit) {
+      front &= ~bit;
+      if (!test(b.polygonAt(std::size_t(lane)))) return true;
+    }
+    if (back & bit) {
+      back &= ~bit;
+      if (!test(bvh.twins[leaf * kLanes + std::size_t(lane)])) return true;
     }
   }
   return false;
@@ -150,11 +177,15 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
 #endif
 
 bool translatePointThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_t leaf, unsigned pass) {
-  const std::int32_t* polygons = bvh.leaves[leaf].polygon;
+  const BvhLeaf& b = bvh.leaves[leaf];
+  const unsigned twins = b.twinLanes();
   while (pass) {
-    const int lane = std::countr_zero(pass);
+    const std::size_t lane = std::size_t(std::countr_zero(pass));
     pass &= pass - 1;
-    const std::int32_t polyNum = polygons[lane];
+    std::int32_t polyNum = b.polygonAt(lane);
+    if (pointThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
+    if (!(twins >> lane & 1u)) continue;
+    polyNum = bvh.twins[leaf * kLanes + lane];  // (the polygon or its twin faces away: its cull)
     if (pointThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
   }
   return false;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cmkit/tolerances.h"
+#include "model/twins.h"
 #include "ray/ray_index_data.h"
 #include "ray/ray_index_kernel.h"  // kMaxDepth: the walk's stack bounds the depth
 
@@ -26,8 +27,6 @@ namespace {
 
 using Node = RayLayout::Node;
 constexpr int kWidth = RayLayout::kWidth;
-/// The bits of a Real (to compare values exactly, sign of zero included).
-using RealBits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
 
 /// Polygons per leaf the builder aims for (the surface-area heuristic may
 /// stop earlier); more than this and a node is always split.
@@ -186,70 +185,6 @@ class BinaryBuilder {
 
 bool isFinite(const Bounds& b) { return b.min.isFinite() && b.max.isFinite() && !b.isCleared(); }
 
-/// Whether b is exactly -a, sign of zero included (what negating every
-/// coordinate of a plane gives).
-bool isNegated(Real a, Real b) { return std::bit_cast<RealBits>(b) == std::bit_cast<RealBits>(Real(-a)); }
-
-/// Whether polygon b is polygon a's reversed twin, which a leaf's lane may
-/// test together with a (RayLayout::LeafHead::twins): the same contents, the
-/// plane negated exactly (so every product of the plane test is exactly
-/// negated, and the crossing's t the same) and the same edges used the other
-/// way round (so "inside every edge of b" is "outside every edge of a" for
-/// the same products). A two-sided surface is such pairs.
-bool isTwin(const CollisionModel& model, const CmPolygon& a, const CmPolygon& b) {
-  if (a.numEdges != b.numEdges || a.contents != b.contents || !isNegated(a.plane.dist, b.plane.dist))
-    return false;
-  for (int k = 0; k < 3; ++k)
-    if (!isNegated(a.plane.normal[k], b.plane.normal[k])) return false;
-  const auto has = [](std::span<const std::int32_t> edges, std::int32_t e) {
-    return std::find(edges.begin(), edges.end(), e) != edges.end();
-  };
-  const std::span<const std::int32_t> ea = model.edgesOf(a), eb = model.edgesOf(b);
-  for (const std::int32_t e : ea)
-    if (!has(eb, -e)) return false;
-  for (const std::int32_t e : eb)
-    if (!has(ea, -e)) return false;
-  return true;
-}
-
-/// For each of the polygons `usable` (model indices), the position in
-/// `usable` of its reversed twin (isTwin), or -1: pairs found among the
-/// polygons of the same edges (a hash of their sorted edge numbers), each
-/// polygon in at most one pair, the first found.
-std::vector<std::int32_t> findTwins(const CollisionModel& model, const std::vector<std::uint32_t>& usable) {
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(usable.size());
-  std::vector<std::int32_t> edges;
-  for (std::uint32_t i = 0; i < usable.size(); ++i) {
-    const auto list = model.edgesOf(model.polygons()[usable[i]]);
-    edges.assign(list.begin(), list.end());
-    for (std::int32_t& e : edges) e = std::abs(e);
-    std::sort(edges.begin(), edges.end());
-    std::uint64_t h = 14695981039346656037ull;  // FNV-1a over the edge numbers
-    for (const std::int32_t e : edges) h = (h ^ std::uint64_t(std::uint32_t(e))) * 1099511628211ull;
-    keys[i] = {h, i};
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::int32_t> twin(usable.size(), -1);
-  for (std::size_t run = 0; run < keys.size();) {
-    std::size_t end = run + 1;
-    while (end < keys.size() && keys[end].first == keys[run].first) ++end;
-    for (std::size_t a = run; a < end; ++a) {
-      const std::uint32_t ia = keys[a].second;
-      if (twin[ia] >= 0) continue;
-      for (std::size_t b = a + 1; b < end; ++b) {
-        const std::uint32_t ib = keys[b].second;
-        if (twin[ib] < 0 && isTwin(model, model.polygons()[usable[ia]], model.polygons()[usable[ib]])) {
-          twin[ia] = std::int32_t(ib);
-          twin[ib] = std::int32_t(ia);
-          break;
-        }
-      }
-    }
-    run = end;
-  }
-  return twin;
-}
-
 }  // namespace
 
 void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
@@ -271,7 +206,7 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
   // What the hierarchy sorts: each polygon without a twin, and each pair of
   // twins (the one first in `usable` with its twin) as one item of both
   // boxes.
-  const std::vector<std::int32_t> twin = findTwins(model, usable);
+  const std::vector<std::int32_t> twin = findTwins(model.arrays(), usable);
   std::vector<std::uint32_t> items;  ///< positions in `usable`
   std::vector<Bounds> itemBoxes;
   std::vector<std::uint32_t> itemContents;

@@ -4,12 +4,15 @@
 #pragma once
 
 #include <cstdlib>
+#include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "cmkit/contents.h"
+#include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "cmkit/model.h"
 #include "cmkit/trace_model.h"
 #include "model/edge_normals.h"
@@ -98,5 +101,38 @@ class ModelMaker {
  private:
   ModelArrays model_;
 };
+
+/// A rough two-sided terrain of cells x cells squares of 32 units (two
+/// triangles each, heights in [-24, 24] drawn from `rng`) with twelve
+/// one-sided closed boxes on it, through the mesh API: two-sided surfaces
+/// (pairs of a polygon and its reversed twin) beside one-sided ones.
+inline ModelPtr twoSidedTerrainModel(int cells, std::mt19937& rng) {
+  TriangleMesh mesh;
+  std::uniform_real_distribution<float> height(-24, 24);
+  for (int y = 0; y <= cells; ++y)
+    for (int x = 0; x <= cells; ++x) mesh.positions.push_back({Real(x * 32), Real(y * 32), height(rng)});
+  std::vector<std::uint32_t> terrain, boxes;
+  const auto at = [cells](int x, int y) { return std::uint32_t(y * (cells + 1) + x); };
+  for (int y = 0; y < cells; ++y)
+    for (int x = 0; x < cells; ++x)
+      terrain.insert(terrain.end(),
+                     {at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y), at(x + 1, y + 1), at(x, y + 1)});
+  for (int b = 0; b < 12; ++b) {  // a closed box of 12 triangles, outward faces counter-clockwise
+    const Vec3 lo{Real(40 + 60 * b), Real(30 + 50 * (b % 5)), Real(10)};
+    const auto first = std::uint32_t(mesh.positions.size());
+    for (int k = 0; k < 8; ++k)
+      mesh.positions.push_back(lo + Vec3{Real(k & 1 ? 24 : 0), Real(k & 2 ? 24 : 0), Real(k & 4 ? 40 : 0)});
+    for (const int i : {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                        2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5})
+      boxes.push_back(first + std::uint32_t(i));
+  }
+  mesh.surfaces.push_back({"textures/test/twosided", terrain});
+  mesh.surfaces.push_back({"textures/test/solid", boxes});
+  MaterialTable materials;
+  materials.addMtrText("textures/test/twosided { twosided }\ntextures/test/solid { }\n", "test.mtr");
+  auto built = buildCollisionModelFromTriangles(mesh, "two-sided", materials);
+  EXPECT_TRUE(built.ok()) << built.error().toString();
+  return built.ok() ? built->model : nullptr;
+}
 
 }  // namespace cmkit::test

@@ -5,6 +5,7 @@
 // QueryData.PreparedAndBareModelsAnswerAlike* in test_query_properties.cpp.)
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <filesystem>
 #include <random>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "cmkit/query.h"
 #include "model/model_access.h"
 #include "model/query_data.h"
+#include "model/twins.h"
 #include "model_fixtures.h"
 #include "test_support.h"
 
@@ -49,14 +51,24 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
     EXPECT_LT(leaf, bvh.leaves.size());
     const BvhLeaf& b = bvh.leaves[leaf];
     for (std::size_t j = 0; j < kLanes; ++j) {
-      const std::int32_t polyNum = b.polygon[j];
+      const std::int32_t polyNum = b.polygon[j] < 0 ? -1 : b.polygonAt(j);
       if (polyNum < 0) {
         EXPECT_EQ(b.contents[j], 0u) << "an unused lane has no contents";
         EXPECT_GT(b.min[0][j], b.max[0][j]) << "an unused lane's box is inverted";
+        EXPECT_EQ(b.polygon[j], -1) << "an unused lane has no twin";
         continue;
       }
       const CmPolygon& p = m.polygons()[std::size_t(polyNum)];
       ++seen[std::size_t(polyNum)];
+      const std::int32_t twin = bvh.twins.empty() ? -1 : bvh.twins[leaf * kLanes + j];
+      EXPECT_EQ(b.twinLanes() >> j & 1u, unsigned(twin >= 0)) << "the lane's flag says whether it has a twin";
+      if (twin >= 0) {  // the lane's other side: reversed, its culls the lane's
+        const CmPolygon& t = m.polygons()[std::size_t(twin)];
+        ++seen[std::size_t(twin)];
+        EXPECT_TRUE(detail::isTwin(m.arrays(), p, t)) << "polygon " << polyNum << " twin " << twin;
+        EXPECT_EQ(t.bounds.min, p.bounds.min);
+        EXPECT_EQ(t.bounds.max, p.bounds.max);
+      }
       contents |= p.contents;
       EXPECT_EQ(b.contents[j], p.contents);
       EXPECT_EQ(b.dist[j], p.plane.dist);
@@ -113,6 +125,29 @@ TEST(PolygonBvh, HoldsEveryPolygonOnceInBoxesThatContainIt) {
   // A leaf per about three polygons at least (kLanes a leaf at most).
   EXPECT_GE(bvh.leaves.size() * kLanes, world->polygons().size());
   EXPECT_LE(bvh.leaves.size() * 2, world->polygons().size());
+}
+
+// A two-sided surface's polygon and its reversed twin take one lane (their
+// culls are the same but the facing one): the hierarchy of a two-sided
+// terrain holds every polygon once, half of them as twins, in about half the
+// leaves.
+TEST(PolygonBvh, HoldsATwoSidedSurfaceAsPairsInOneLane) {
+  if (!detail::kCullBlocks)
+    GTEST_SKIP() << "a build without float lanes (double, no SIMD) makes no hierarchy";
+  std::mt19937 rng(41);
+  const ModelPtr terrain = test::twoSidedTerrainModel(24, rng);
+  ASSERT_TRUE(terrain);
+  const PolygonBvh& bvh = detail::queryDataOf(*terrain)->bvh;
+  ASSERT_FALSE(bvh.empty());
+  std::vector<int> seen(terrain->polygons().size(), 0);
+  checkSubtree(*terrain, bvh, 0, nullptr, 0, seen);
+  for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "polygon " << i;
+  std::size_t twins = 0;
+  for (const BvhLeaf& b : bvh.leaves) twins += std::size_t(std::popcount(b.twinLanes()));
+  // 24 x 24 x 2 terrain triangles, each with its twin; the boxes' 144
+  // one-sided triangles (merged into faces) have none.
+  EXPECT_EQ(twins, std::size_t(24 * 24 * 2));
+  EXPECT_LE(bvh.leaves.size() * 2, terrain->polygons().size() - twins);
 }
 
 TEST(PolygonBvh, SmallModelsHaveNone) {

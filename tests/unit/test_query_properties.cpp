@@ -303,6 +303,13 @@ TEST(QueryData, PreparedAndBareModelsAnswerAlikeGeneratedScene) {
   expectPreparedAndBareAlike({std::make_shared<const CollisionModel>(generatedScene())});
 }
 
+// (Two-sided surfaces: the hierarchy tests a polygon and its reversed twin
+// in one lane, the BSP walk each on its own.)
+TEST(QueryData, PreparedAndBareModelsAnswerAlikeTwoSidedTerrain) {
+  std::mt19937 rng(41);
+  expectPreparedAndBareAlike({test::twoSidedTerrainModel(24, rng)});
+}
+
 TEST(QueryData, PreparedAndBareModelsAnswerAlikeBundledLt4) {
   expectPreparedAndBareAlike(
       test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map"));

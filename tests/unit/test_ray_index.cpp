@@ -377,34 +377,11 @@ TEST(RayIndex, TwoSidedSurfacesSameAsTestingEveryPolygon) {
   // the index tests in one lane (RayLayout::LeafHead::twins): a rough
   // two-sided terrain with one-sided boxes on it, single casts against
   // testing every polygon with both node tests, and castMany against cast.
-  TriangleMesh mesh;
   constexpr int kCells = 24;
   std::mt19937 rng(41);
-  std::uniform_real_distribution<float> height(-24, 24);
-  for (int y = 0; y <= kCells; ++y)
-    for (int x = 0; x <= kCells; ++x) mesh.positions.push_back({Real(x * 32), Real(y * 32), height(rng)});
-  std::vector<std::uint32_t> terrain, boxes;
-  const auto at = [](int x, int y) { return std::uint32_t(y * (kCells + 1) + x); };
-  for (int y = 0; y < kCells; ++y)
-    for (int x = 0; x < kCells; ++x)
-      terrain.insert(terrain.end(),
-                     {at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y), at(x + 1, y + 1), at(x, y + 1)});
-  for (int b = 0; b < 12; ++b) {  // a closed box of 12 triangles, outward faces counter-clockwise
-    const Vec3 lo{Real(40 + 60 * b), Real(30 + 50 * (b % 5)), Real(10)};
-    const auto first = std::uint32_t(mesh.positions.size());
-    for (int k = 0; k < 8; ++k)
-      mesh.positions.push_back(lo + Vec3{Real(k & 1 ? 24 : 0), Real(k & 2 ? 24 : 0), Real(k & 4 ? 40 : 0)});
-    for (const int i : {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
-                        2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5})
-      boxes.push_back(first + std::uint32_t(i));
-  }
-  mesh.surfaces.push_back({"textures/test/twosided", terrain});
-  mesh.surfaces.push_back({"textures/test/solid", boxes});
-  MaterialTable materials;
-  materials.addMtrText("textures/test/twosided { twosided }\ntextures/test/solid { }\n", "test.mtr");
-  auto built = buildCollisionModelFromTriangles(mesh, "two-sided", materials);
-  ASSERT_TRUE(built.ok()) << built.error().toString();
-  const CollisionModel& m = *built->model;
+  const ModelPtr model = test::twoSidedTerrainModel(kCells, rng);
+  ASSERT_TRUE(model);
+  const CollisionModel& m = *model;
   ASSERT_GT(m.polygons().size(), std::size_t(4 * kCells * kCells));
   const int hits = expectSameAsEveryPolygon(m, 43, 20000, "two-sided terrain", RayIndex::NodeTest::Auto);
   expectSameAsEveryPolygon(m, 43, 20000, "two-sided terrain (baseline node test)",

@@ -1,0 +1,29 @@
+// Internal: a polygon's reversed twin, the other side of a two-sided surface
+// (the builder adds a reversed copy of every polygon of a two-sided
+// material, as the original does). The query layouts that sort polygons
+// (the polygons' hierarchy, polygon_bvh.h; the ray index) keep a pair as one
+// entry whose two sides are told apart by the sign of one product.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "cmkit/model.h"
+
+namespace cmkit::detail {
+
+/// Whether polygon b is polygon a's reversed twin: the same contents, the
+/// plane negated exactly (sign of zero included: every product of a plane
+/// test is then exactly negated) and the same edges used the other way
+/// round (so "inside every edge of b" is "outside every edge of a" for the
+/// same products).
+bool isTwin(const ModelArrays& m, const CmPolygon& a, const CmPolygon& b);
+
+/// For each of `polygons` (model polygon numbers), the position in
+/// `polygons` of its reversed twin (isTwin), or -1: pairs found among the
+/// polygons of the same edges (a hash of their sorted edge numbers), each
+/// polygon in at most one pair, the first found.
+std::vector<std::int32_t> findTwins(const ModelArrays& m, std::span<const std::uint32_t> polygons);
+
+}  // namespace cmkit::detail
