@@ -21,9 +21,9 @@ namespace cmkit::detail {
 bool isTwin(const ModelArrays& m, const CmPolygon& a, const CmPolygon& b);
 
 /// For each of `polygons` (model polygon numbers), the position in
-/// `polygons` of its reversed twin (isTwin), or -1: pairs found among the
-/// polygons of the same edges (a hash of their sorted edge numbers), each
-/// polygon in at most one pair, the first found.
+/// `polygons` of its reversed twin (isTwin), or -1: neighbours in `polygons`
+/// first, then pairs among the rest of the same edges (a hash of their
+/// sorted edge numbers), each polygon in at most one pair, the first found.
 std::vector<std::int32_t> findTwins(const ModelArrays& m, std::span<const std::uint32_t> polygons);
 
 }  // namespace cmkit::detail
