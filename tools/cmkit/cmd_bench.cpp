@@ -220,7 +220,30 @@ void printSuiteText(const std::vector<SuiteRow>& rows, const SuiteRow& all, int 
   }
 }
 
-void printSuiteJson(const std::vector<SuiteRow>& rows, const SuiteRow& all, int repeat) {
+/// The work counters per query of each kind (--stats), as a JSON object.
+std::string jsonWork(const std::map<QueryOp, QueryStats>& stats) {
+  std::string out = "{";
+  for (QueryOp op : kSuiteOps) {
+    const auto it = stats.find(op);
+    if (it == stats.end() || it->second.queries == 0) continue;
+    const QueryStats& s = it->second;
+    const double n = double(s.queries);
+    if (out.size() > 1) out += ", ";
+    out += fmt::format(
+        "\"{}\": {{\"queries\": {}, \"nodes\": {:.2f}, \"polygons met\": {:.2f}, \"polygons tested\": "
+        "{:.2f}, "
+        "\"brushes met\": {:.2f}, \"vertex tests\": {:.2f}, \"edge pairs\": {:.2f}}}",
+        toString(op), s.queries, double(s.nodesVisited) / n, double(s.polygonsMet) / n,
+        double(s.polygonsTested) / n, double(s.brushesMet) / n, double(s.vertexTests) / n,
+        double(s.edgePairs) / n);
+  }
+  return out + "}";
+}
+
+/// The suite's times as JSON; with --stats (`work` set) the work counters too
+/// (in the JSON: text after it would break its readers).
+void printSuiteJson(const std::vector<SuiteRow>& rows, const SuiteRow& all, int repeat,
+                    const std::map<QueryOp, QueryStats>* work) {
   fmt::print("{{\n  \"unit\": \"ns per query\",\n  \"passes\": {},\n  \"threads\": 1,\n  \"files\": [\n",
              repeat);
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -232,7 +255,9 @@ void printSuiteJson(const std::vector<SuiteRow>& rows, const SuiteRow& all, int 
       fmt::print("\"kinds\": {}}}", jsonKinds(r.kinds));
     fmt::print("{}\n", i + 1 < rows.size() ? "," : "");
   }
-  fmt::print("  ],\n  \"all\": {}\n}}\n", jsonKinds(all.kinds));
+  fmt::print("  ],\n  \"all\": {}", jsonKinds(all.kinds));
+  if (work) fmt::print(",\n  \"work per query\": {}", jsonWork(*work));
+  fmt::print("\n}}\n");
 }
 
 /// The work counters of one query kind over the suite (--stats).
@@ -336,11 +361,12 @@ int runSuite(const BenchOptions& o) {
       if (o.slowest > 0) sink += printSlowest(*models, queries, lineNumbers[op], file, op, o, work, contacts);
     }
   }
-  if (o.json)
-    printSuiteJson(rows, all, o.repeat);
-  else
+  if (o.json) {
+    printSuiteJson(rows, all, o.repeat, o.stats ? &stats : nullptr);
+  } else {
     printSuiteText(rows, all, o.repeat);
-  if (o.stats) printSuiteStats(stats);
+    if (o.stats) printSuiteStats(stats);
+  }
   if (sink == -1) fmt::print("\n");  // keeps the results alive
   return 0;
 }
@@ -408,7 +434,8 @@ void registerBench(CLI::App& app) {
       "parsed once and run --repeat times on 1 thread; it prints ns/query per kind and file, or JSON\n"
       "with --json. bench/compare.sh OLD_COMMIT compares these tables of two builds in one run.\n"
       "--stats adds the work per query of each kind (tree nodes, polygons met and tested, feature\n"
-      "tests), counted by a library built with -DCMKIT_QUERY_STATS=ON (cmake --preset stats).\n\n"
+      "tests), counted by a library built with -DCMKIT_QUERY_STATS=ON (cmake --preset stats);\n"
+      "with --json as the object \"work per query\".\n\n"
       "Examples:\n"
       "  cmkit bench data/maps/lt4/lt4.map\n"
       "  cmkit bench data/maps/lt4/lt4.map --threads 2 --walk\n"
