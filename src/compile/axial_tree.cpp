@@ -75,11 +75,14 @@ struct ModelBuilder::GrowingLists {
   /// The nodes above the one splitNode is at, from the root down (the tree
   /// grows depth first: they are splitNode's callers).
   std::vector<int> ancestors;
-  /// The places in `ancestors` of those that held items when they became
-  /// ancestors, in the same order. Only these may hold items: an ancestor
-  /// never gets any (splits give items to their new children, and
-  /// pushItemsDown to nodes off the path, which are not above the split
-  /// node), so the walks up the tree skip the others.
+  /// The places in `ancestors` of those that hold items, in the same order.
+  /// An ancestor never gets items (splits give items to their new children,
+  /// and pushItemsDown to nodes off the path, which are not above the split
+  /// node): one is listed when it becomes an ancestor holding items and
+  /// dropped when pushItemsDown has taken its last, so the walks up the tree
+  /// (two per split) skip the others. (Listed until the end of their
+  /// subtrees, the generated scene of cmkit_peers had ~10 per split, nearly
+  /// all empty: their items went down at later splits.)
   std::vector<std::size_t> filledAncestors;
   struct Source {
     const Item* items;
@@ -366,21 +369,29 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   // longer inside all children.
   splitItems(lists, nodeNum);
   // The nearest ancestor first.
+  bool emptied = false;
   for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a) {
     const int ancestor = lists.ancestors[*a];
-    if (!lists.holdsItems(ancestor)) continue;
+    CMKIT_ASSERT(lists.holdsItems(ancestor));
     lists.path.assign(lists.ancestors.begin() + static_cast<std::ptrdiff_t>(*a + 1), lists.ancestors.end());
     lists.path.push_back(nodeNum);
     pushItemsDown(lists, ancestor, nodeNum);
+    emptied = emptied || !lists.holdsItems(ancestor);
   }
-  const bool filled = lists.holdsItems(nodeNum);
-  if (filled) lists.filledAncestors.push_back(lists.ancestors.size());
+  if (emptied) {
+    std::erase_if(lists.filledAncestors,
+                  [&](std::size_t a) { return !lists.holdsItems(lists.ancestors[a]); });
+  }
+  // (dropped again below unless a split further down emptied it first)
+  const std::size_t place = lists.ancestors.size();
+  if (lists.holdsItems(nodeNum)) lists.filledAncestors.push_back(place);
   lists.ancestors.push_back(nodeNum);
   // (the front child's items are on top of the stacks, the back child's below)
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
   lists.ancestors.pop_back();
-  if (filled) lists.filledAncestors.pop_back();
+  if (!lists.filledAncestors.empty() && lists.filledAncestors.back() == place)
+    lists.filledAncestors.pop_back();
   finishList(lists, nodeNum);
   popSlot();
 }
