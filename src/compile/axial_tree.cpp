@@ -60,8 +60,7 @@ struct ModelBuilder::GrowingLists {
     /// parent's split, newest first (chained in `chained`).
     std::vector<int> prepended;
     std::vector<Chained> chained;
-    std::vector<Item> copy;           ///< scratch of splitItems
-    std::vector<std::uint8_t> sides;  ///< scratch of splitItems: kStay, kFront, kBack
+    std::vector<Item> copy;  ///< scratch of splitItems
     const Item* data(const Span& s) const { return stack.data() + s.begin; }
   };
   Kind polygons;
@@ -105,9 +104,6 @@ struct ModelBuilder::GrowingLists {
 };
 
 namespace {
-
-/// Where splitItems puts an item of the split node.
-constexpr std::uint8_t kStay = 0, kFront = 1, kBack = 2;
 
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
@@ -407,36 +403,34 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
     GrowingLists::Span& span = k.at[static_cast<std::size_t>(splitNum)];
     const std::size_t n = span.count;
     GrowingLists::Item* items = k.stack.data() + span.begin;
-    // Each item's side and the counts first; then each item copied once, from
-    // a copy of the span, to its place, found without branches (which side an
-    // item is on is unpredictable): those that stay first, in their order,
-    // then the back child's and on top the front child's (split first). Each
+    // One pass, each item copied once, to its place found without branches
+    // (which side an item is on is unpredictable): those that stay
+    // compacted in place, in their order; the back child's and the front
+    // child's to two halves of the scratch, each from its end down. Each
     // child prepends its items as the list is walked from its head (the end
-    // of the array): they are in reverse array order.
-    if (k.sides.size() < n) k.sides.resize(n);
-    if (k.copy.size() < n) k.copy.resize(n);
-    std::size_t numStay = 0, numFront = 0;
+    // of the array): they are in reverse array order. Then the children's
+    // runs after those that stay: the back child's, and on top the front
+    // child's (split first).
+    if (k.copy.size() < 2 * n) k.copy.resize(2 * n);
+    GrowingLists::Item* backs = k.copy.data();
+    GrowingLists::Item* fronts = backs + n;
+    std::size_t numStay = 0, backBegin = n, frontBegin = n;
     for (std::size_t i = 0; i < n; ++i) {
-      const Bounds& b = items[i].bounds;
-      const bool inside = straddles(b, axis, dist);
-      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, b));
-      const bool inFront = !inside & (b.min[axis] >= dist);
-      k.sides[i] = static_cast<std::uint8_t>(inside ? kStay : inFront ? kFront : kBack);
+      const GrowingLists::Item it = items[i];
+      const bool inside = straddles(it.bounds, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
+      const bool inFront = !inside & (it.bounds.min[axis] >= dist);
+      backBegin -= (!inside & !inFront) ? 1 : 0;
+      frontBegin -= inFront ? 1 : 0;
+      GrowingLists::Item* to = inside ? items + numStay : inFront ? fronts + frontBegin : backs + backBegin;
+      *to = it;
       numStay += inside ? 1 : 0;
-      numFront += inFront ? 1 : 0;
     }
-    const std::size_t numBack = n - numStay - numFront;
+    const std::size_t numBack = n - backBegin, numFront = n - frontBegin;
     static_assert(std::is_trivially_copyable_v<GrowingLists::Item>);
-    if (n != 0) std::memcpy(k.copy.data(), items, n * sizeof(GrowingLists::Item));
-    std::size_t nextStay = 0, backEnd = numStay + numBack, frontEnd = n;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint8_t side = k.sides[i];
-      backEnd -= side == kBack ? 1 : 0;
-      frontEnd -= side == kFront ? 1 : 0;
-      const std::size_t to = side == kStay ? nextStay : side == kFront ? frontEnd : backEnd;
-      nextStay += side == kStay ? 1 : 0;
-      items[to] = k.copy[i];
-    }
+    if (numBack != 0) std::memcpy(items + numStay, backs + backBegin, numBack * sizeof(GrowingLists::Item));
+    if (numFront != 0)
+      std::memcpy(items + numStay + numBack, fronts + frontBegin, numFront * sizeof(GrowingLists::Item));
     const auto stayEnd = static_cast<std::uint32_t>(span.begin + numStay);
     k.at[back] = {stayEnd, static_cast<std::uint32_t>(numBack)};
     k.at[front] = {static_cast<std::uint32_t>(stayEnd + numBack), static_cast<std::uint32_t>(numFront)};
