@@ -60,6 +60,10 @@ struct ModelBuilder::GrowingLists {
     /// parent's split, newest first (chained in `chained`).
     std::vector<int> prepended;
     std::vector<Chained> chained;
+    /// The entries of `chained` moved onto the stack, free to be used again
+    /// (linked by `next`): a large model would otherwise grow `chained` by
+    /// every item pushed down, reallocating and touching new pages.
+    int freeChained = kNone;
     std::vector<Item> copy;  ///< scratch of splitItems
     const Item* data(const Span& s) const { return stack.data() + s.begin; }
   };
@@ -240,8 +244,15 @@ void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum
     return;
   }
   GrowingLists::Kind& k = lists.of(kind);
-  k.chained.push_back({{bounds, item}, k.prepended[n]});
-  k.prepended[n] = static_cast<int>(k.chained.size()) - 1;
+  int c = k.freeChained;
+  if (c != kNone) {
+    k.freeChained = k.chained[static_cast<std::size_t>(c)].next;
+    k.chained[static_cast<std::size_t>(c)] = {{bounds, item}, k.prepended[n]};
+  } else {
+    c = static_cast<int>(k.chained.size());
+    k.chained.push_back({{bounds, item}, k.prepended[n]});
+  }
+  k.prepended[n] = c;
 }
 
 void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
@@ -328,9 +339,15 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
     if (numPrepended != 0) {
       std::size_t end = k.stack.size() + numPrepended;
       k.stack.resize(end);
-      for (int c = k.prepended[n]; c != kNone; c = k.chained[static_cast<std::size_t>(c)].next)
+      int last = kNone;
+      for (int c = k.prepended[n]; c != kNone; c = k.chained[static_cast<std::size_t>(c)].next) {
         k.stack[--end] = k.chained[static_cast<std::size_t>(c)].it;
+        last = c;
+      }
       span.count += static_cast<std::uint32_t>(numPrepended);
+      // the chain's entries are free again
+      k.chained[static_cast<std::size_t>(last)].next = k.freeChained;
+      k.freeChained = k.prepended[n];
       k.prepended[n] = kNone;
     }
   }
