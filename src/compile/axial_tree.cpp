@@ -97,13 +97,16 @@ struct ModelBuilder::GrowingLists {
     const auto n = static_cast<std::size_t>(node);
     return polygons.at[n].count != 0 || brushes.at[n].count != 0;
   }
-  /// Room for the nodes of the builder's tree.
+  /// Room for (at least) the nodes of the builder's tree: doubled when
+  /// short, not grown by the two nodes of every split (five arrays).
   void grow(std::size_t numNodes) {
+    if (done.size() >= numNodes) return;
+    const std::size_t size = std::max(numNodes, 2 * done.size());
     for (Kind* k : {&polygons, &brushes}) {
-      k->at.resize(numNodes);
-      k->prepended.resize(numNodes, kNone);
+      k->at.resize(size);
+      k->prepended.resize(size, kNone);
     }
-    done.resize(numNodes, 0);
+    done.resize(size, 0);
   }
 };
 
