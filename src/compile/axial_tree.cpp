@@ -37,11 +37,41 @@ namespace cmkit::detail {
 /// beside the stack until it is; a node whose subtree is finished has its
 /// list written to the builder's references, and later items are prepended
 /// there, as the original links them.
+///
+/// Two neighbours in a list with the same bounds (bit for bit) and item
+/// numbers p and p + 1 (a two-sided polygon and its reversed copy, made one
+/// after the other) meet every test alike and move together: every split
+/// and every push down keeps them side by side. They are one entry here, a
+/// pair, so each search and split reads it once. A list keeps or reverses
+/// its items' order as they move: a pair's entry says which of the two
+/// comes first in the array, and turns with it.
 struct ModelBuilder::GrowingLists {
+  /// `item`: an item number, or for a pair p | kPair, with kTurned when
+  /// p + 1 comes first in the array.
   struct Item {
     Bounds bounds;
     int item = kNone;
   };
+  static constexpr int kTurned = 1 << 29;
+  static constexpr int kPair = 1 << 30;
+  /// Pairs are made only of item numbers below this.
+  static constexpr int kMaxPaired = kTurned - 1;
+  /// How many items an entry stands for.
+  static std::uint32_t itemsOf(int item) { return (item & kPair) != 0 ? 2 : 1; }
+  /// The entry of an item or pair moved to a list in reverse order.
+  static int turned(int item) { return item ^ ((item >> 1) & kTurned); }
+  /// The entry's items in array order.
+  template <class F>
+  static void forEachItem(int item, F&& f) {
+    if ((item & kPair) == 0) {
+      f(item);
+      return;
+    }
+    const int p = item & kMaxPaired;
+    const bool turnedPair = (item & kTurned) != 0;
+    f(turnedPair ? p + 1 : p);
+    f(turnedPair ? p : p + 1);
+  }
   /// A list on the stack.
   struct Span {
     std::uint32_t begin = 0;
@@ -224,9 +254,31 @@ void ModelBuilder::createAxialBSPTree(const Bounds& bounds) {
 void ModelBuilder::readLists(GrowingLists& lists) {
   lists.grow(nodes_.size());
   auto read = [&](GrowingLists::Kind& kind, RefList items, auto&& boundsOf) {
-    for (const int i : items) kind.stack.push_back({boundsOf(i), i});
+    for (const int i : items) {
+      CMKIT_ASSERT(i >= 0 && i < GrowingLists::kTurned);  // (the flags' bits are free)
+      kind.stack.push_back({boundsOf(i), i});
+    }
     std::reverse(kind.stack.begin(), kind.stack.end());
-    kind.at[0] = {0, static_cast<std::uint32_t>(kind.stack.size())};
+    // Pairs (see GrowingLists) of neighbours.
+    std::vector<GrowingLists::Item>& stack = kind.stack;
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < stack.size(); ++out) {
+      const GrowingLists::Item& a = stack[i];
+      if (i + 1 < stack.size()) {
+        const GrowingLists::Item& b = stack[i + 1];
+        const int p = std::min(a.item, b.item);
+        if (std::abs(a.item - b.item) == 1 && p < GrowingLists::kMaxPaired &&
+            std::memcmp(&a.bounds, &b.bounds, sizeof(Bounds)) == 0) {
+          stack[out] = {a.bounds, p | GrowingLists::kPair | (a.item > b.item ? GrowingLists::kTurned : 0)};
+          i += 2;
+          continue;
+        }
+      }
+      stack[out] = a;
+      ++i;
+    }
+    stack.resize(out);
+    kind.at[0] = {0, static_cast<std::uint32_t>(stack.size())};
   };
   read(lists.polygons, polygonsAt(0), [&](int p) { return polygon(p).bounds; });
   read(lists.brushes, brushesAt(0), [&](int b) { return brush(b).bounds; });
@@ -241,11 +293,14 @@ void ModelBuilder::readLists(GrowingLists& lists) {
 
 void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum, const Bounds& bounds,
                                  int item) {
+  // (`item` as it lies in its list: its items are prepended from the end of
+  // the array, in reverse order)
   const auto n = static_cast<std::size_t>(nodeNum);
   if (lists.done[n]) {
-    linkToNode(kind, nodeNum, item);
+    GrowingLists::forEachItem(GrowingLists::turned(item), [&](int i) { linkToNode(kind, nodeNum, i); });
     return;
   }
+  item = GrowingLists::turned(item);
   GrowingLists::Kind& k = lists.of(kind);
   int c = k.freeChained;
   if (c != kNone) {
@@ -263,7 +318,8 @@ void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Kind& k = lists.of(kind);
     const GrowingLists::Item* items = k.data(k.at[n]);
-    for (std::uint32_t i = 0; i < k.at[n].count; ++i) linkToNode(kind, nodeNum, items[i].item);
+    for (std::uint32_t i = 0; i < k.at[n].count; ++i)
+      GrowingLists::forEachItem(items[i].item, [&](int item) { linkToNode(kind, nodeNum, item); });
     k.at[n].count = 0;
   }
   lists.done[n] = 1;
@@ -287,7 +343,10 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
   }
   bool forceSplit = false;
   if (size[0] < tol::kMinNodeSize) {
-    const std::size_t polyCount = lists.polygons.at[static_cast<std::size_t>(nodeNum)].count;
+    const GrowingLists::Span& span = lists.polygons.at[static_cast<std::size_t>(nodeNum)];
+    std::size_t polyCount = 0;
+    for (std::uint32_t k = 0; k < span.count; ++k)
+      polyCount += GrowingLists::itemsOf(lists.polygons.data(span)[k].item);
     if (polyCount > static_cast<std::size_t>(tol::kMaxNodePolygons)) forceSplit = true;
   }
   for (int i = 0; i < 3; ++i) {
@@ -444,6 +503,7 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
       frontBegin -= inFront ? 1 : 0;
       GrowingLists::Item* to = inside ? items + numStay : inFront ? fronts + frontBegin : backs + backBegin;
       *to = it;
+      to->item = inside ? it.item : GrowingLists::turned(it.item);
       numStay += inside ? 1 : 0;
     }
     const std::size_t numBack = n - backBegin, numFront = n - frontBegin;
@@ -494,7 +554,7 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       prependToList(lists, kind, side, it.bounds, it.item);
       // the reference moves to one node; the others are new
       (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
-          static_cast<int>(lists.path.size());
+          static_cast<int>(lists.path.size() * GrowingLists::itemsOf(it.item));
     }
     span.begin += kept;
     span.count -= kept;
