@@ -115,10 +115,12 @@ struct Summary {
 
 class Builder {
  public:
-  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out), model_(m) {
+  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out) {
     items_.reserve(m.polygons.size());
+    planes_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
       const CmPolygon& p = m.polygons[i];
+      planes_.push_back(p.plane);
       Item item;
       for (int k = 0; k < 3; ++k) {
         item.min[k] = float(p.bounds.min[k]);
@@ -253,14 +255,18 @@ class Builder {
         b.contents[j] = 0;
         continue;
       }
-      const CmPolygon& p = model_.polygons[std::size_t(polyNum)];
-      for (int k = 0; k < 3; ++k) {
-        b.min[k][j] = p.bounds.min[k];
-        b.max[k][j] = p.bounds.max[k];
-        b.normal[k][j] = p.plane.normal[k];
+      // (the item's bounds and contents are the polygon's: Real is float in
+      // the builds that make the hierarchy)
+      static_assert(!kCullBlocks || sizeof(Real) == sizeof(float));
+      const Item& it = items_[r.first + j];
+      const Plane& plane = planes_[std::size_t(polyNum)];
+      for (std::size_t k = 0; k < 3; ++k) {
+        b.min[k][j] = it.min[k];
+        b.max[k][j] = it.max[k];
+        b.normal[k][j] = plane.normal[int(k)];
       }
-      b.dist[j] = p.plane.dist;
-      b.contents[j] = p.contents;
+      b.dist[j] = plane.dist;
+      b.contents[j] = it.contents;
     }
     return number;
   }
@@ -318,8 +324,10 @@ class Builder {
   }
 
   PolygonBvh& out_;
-  const ModelArrays& model_;
   std::vector<Item> items_;
+  /// The polygons' planes, by number (the leaves read them in the items'
+  /// order, at random: a compact array instead of the model's polygons).
+  std::vector<Plane> planes_;
 };
 
 }  // namespace
