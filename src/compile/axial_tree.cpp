@@ -37,11 +37,41 @@ namespace cmkit::detail {
 /// beside the stack until it is; a node whose subtree is finished has its
 /// list written to the builder's references, and later items are prepended
 /// there, as the original links them.
+///
+/// Two neighbours in a list with the same bounds (bit for bit) and item
+/// numbers p and p + 1 (a two-sided polygon and its reversed copy, made one
+/// after the other) meet every test alike and move together: every split
+/// and every push down keeps them side by side. They are one entry here, a
+/// pair, so each search and split reads it once. A list keeps or reverses
+/// its items' order as they move: a pair's entry says which of the two
+/// comes first in the array, and turns with it.
 struct ModelBuilder::GrowingLists {
+  /// `item`: an item number, or for a pair p | kPair, with kTurned when
+  /// p + 1 comes first in the array.
   struct Item {
     Bounds bounds;
     int item = kNone;
   };
+  static constexpr int kTurned = 1 << 29;
+  static constexpr int kPair = 1 << 30;
+  /// Pairs are made only of item numbers below this.
+  static constexpr int kMaxPaired = kTurned - 1;
+  /// How many items an entry stands for.
+  static std::uint32_t itemsOf(int item) { return (item & kPair) != 0 ? 2 : 1; }
+  /// The entry of an item or pair moved to a list in reverse order.
+  static int turned(int item) { return item ^ ((item >> 1) & kTurned); }
+  /// The entry's items in array order.
+  template <class F>
+  static void forEachItem(int item, F&& f) {
+    if ((item & kPair) == 0) {
+      f(item);
+      return;
+    }
+    const int p = item & kMaxPaired;
+    const bool turnedPair = (item & kTurned) != 0;
+    f(turnedPair ? p + 1 : p);
+    f(turnedPair ? p : p + 1);
+  }
   /// A list on the stack.
   struct Span {
     std::uint32_t begin = 0;
@@ -60,8 +90,11 @@ struct ModelBuilder::GrowingLists {
     /// parent's split, newest first (chained in `chained`).
     std::vector<int> prepended;
     std::vector<Chained> chained;
-    std::vector<Item> copy;           ///< scratch of splitItems
-    std::vector<std::uint8_t> sides;  ///< scratch of splitItems: kStay, kFront, kBack
+    /// The entries of `chained` moved onto the stack, free to be used again
+    /// (linked by `next`): a large model would otherwise grow `chained` by
+    /// every item pushed down, reallocating and touching new pages.
+    int freeChained = kNone;
+    std::vector<Item> copy;  ///< scratch of splitItems
     const Item* data(const Span& s) const { return stack.data() + s.begin; }
   };
   Kind polygons;
@@ -75,11 +108,14 @@ struct ModelBuilder::GrowingLists {
   /// The nodes above the one splitNode is at, from the root down (the tree
   /// grows depth first: they are splitNode's callers).
   std::vector<int> ancestors;
-  /// The places in `ancestors` of those that held items when they became
-  /// ancestors, in the same order. Only these may hold items: an ancestor
-  /// never gets any (splits give items to their new children, and
-  /// pushItemsDown to nodes off the path, which are not above the split
-  /// node), so the walks up the tree skip the others.
+  /// The places in `ancestors` of those that hold items, in the same order.
+  /// An ancestor never gets items (splits give items to their new children,
+  /// and pushItemsDown to nodes off the path, which are not above the split
+  /// node): one is listed when it becomes an ancestor holding items and
+  /// dropped when pushItemsDown has taken its last, so the walks up the tree
+  /// (two per split) skip the others. (Listed until the end of their
+  /// subtrees, the generated scene of cmkit_peers had ~10 per split, nearly
+  /// all empty: their items went down at later splits.)
   std::vector<std::size_t> filledAncestors;
   struct Source {
     const Item* items;
@@ -91,20 +127,20 @@ struct ModelBuilder::GrowingLists {
     const auto n = static_cast<std::size_t>(node);
     return polygons.at[n].count != 0 || brushes.at[n].count != 0;
   }
-  /// Room for the nodes of the builder's tree.
+  /// Room for (at least) the nodes of the builder's tree: doubled when
+  /// short, not grown by the two nodes of every split (five arrays).
   void grow(std::size_t numNodes) {
+    if (done.size() >= numNodes) return;
+    const std::size_t size = std::max(numNodes, 2 * done.size());
     for (Kind* k : {&polygons, &brushes}) {
-      k->at.resize(numNodes);
-      k->prepended.resize(numNodes, kNone);
+      k->at.resize(size);
+      k->prepended.resize(size, kNone);
     }
-    done.resize(numNodes, 0);
+    done.resize(size, 0);
   }
 };
 
 namespace {
-
-/// Where splitItems puts an item of the split node.
-constexpr std::uint8_t kStay = 0, kFront = 1, kBack = 2;
 
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
@@ -218,9 +254,31 @@ void ModelBuilder::createAxialBSPTree(const Bounds& bounds) {
 void ModelBuilder::readLists(GrowingLists& lists) {
   lists.grow(nodes_.size());
   auto read = [&](GrowingLists::Kind& kind, RefList items, auto&& boundsOf) {
-    for (const int i : items) kind.stack.push_back({boundsOf(i), i});
+    for (const int i : items) {
+      CMKIT_ASSERT(i >= 0 && i < GrowingLists::kTurned);  // (the flags' bits are free)
+      kind.stack.push_back({boundsOf(i), i});
+    }
     std::reverse(kind.stack.begin(), kind.stack.end());
-    kind.at[0] = {0, static_cast<std::uint32_t>(kind.stack.size())};
+    // Pairs (see GrowingLists) of neighbours.
+    std::vector<GrowingLists::Item>& stack = kind.stack;
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < stack.size(); ++out) {
+      const GrowingLists::Item& a = stack[i];
+      if (i + 1 < stack.size()) {
+        const GrowingLists::Item& b = stack[i + 1];
+        const int p = std::min(a.item, b.item);
+        if (std::abs(a.item - b.item) == 1 && p < GrowingLists::kMaxPaired &&
+            std::memcmp(&a.bounds, &b.bounds, sizeof(Bounds)) == 0) {
+          stack[out] = {a.bounds, p | GrowingLists::kPair | (a.item > b.item ? GrowingLists::kTurned : 0)};
+          i += 2;
+          continue;
+        }
+      }
+      stack[out] = a;
+      ++i;
+    }
+    stack.resize(out);
+    kind.at[0] = {0, static_cast<std::uint32_t>(stack.size())};
   };
   read(lists.polygons, polygonsAt(0), [&](int p) { return polygon(p).bounds; });
   read(lists.brushes, brushesAt(0), [&](int b) { return brush(b).bounds; });
@@ -235,14 +293,24 @@ void ModelBuilder::readLists(GrowingLists& lists) {
 
 void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum, const Bounds& bounds,
                                  int item) {
+  // (`item` as it lies in its list: its items are prepended from the end of
+  // the array, in reverse order)
   const auto n = static_cast<std::size_t>(nodeNum);
   if (lists.done[n]) {
-    linkToNode(kind, nodeNum, item);
+    GrowingLists::forEachItem(GrowingLists::turned(item), [&](int i) { linkToNode(kind, nodeNum, i); });
     return;
   }
+  item = GrowingLists::turned(item);
   GrowingLists::Kind& k = lists.of(kind);
-  k.chained.push_back({{bounds, item}, k.prepended[n]});
-  k.prepended[n] = static_cast<int>(k.chained.size()) - 1;
+  int c = k.freeChained;
+  if (c != kNone) {
+    k.freeChained = k.chained[static_cast<std::size_t>(c)].next;
+    k.chained[static_cast<std::size_t>(c)] = {{bounds, item}, k.prepended[n]};
+  } else {
+    c = static_cast<int>(k.chained.size());
+    k.chained.push_back({{bounds, item}, k.prepended[n]});
+  }
+  k.prepended[n] = c;
 }
 
 void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
@@ -250,7 +318,8 @@ void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Kind& k = lists.of(kind);
     const GrowingLists::Item* items = k.data(k.at[n]);
-    for (std::uint32_t i = 0; i < k.at[n].count; ++i) linkToNode(kind, nodeNum, items[i].item);
+    for (std::uint32_t i = 0; i < k.at[n].count; ++i)
+      GrowingLists::forEachItem(items[i].item, [&](int item) { linkToNode(kind, nodeNum, item); });
     k.at[n].count = 0;
   }
   lists.done[n] = 1;
@@ -274,7 +343,10 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
   }
   bool forceSplit = false;
   if (size[0] < tol::kMinNodeSize) {
-    const std::size_t polyCount = lists.polygons.at[static_cast<std::size_t>(nodeNum)].count;
+    const GrowingLists::Span& span = lists.polygons.at[static_cast<std::size_t>(nodeNum)];
+    std::size_t polyCount = 0;
+    for (std::uint32_t k = 0; k < span.count; ++k)
+      polyCount += GrowingLists::itemsOf(lists.polygons.data(span)[k].item);
     if (polyCount > static_cast<std::size_t>(tol::kMaxNodePolygons)) forceSplit = true;
   }
   for (int i = 0; i < 3; ++i) {
@@ -329,9 +401,15 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
     if (numPrepended != 0) {
       std::size_t end = k.stack.size() + numPrepended;
       k.stack.resize(end);
-      for (int c = k.prepended[n]; c != kNone; c = k.chained[static_cast<std::size_t>(c)].next)
+      int last = kNone;
+      for (int c = k.prepended[n]; c != kNone; c = k.chained[static_cast<std::size_t>(c)].next) {
         k.stack[--end] = k.chained[static_cast<std::size_t>(c)].it;
+        last = c;
+      }
       span.count += static_cast<std::uint32_t>(numPrepended);
+      // the chain's entries are free again
+      k.chained[static_cast<std::size_t>(last)].next = k.freeChained;
+      k.freeChained = k.prepended[n];
       k.prepended[n] = kNone;
     }
   }
@@ -366,21 +444,29 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
   // longer inside all children.
   splitItems(lists, nodeNum);
   // The nearest ancestor first.
+  bool emptied = false;
   for (auto a = lists.filledAncestors.rbegin(); a != lists.filledAncestors.rend(); ++a) {
     const int ancestor = lists.ancestors[*a];
-    if (!lists.holdsItems(ancestor)) continue;
+    CMKIT_ASSERT(lists.holdsItems(ancestor));
     lists.path.assign(lists.ancestors.begin() + static_cast<std::ptrdiff_t>(*a + 1), lists.ancestors.end());
     lists.path.push_back(nodeNum);
     pushItemsDown(lists, ancestor, nodeNum);
+    emptied = emptied || !lists.holdsItems(ancestor);
   }
-  const bool filled = lists.holdsItems(nodeNum);
-  if (filled) lists.filledAncestors.push_back(lists.ancestors.size());
+  if (emptied) {
+    std::erase_if(lists.filledAncestors,
+                  [&](std::size_t a) { return !lists.holdsItems(lists.ancestors[a]); });
+  }
+  // (dropped again below unless a split further down emptied it first)
+  const std::size_t place = lists.ancestors.size();
+  if (lists.holdsItems(nodeNum)) lists.filledAncestors.push_back(place);
   lists.ancestors.push_back(nodeNum);
   // (the front child's items are on top of the stacks, the back child's below)
   splitNode(lists, frontNode, frontBounds);
   splitNode(lists, backNode, backBounds);
   lists.ancestors.pop_back();
-  if (filled) lists.filledAncestors.pop_back();
+  if (!lists.filledAncestors.empty() && lists.filledAncestors.back() == place)
+    lists.filledAncestors.pop_back();
   finishList(lists, nodeNum);
   popSlot();
 }
@@ -396,36 +482,35 @@ void ModelBuilder::splitItems(GrowingLists& lists, int splitNum) {
     GrowingLists::Span& span = k.at[static_cast<std::size_t>(splitNum)];
     const std::size_t n = span.count;
     GrowingLists::Item* items = k.stack.data() + span.begin;
-    // Each item's side and the counts first; then each item copied once, from
-    // a copy of the span, to its place, found without branches (which side an
-    // item is on is unpredictable): those that stay first, in their order,
-    // then the back child's and on top the front child's (split first). Each
+    // One pass, each item copied once, to its place found without branches
+    // (which side an item is on is unpredictable): those that stay
+    // compacted in place, in their order; the back child's and the front
+    // child's to two halves of the scratch, each from its end down. Each
     // child prepends its items as the list is walked from its head (the end
-    // of the array): they are in reverse array order.
-    if (k.sides.size() < n) k.sides.resize(n);
-    if (k.copy.size() < n) k.copy.resize(n);
-    std::size_t numStay = 0, numFront = 0;
+    // of the array): they are in reverse array order. Then the children's
+    // runs after those that stay: the back child's, and on top the front
+    // child's (split first).
+    if (k.copy.size() < 2 * n) k.copy.resize(2 * n);
+    GrowingLists::Item* backs = k.copy.data();
+    GrowingLists::Item* fronts = backs + n;
+    std::size_t numStay = 0, backBegin = n, frontBegin = n;
     for (std::size_t i = 0; i < n; ++i) {
-      const Bounds& b = items[i].bounds;
-      const bool inside = straddles(b, axis, dist);
-      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, b));
-      const bool inFront = !inside & (b.min[axis] >= dist);
-      k.sides[i] = static_cast<std::uint8_t>(inside ? kStay : inFront ? kFront : kBack);
+      const GrowingLists::Item it = items[i];
+      const bool inside = straddles(it.bounds, axis, dist);
+      CMKIT_ASSERT(inside == detail::insideAllChildren(GrowingTree{nodes_}, splitNum, it.bounds));
+      const bool inFront = !inside & (it.bounds.min[axis] >= dist);
+      backBegin -= (!inside & !inFront) ? 1 : 0;
+      frontBegin -= inFront ? 1 : 0;
+      GrowingLists::Item* to = inside ? items + numStay : inFront ? fronts + frontBegin : backs + backBegin;
+      *to = it;
+      to->item = inside ? it.item : GrowingLists::turned(it.item);
       numStay += inside ? 1 : 0;
-      numFront += inFront ? 1 : 0;
     }
-    const std::size_t numBack = n - numStay - numFront;
+    const std::size_t numBack = n - backBegin, numFront = n - frontBegin;
     static_assert(std::is_trivially_copyable_v<GrowingLists::Item>);
-    if (n != 0) std::memcpy(k.copy.data(), items, n * sizeof(GrowingLists::Item));
-    std::size_t nextStay = 0, backEnd = numStay + numBack, frontEnd = n;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint8_t side = k.sides[i];
-      backEnd -= side == kBack ? 1 : 0;
-      frontEnd -= side == kFront ? 1 : 0;
-      const std::size_t to = side == kStay ? nextStay : side == kFront ? frontEnd : backEnd;
-      nextStay += side == kStay ? 1 : 0;
-      items[to] = k.copy[i];
-    }
+    if (numBack != 0) std::memcpy(items + numStay, backs + backBegin, numBack * sizeof(GrowingLists::Item));
+    if (numFront != 0)
+      std::memcpy(items + numStay + numBack, fronts + frontBegin, numFront * sizeof(GrowingLists::Item));
     const auto stayEnd = static_cast<std::uint32_t>(span.begin + numStay);
     k.at[back] = {stayEnd, static_cast<std::uint32_t>(numBack)};
     k.at[front] = {static_cast<std::uint32_t>(stayEnd + numBack), static_cast<std::uint32_t>(numFront)};
@@ -469,7 +554,7 @@ void ModelBuilder::pushItemsDown(GrowingLists& lists, int nodeNum, int splitNum)
       prependToList(lists, kind, side, it.bounds, it.item);
       // the reference moves to one node; the others are new
       (kind == ItemKind::Polygon ? counters_.numPolygonRefs : counters_.numBrushRefs) +=
-          static_cast<int>(lists.path.size());
+          static_cast<int>(lists.path.size() * GrowingLists::itemsOf(it.item));
     }
     span.begin += kept;
     span.count -= kept;

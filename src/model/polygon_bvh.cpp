@@ -117,7 +117,7 @@ struct Summary {
 
 class Builder {
  public:
-  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out), model_(m) {
+  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out) {
     // A polygon and its reversed twin of the same bounds are one item (the
     // lower number's), the twin held beside it in the leaf.
     std::vector<std::uint32_t> all(m.polygons.size());
@@ -129,9 +129,11 @@ class Builder {
       if (twin_[i] >= 0 && !sameBounds(m.polygons[i].bounds, m.polygons[std::size_t(twin_[i])].bounds))
         twin_[i] = -1;  // (then its twin's entry is cleared too: the test is symmetric)
     items_.reserve(m.polygons.size());
+    planes_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
-      if (twin_[i] >= 0 && std::size_t(twin_[i]) < i) continue;  // in its twin's item
       const CmPolygon& p = m.polygons[i];
+      planes_.push_back(p.plane);                                // (by polygon number: a twin's too)
+      if (twin_[i] >= 0 && std::size_t(twin_[i]) < i) continue;  // in its twin's item
       Item item;
       for (int k = 0; k < 3; ++k) {
         item.min[k] = float(p.bounds.min[k]);
@@ -275,14 +277,18 @@ class Builder {
         b.contents[j] = 0;
         continue;
       }
-      const CmPolygon& p = model_.polygons[std::size_t(polyNum)];
-      for (int k = 0; k < 3; ++k) {
-        b.min[k][j] = p.bounds.min[k];
-        b.max[k][j] = p.bounds.max[k];
-        b.normal[k][j] = p.plane.normal[k];
+      // (the item's bounds and contents are the polygon's: Real is float in
+      // the builds that make the hierarchy)
+      static_assert(!kCullBlocks || sizeof(Real) == sizeof(float));
+      const Item& it = items_[r.first + j];
+      const Plane& plane = planes_[std::size_t(polyNum)];
+      for (std::size_t k = 0; k < 3; ++k) {
+        b.min[k][j] = it.min[k];
+        b.max[k][j] = it.max[k];
+        b.normal[k][j] = plane.normal[int(k)];
       }
-      b.dist[j] = p.plane.dist;
-      b.contents[j] = p.contents;
+      b.dist[j] = plane.dist;
+      b.contents[j] = it.contents;
     }
     return number;
   }
@@ -349,9 +355,11 @@ class Builder {
   }
 
   PolygonBvh& out_;
-  const ModelArrays& model_;
   std::vector<Item> items_;
   std::vector<std::int32_t> twin_;  ///< per polygon: its reversed twin of the same bounds, or -1
+  /// The polygons' planes, by number (the leaves read them in the items'
+  /// order, at random: a compact array instead of the model's polygons).
+  std::vector<Plane> planes_;
 };
 
 }  // namespace

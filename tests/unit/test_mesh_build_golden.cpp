@@ -13,6 +13,7 @@
 #include "cmkit/cm_file.h"
 #include "cmkit/materials.h"
 #include "cmkit/mesh.h"
+#include "cmkit/tolerances.h"
 
 namespace cmkit {
 namespace {
@@ -113,6 +114,37 @@ TEST(MeshBuildGolden, MixedMaterialsAndDeepTree) {
   TriangleMesh mesh = goldenMesh(3, 40, 400);
   mesh.surfaces[1].material = kClip;
   EXPECT_EQ(modelHash(mesh), 5655712335165684507ull);
+}
+
+/// `count` two-sided triangles apart from each other, all within 60 units
+/// (a node smaller than kMinNodeSize is split only when it holds more than
+/// kMaxNodePolygons polygons).
+TriangleMesh smallTwoSidedMesh(int count) {
+  TriangleMesh mesh;
+  std::vector<std::uint32_t> indices;
+  for (int i = 0; i < count; ++i) {
+    const Real x = Real(i % 8 * 7), y = Real(i / 8 % 8 * 7), z = Real(i / 64 * 7);
+    const auto base = std::uint32_t(mesh.positions.size());
+    mesh.positions.push_back({x, y, z});
+    mesh.positions.push_back({x + 3, y, z + 1});
+    mesh.positions.push_back({x, y + 3, z + 2});
+    indices.insert(indices.end(), {base, base + 1, base + 2});
+  }
+  mesh.surfaces.push_back({kTwoSided, indices});
+  return mesh;
+}
+
+// The tree is grown with each two-sided polygon and its reversed copy as one
+// entry (axial_tree.cpp): the small node's polygon count still counts both.
+TEST(MeshBuildGolden, SmallNodeCountsBothSidesOfTwoSidedPolygons) {
+  static_assert(tol::kMaxNodePolygons == 128);
+  auto nodesOf = [](int count) {
+    auto built = buildCollisionModelFromTriangles(smallTwoSidedMesh(count), "small", goldenMaterials());
+    EXPECT_TRUE(built) << built.error().toString();
+    return built ? built->model->nodes().size() : 0;
+  };
+  EXPECT_EQ(nodesOf(64), 1u);  // 128 polygons: not split
+  EXPECT_GT(nodesOf(65), 1u);  // 130: split
 }
 
 }  // namespace
