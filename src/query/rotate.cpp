@@ -178,7 +178,8 @@ bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum, double
 /// near-double root) could not fall inside either.
 constexpr double kNoRootMargin = 1e-9;
 
-bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root) {
+bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root, double* later) {
+  if (later) *later = std::numeric_limits<double>::quiet_NaN();
   if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
   // Most calls have no root before hi (the nearest hit so far): the
   // quadratic keeps one sign on [lo, hi] when it has the same sign, clearly,
@@ -213,6 +214,10 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
   if (r2 < r1) std::swap(r1, r2);
   if (r1 >= lo && r1 < hi && std::isfinite(r1)) {
     root = r1;
+    // (From just after r1 the other root is the first, when below hi; the
+    // ends' signs there could not rule it out: the quadratic changes sign
+    // at it.)
+    if (later && r2 > r1 && r2 < hi && std::isfinite(r2)) *later = r2;
     return true;
   }
   if (r2 >= lo && r2 < hi && std::isfinite(r2)) {

@@ -107,6 +107,7 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   const double f1 = lines.line.atStart(turn);
   const double f2 = lines.lineIn.atStart(turn);
   double u;
+  double later = std::numeric_limits<double>::quiet_NaN();  // the curve's next root (below)
   Sinusoid curve;  // the product whose root u is (none when u = 0 in the band)
   bool hasCurve = true;
   const bool inBand = (f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0);
@@ -124,11 +125,11 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
       const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
       curve = lines.lineIn.sinusoid(turn, sign);
-      if (!sinusoidRoot(curve, furthest, rw.maxTan, u)) return;
+      if (!sinusoidRoot(curve, furthest, rw.maxTan, u, &later)) return;
     }
   } else {
     curve = lines.lineEps.sinusoid(turn, sign);
-    if (!sinusoidRoot(curve, 0, rw.maxTan, u)) return;
+    if (!sinusoidRoot(curve, 0, rw.maxTan, u, &later)) return;
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
@@ -139,7 +140,10 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
     // original stopped at the first root: a trace-model edge swept past the
     // model edge's line outside it, then across the edge itself, went
     // through the corner unseen.)
-    if (!hasCurve || !sinusoidRoot(curve, std::nextafter(u, kInfinity), rw.maxTan, u)) return;
+    // (The curve's next root, found with u: what solving it again from just
+    // after u gives, rw.maxTan unchanged since.)
+    if (!hasCurve || !(later < rw.maxTan)) return;
+    u = later;
     a = rotateByTanHalf(te.start, rw.origin, rw.axis, sign * u);
     b = rotateByTanHalf(te.end, rw.origin, rw.axis, sign * u);
     // At a root the two lines meet: whether within both segments is decided

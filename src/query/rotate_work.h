@@ -230,8 +230,12 @@ struct Sinusoid {
 /// The smallest root u of a u^2 + 2 b u + c = 0 with lo <= u < hi, in
 /// `root`. False when there is none. Numerically careful (no cancellation,
 /// no division by zero): never produces NaN or Inf. A double root (the
-/// curve only touches zero) is no crossing.
-bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root);
+/// curve only touches zero) is no crossing. `later` (when given) gets the
+/// root after `root` when there is one below hi, else NaN: the same value
+/// calling again from lo = std::nextafter(root, +inf) would find (the same
+/// roots, solved the same way), without solving again.
+bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root,
+                        double* later = nullptr);
 
 /// p turned about the line (origin, unit axis) by the angle whose half has
 /// the tangent `tanHalf` (signed: positive = the positive-angle direction).
@@ -246,9 +250,10 @@ inline double firstExtremumTan(double v1, double v2) {
   return k >= 0 ? 1 / (k + s) : s - k;  // the cancellation-free form of -k + s
 }
 
-/// First u in [lo, maxTan) where the sinusoid is zero.
-inline bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u) {
-  return firstQuadraticRoot(s.v0 - s.v2, s.v1, s.v0 + s.v2, lo, maxTan, u);
+/// First u in [lo, maxTan) where the sinusoid is zero (`later`: the next
+/// one, as firstQuadraticRoot's).
+inline bool sinusoidRoot(const Sinusoid& s, double lo, double maxTan, double& u, double* later = nullptr) {
+  return firstQuadraticRoot(s.v0 - s.v2, s.v1, s.v0 + s.v2, lo, maxTan, u, later);
 }
 
 /// Records the contact a rotation test found on `poly` as the query's.

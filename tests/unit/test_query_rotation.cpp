@@ -285,7 +285,7 @@ TEST(Rotation, QuadraticSolverFindsTheFirstRootInItsInterval) {
   // put the root on either side).
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> any(-4, 4), scale(-50, 50);
-  int found = 0, none = 0;
+  int found = 0, none = 0, seconds = 0;
   for (int i = 0; i < 200000; ++i) {
     const double r1 = any(rng), r2 = any(rng), a = scale(rng);
     if (std::fabs(a) < 1e-3 || std::fabs(r1 - r2) < 1e-3) continue;
@@ -296,18 +296,29 @@ TEST(Rotation, QuadraticSolverFindsTheFirstRootInItsInterval) {
     double expected = std::numeric_limits<double>::infinity();
     for (const double r : {r1, r2})
       if (r >= lo && r < hi) expected = std::min(expected, r);
-    double root = 0;
-    const bool ok = cmkit::detail::firstQuadraticRoot(a, -a * (r1 + r2) / 2, a * r1 * r2, lo, hi, root);
+    double root = 0, later = 0;
+    const double qa = a, qb = -a * (r1 + r2) / 2, qc = a * r1 * r2;
+    const bool ok = cmkit::detail::firstQuadraticRoot(qa, qb, qc, lo, hi, root, &later);
     ASSERT_EQ(ok, std::isfinite(expected)) << a << " " << r1 << " " << r2 << " [" << lo << ", " << hi << ")";
     if (ok) {
       EXPECT_NEAR(root, expected, 1e-9 * (1 + std::fabs(expected)));
       ++found;
+      // The next root given with it is, bit for bit, what solving again
+      // from just after the root finds (the rotations' second crossing).
+      double again = 0;
+      const bool more = cmkit::detail::firstQuadraticRoot(qa, qb, qc, std::nextafter(root, 9.0), hi, again);
+      ASSERT_EQ(more, !std::isnan(later)) << a << " " << r1 << " " << r2 << " [" << lo << ", " << hi << ")";
+      if (more) {
+        EXPECT_EQ(later, again);
+        ++seconds;
+      }
     } else {
       ++none;
     }
   }
   EXPECT_GT(found, 10000);  // both outcomes are exercised
   EXPECT_GT(none, 10000);
+  EXPECT_GT(seconds, 1000);
 }
 
 TEST(Rotation, ArcBoxesOfManyVerticesAreEachVertexsArcBox) {
