@@ -185,11 +185,12 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
   // quadratic keeps one sign on [lo, hi] when it has the same sign, clearly,
   // at both ends and no extremum between them (its slope a u + b has one
   // sign). Deciding that takes a few products instead of a square root and
-  // two divisions. Not from a subnormal lo (the second crossing of an edge
-  // pair whose first is at 0 starts just after it, at the least double):
-  // products of a subnormal take x86 processors a microcode assist each,
-  // a hundred cycles and more (lt4's reference rotation at line 674 took
-  // 26 us so, 12 us solving); the roots below decide those.
+  // two divisions. Not from a subnormal lo (the least double, just after a
+  // root at 0: the rotations' second crossing of an edge pair started there
+  // before it came from `later`): products of a subnormal take x86
+  // processors a microcode assist each, a hundred cycles and more (lt4's
+  // reference rotation at line 674 took 26 us so, 12 us solving); the roots
+  // below decide those.
   if (std::isfinite(hi) && !(lo > 0 && lo < std::numeric_limits<double>::min())) {
     const double gLo = (a * lo + 2 * b) * lo + c, gHi = (a * hi + 2 * b) * hi + c;
     const double sizeLo = (std::fabs(a) * lo + 2 * std::fabs(b)) * lo + std::fabs(c);
