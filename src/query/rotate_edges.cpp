@@ -12,8 +12,6 @@
 namespace cmkit::detail {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 /// The original's CollisionBetweenEdgeBounds: at tangent u, do the turned
 /// trace-model edge and the model edge (c, d) really meet within both
 /// segments (each edge's end points, moved along the motion, straddle the
