@@ -105,9 +105,9 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
   const double f1 = lines.line.atStart(turn);
   const double f2 = lines.lineIn.atStart(turn);
   double u;
-  double later = std::numeric_limits<double>::quiet_NaN();  // the curve's next root (below)
-  Sinusoid curve;  // the product whose root u is (none when u = 0 in the band)
-  bool hasCurve = true;
+  // The next root of the product whose root u is (below); none when u = 0
+  // in the band.
+  double later = std::numeric_limits<double>::quiet_NaN();
   const bool inBand = (f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0);
   if (inBand) {
     // Within the band (on the model edge line included): the side of the
@@ -118,16 +118,13 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
     const double away = flip * real.v1;
     if (away <= 0) {
       u = 0;
-      hasCurve = false;
     } else {
       const double furthest = firstExtremumTan(away, flip * real.v2);
       if (!(furthest < rw.maxTan)) return;
-      curve = lines.lineIn.sinusoid(turn, sign);
-      if (!sinusoidRoot(curve, furthest, rw.maxTan, u, &later)) return;
+      if (!sinusoidRoot(lines.lineIn.sinusoid(turn, sign), furthest, rw.maxTan, u, &later)) return;
     }
   } else {
-    curve = lines.lineEps.sinusoid(turn, sign);
-    if (!sinusoidRoot(curve, 0, rw.maxTan, u, &later)) return;
+    if (!sinusoidRoot(lines.lineEps.sinusoid(turn, sign), 0, rw.maxTan, u, &later)) return;
   }
   if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
@@ -138,9 +135,9 @@ void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& 
     // original stopped at the first root: a trace-model edge swept past the
     // model edge's line outside it, then across the edge itself, went
     // through the corner unseen.)
-    // (The curve's next root, found with u: what solving it again from just
-    // after u gives, rw.maxTan unchanged since.)
-    if (!hasCurve || !(later < rw.maxTan)) return;
+    // (The product's next root, found with u: what solving it again from
+    // just after u gives, rw.maxTan unchanged since; NaN when there is none.)
+    if (!(later < rw.maxTan)) return;
     u = later;
     a = rotateByTanHalf(te.start, rw.origin, rw.axis, sign * u);
     b = rotateByTanHalf(te.end, rw.origin, rw.axis, sign * u);
