@@ -128,6 +128,7 @@ class Builder {
     for (std::size_t i = 0; i < twin_.size(); ++i)
       if (twin_[i] >= 0 && !sameBounds(m.polygons[i].bounds, m.polygons[std::size_t(twin_[i])].bounds))
         twin_[i] = -1;  // (then its twin's entry is cleared too: the test is symmetric)
+    hasTwins_ = std::any_of(twin_.begin(), twin_.end(), [](std::int32_t t) { return t >= 0; });
     items_.reserve(m.polygons.size());
     planes_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
@@ -147,17 +148,11 @@ class Builder {
 
   void build() {
     if (items_.empty()) return;
-    buildTree();
-    if (std::all_of(out_.twins.begin(), out_.twins.end(), [](std::int32_t t) { return t < 0; }))
-      out_.twins.clear();
-    out_.twins.shrink_to_fit();
-  }
-
-  void buildTree() {
     out_.nodes.reserve(items_.size() / 2 + 1);
     out_.leaves.reserve(items_.size() / 2 + 1);
     const Range all{0, items_.size()};
     (void)node(all, summaryOf(all), 1);
+    out_.twins.shrink_to_fit();  // (grown lane by lane)
   }
 
  private:
@@ -266,7 +261,7 @@ class Builder {
       const std::int32_t polyNum = used ? items_[r.first + j].polygon : -1;
       const std::int32_t twin = used ? twin_[std::size_t(polyNum)] : -1;
       b.polygon[j] = twin >= 0 ? polyNum | BvhLeaf::kHasTwin : polyNum;
-      out_.twins.push_back(twin);
+      if (hasTwins_) out_.twins.push_back(twin);
       if (!used) {
         for (int k = 0; k < 3; ++k) {
           b.min[k][j] = std::numeric_limits<float>::max();
@@ -357,6 +352,7 @@ class Builder {
   PolygonBvh& out_;
   std::vector<Item> items_;
   std::vector<std::int32_t> twin_;  ///< per polygon: its reversed twin of the same bounds, or -1
+  bool hasTwins_ = false;           ///< some polygon has one (else PolygonBvh::twins stays empty)
   /// The polygons' planes, by number (the leaves read them in the items'
   /// order, at random: a compact array instead of the model's polygons).
   std::vector<Plane> planes_;

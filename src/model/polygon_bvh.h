@@ -4,8 +4,8 @@
 // tree lists a polygon at every node it straddles, so its walks mark what
 // they met); a leaf is one CullBlock of up to kLanes polygons (a polygon
 // and its reversed twin, the two sides of a two-sided surface, in one
-// lane), so the culls of a leaf are one block's. Only kCullBlocks builds (float lanes)
-// make one; the queries fall back to the BSP tree without it.
+// lane), so the culls of a leaf are one block's. Only kCullBlocks builds
+// (float lanes) make one; the queries fall back to the BSP tree without it.
 #pragma once
 
 #include <cstdint>

@@ -71,7 +71,7 @@ namespace {
 /// The lanes of a cull block that pass the back-face and heart-plane culls:
 /// `front` those whose polygon faces the move, `back` those whose polygon's
 /// reversed twin would (a lane of the polygons' hierarchy may hold one:
-/// BvhLeaf::twin; the caller keeps the lanes that do).
+/// BvhLeaf::twinLanes; the caller keeps the lanes that do).
 struct FacingLanes {
   unsigned front, back;
 };
