@@ -220,22 +220,40 @@ void printSuiteText(const std::vector<SuiteRow>& rows, const SuiteRow& all, int 
   }
 }
 
-/// The work counters per query of each kind (--stats), as a JSON object.
-std::string jsonWork(const std::map<QueryOp, QueryStats>& stats) {
-  std::string out = "{";
+/// The kinds that ran (--stats) with their work counters per query, in
+/// QueryStats' order after the count: nodes, polygons met and tested,
+/// brushes met, vertex tests, edge pairs (the text table and the JSON).
+struct KindWork {
+  QueryOp op;
+  std::uint64_t queries;
+  std::array<double, 6> perQuery;
+};
+std::vector<KindWork> workPerQuery(const std::map<QueryOp, QueryStats>& stats) {
+  std::vector<KindWork> out;
   for (QueryOp op : kSuiteOps) {
     const auto it = stats.find(op);
     if (it == stats.end() || it->second.queries == 0) continue;
     const QueryStats& s = it->second;
     const double n = double(s.queries);
+    out.push_back({op,
+                   s.queries,
+                   {double(s.nodesVisited) / n, double(s.polygonsMet) / n, double(s.polygonsTested) / n,
+                    double(s.brushesMet) / n, double(s.vertexTests) / n, double(s.edgePairs) / n}});
+  }
+  return out;
+}
+
+/// The work counters per query of each kind (--stats), as a JSON object.
+std::string jsonWork(const std::map<QueryOp, QueryStats>& stats) {
+  static constexpr const char* kNames[6] = {"nodes",       "polygons met", "polygons tested",
+                                            "brushes met", "vertex tests", "edge pairs"};
+  std::string out = "{";
+  for (const KindWork& k : workPerQuery(stats)) {
     if (out.size() > 1) out += ", ";
-    out += fmt::format(
-        "\"{}\": {{\"queries\": {}, \"nodes\": {:.2f}, \"polygons met\": {:.2f}, \"polygons tested\": "
-        "{:.2f}, "
-        "\"brushes met\": {:.2f}, \"vertex tests\": {:.2f}, \"edge pairs\": {:.2f}}}",
-        toString(op), s.queries, double(s.nodesVisited) / n, double(s.polygonsMet) / n,
-        double(s.polygonsTested) / n, double(s.brushesMet) / n, double(s.vertexTests) / n,
-        double(s.edgePairs) / n);
+    out += fmt::format("\"{}\": {{\"queries\": {}", toString(k.op), k.queries);
+    for (std::size_t c = 0; c < k.perQuery.size(); ++c)
+      out += fmt::format(", \"{}\": {:.2f}", kNames[c], k.perQuery[c]);
+    out += "}";
   }
   return out + "}";
 }
@@ -267,14 +285,10 @@ void printSuiteStats(const std::map<QueryOp, QueryStats>& stats) {
       "cmkit/query.h)\n");
   fmt::print("{:<14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "kind", "queries", "nodes", "polys met",
              "polys tst", "brushes", "vert tst", "edge prs");
-  for (QueryOp op : kSuiteOps) {
-    const auto it = stats.find(op);
-    if (it == stats.end() || it->second.queries == 0) continue;
-    const QueryStats& s = it->second;
-    const double n = double(s.queries);
-    fmt::print("{:<14} {:>9} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", toString(op),
-               s.queries, double(s.nodesVisited) / n, double(s.polygonsMet) / n, double(s.polygonsTested) / n,
-               double(s.brushesMet) / n, double(s.vertexTests) / n, double(s.edgePairs) / n);
+  for (const KindWork& k : workPerQuery(stats)) {
+    const auto& w = k.perQuery;
+    fmt::print("{:<14} {:>9} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", toString(k.op),
+               k.queries, w[0], w[1], w[2], w[3], w[4], w[5]);
   }
 }
 
