@@ -454,8 +454,14 @@ void ModelBuilder::splitNode(GrowingLists& lists, int nodeNum, const Bounds& bou
     emptied = emptied || !lists.holdsItems(ancestor);
   }
   if (emptied) {
-    std::erase_if(lists.filledAncestors,
-                  [&](std::size_t a) { return !lists.holdsItems(lists.ancestors[a]); });
+    // (a loop, not std::erase_if with a lambda: Clang 14 leaves the source's
+    // absolute path in one debug-info name of the lambda's std::ref, past the
+    // prefix maps, and installed_tree rejects that)
+    std::size_t kept = 0;
+    for (const std::size_t a : lists.filledAncestors) {
+      if (lists.holdsItems(lists.ancestors[a])) lists.filledAncestors[kept++] = a;
+    }
+    lists.filledAncestors.resize(kept);
   }
   // (dropped again below unless a split further down emptied it first)
   const std::size_t place = lists.ancestors.size();
