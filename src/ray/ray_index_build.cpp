@@ -5,14 +5,11 @@
 // contents, edge lines) in one run of chunks.
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <new>
-#include <span>
 #include <stdexcept>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
