@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "cmkit/materials.h"
 #include "cmkit/mesh.h"
 #include "cmkit/model.h"
+#include "compile/edge_list.h"
 #include "compile/int_hash.h"
 #include "geometry/winding.h"
 #include "model/material_cache.h"
@@ -80,7 +82,7 @@ struct BPolygon {
   int material = kNone;
   int checkcount = 0;
   bool freed = false;
-  std::vector<int> edges;  ///< signed edge numbers (negative: used from v[1] to v[0])
+  EdgeList edges;  ///< signed edge numbers (negative: used from v[1] to v[0])
 };
 
 struct BBrush {
@@ -399,7 +401,7 @@ class ModelBuilder {
 
   /// True when each edge starts at the vertex where the one before it ends
   /// (cyclically): the edges outline a polygon.
-  bool edgesFormLoop(const std::vector<int>& edgeNums) const {
+  bool edgesFormLoop(std::span<const int> edgeNums) const {
     auto startVertex = [&](int e) { return edge(e).v[e > 0 ? 0 : 1]; };
     for (std::size_t k = 0; k < edgeNums.size(); ++k) {
       const int prev = edgeNums[k == 0 ? edgeNums.size() - 1 : k - 1];

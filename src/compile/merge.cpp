@@ -219,8 +219,7 @@ int ModelBuilder::tryMergePolygons(int p1Num, int p2Num) {
     if (newEdgeNum2 == 0) keep2 = true;
   }
   // getEdge may have grown edges_ but not polygons_: p1, p2 stay valid.
-  std::vector<int> newEdges;
-  newEdges.reserve(static_cast<std::size_t>(n1 + n2));
+  EdgeList newEdges;  // (no room reserved: two quads' n1 + n2 would leave the list's own)
   const int k1 = keep1 ? 0 : 1;
   const int k2 = keep2 ? 0 : 1;
   if (!keep2) newEdges.push_back(newEdgeNum2);

@@ -197,7 +197,7 @@ int ModelBuilder::addEdge(int v1num, int v2num) {
 }
 
 void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum) {
-  std::vector<int> polyEdges;
+  EdgeList polyEdges;
   polyEdges.reserve(static_cast<std::size_t>(w.size()));
   int v1num = kNone;  // the welded start of the next edge, once known
   for (int i = 0, j = 1; i < w.size(); ++i, ++j) {
@@ -226,7 +226,7 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
   if (polyEdges.size() > static_cast<std::size_t>(tol::kMaxPolygonEdges)) {
     warn("polygon has " + std::to_string(polyEdges.size()) + " edges; truncated to " +
          std::to_string(tol::kMaxPolygonEdges));
-    polyEdges.resize(static_cast<std::size_t>(tol::kMaxPolygonEdges));
+    polyEdges.truncate(static_cast<std::size_t>(tol::kMaxPolygonEdges));
   }
   BPolygon p;
   p.edges = std::move(polyEdges);
