@@ -456,15 +456,20 @@ class ModelBuilder {
   const VertexHashNode& hashNode(int vertexNum) const {
     return vertexHashNodes_[static_cast<std::size_t>(vertexNum)];
   }
-  /// A recent getVertex: its point, the point welded (snapped), its vertex
+  /// The last kRecent getVertex lookups, coordinate by coordinate (a
+  /// lookup compares its point with all of them at once, without a branch
+  /// per entry): the point, the point welded (snapped), and its vertex
   /// (kNone: no entry, or dropped since).
-  struct RecentVertex {
-    Vec3 point;
-    Vec3 welded;
-    int vertexNum = kNone;
+  struct RecentVertices {
+    static constexpr std::size_t kRecent = 8;
+    alignas(16) std::array<Real, kRecent> x{}, y{}, z{};
+    alignas(16) std::array<Real, kRecent> weldedX{}, weldedY{}, weldedZ{};
+    std::array<int, kRecent> vertexNum{};
+    unsigned valid = 0;  ///< bit k: entry k holds a vertex
+    std::size_t next = 0;
+    void clear() { *this = RecentVertices{}; }
   };
-  std::array<RecentVertex, 8> recentVertices_{};
-  std::size_t recentNext_ = 0;
+  RecentVertices recent_;
   IntHashMap edgeHashHead_;  ///< directed (v0, v1) -> newest edge
   std::vector<int> edgeHashNext_;
 

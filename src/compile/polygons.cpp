@@ -1,10 +1,12 @@
 // Windings -> polygons: vertex welding, edge sharing (the original's
 // GetVertex, GetEdge, CreatePolygon and PolygonFromWinding).
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <cstdlib>
 
 #include "compile/builder.h"
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
@@ -54,7 +56,7 @@ void ModelBuilder::prepareVertexHash() {
 
 void ModelBuilder::clearHash(const Bounds& bounds) {
   hashMin_ = bounds.min;
-  recentVertices_.fill(RecentVertex{});
+  recent_.clear();
   vertexHashHead_.assign(kVertexHashSize, kNone);
   vertexHashNodes_.clear();
   edgeHashHead_.clear();
@@ -67,11 +69,25 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   // answer depends only on the vertices that match its point, so it stays
   // the same until a new vertex matches it (findOrAddVertex drops such
   // entries).
-  for (const RecentVertex& r : recentVertices_) {
-    if (r.vertexNum != kNone && r.point.x == v.x && r.point.y == v.y && r.point.z == v.z) {
-      vertexNum = r.vertexNum;
-      return true;
-    }
+  // (Entries with equal points hold the same vertex: any one that matches.)
+  RecentVertices& r = recent_;
+  unsigned hits = 0;
+#ifdef CMKIT_FLOAT_LANES
+  static_assert(RecentVertices::kRecent % 4 == 0);
+  const simd::F4 px = simd::F4::all(v.x), py = simd::F4::all(v.y), pz = simd::F4::all(v.z);
+  for (std::size_t k = 0; k < RecentVertices::kRecent; k += 4) {
+    const simd::F4 same =
+        (simd::F4::load(&r.x[k]) == px) & (simd::F4::load(&r.y[k]) == py) & (simd::F4::load(&r.z[k]) == pz);
+    hits |= simd::bits(same) << k;
+  }
+#else
+  for (std::size_t k = 0; k < RecentVertices::kRecent; ++k)
+    hits |= unsigned((r.x[k] == v.x) & (r.y[k] == v.y) & (r.z[k] == v.z)) << k;
+#endif
+  hits &= r.valid;
+  if (hits != 0) {
+    vertexNum = r.vertexNum[std::size_t(std::countr_zero(hits))];
+    return true;
   }
   // Coordinates this close to an integer snap to it.
   Vec3 vert;
@@ -80,8 +96,16 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
     vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
   }
   const bool found = findOrAddVertex(vert, vertexNum);
-  recentVertices_[recentNext_] = {v, vert, vertexNum};
-  recentNext_ = (recentNext_ + 1) % recentVertices_.size();
+  const std::size_t k = r.next;
+  r.x[k] = v.x;
+  r.y[k] = v.y;
+  r.z[k] = v.z;
+  r.weldedX[k] = vert.x;
+  r.weldedY[k] = vert.y;
+  r.weldedZ[k] = vert.z;
+  r.vertexNum[k] = vertexNum;
+  r.valid |= 1u << k;
+  r.next = (k + 1) % RecentVertices::kRecent;
   return found;
 }
 
@@ -148,11 +172,12 @@ bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
   vertexHashNodes_.push_back({vert, hashHead(midKey)});
   hashHead(midKey) = vertexNum;
   // Recent lookups whose point the new vertex matches may now give it.
-  for (RecentVertex& r : recentVertices_) {
-    if (r.vertexNum != kNone && std::fabs(r.welded[2] - vert[2]) < tol::kVertexEpsilon &&
-        std::fabs(r.welded[0] - vert[0]) < tol::kVertexEpsilon &&
-        std::fabs(r.welded[1] - vert[1]) < tol::kVertexEpsilon)
-      r.vertexNum = kNone;
+  RecentVertices& r = recent_;
+  for (std::size_t k = 0; k < RecentVertices::kRecent; ++k) {
+    const bool matches = (std::fabs(r.weldedZ[k] - vert[2]) < tol::kVertexEpsilon) &
+                         (std::fabs(r.weldedX[k] - vert[0]) < tol::kVertexEpsilon) &
+                         (std::fabs(r.weldedY[k] - vert[1]) < tol::kVertexEpsilon);
+    r.valid &= ~(unsigned(matches) << k);
   }
   return false;
 }
