@@ -73,53 +73,29 @@ int appended(std::vector<T>& v, const T& item) {
 
 void ModelBuilder::flattenTree(ModelArrays& model, const Remap& remap) const {
   // Nodes in pre-order (front child first); polygons, brushes and materials
-  // in the order they are first met in that walk.
+  // in the order they are first met in that walk. The walk makes the nodes
+  // and their lists, numbering each polygon and brush when first met; the
+  // polygons and brushes are made afterwards in that order (and their
+  // materials numbered as they come), each polygon's record fetched a few
+  // ahead: in tree order they lie all over the builder's array, and made one
+  // by one in the walk each waited for memory.
+  struct FirstMet {
+    int item;
+    bool brush;
+  };
+  std::vector<FirstMet> met;
+  met.reserve(polygons_.size() + brushes_.size());
+  int numPolygons = 0, numBrushes = 0;
   IndexMap polygonIndex(polygons_.size());
   IndexMap brushIndex(brushes_.size());
-  IndexMap materialIndex(0);
-  auto modelMaterial = [&](int m) -> std::int32_t {
-    if (m == kNone) return kNone;
-    return materialIndex.get(m, [&] { return appended(model.materials, materials_[m].name); });
-  };
-  auto newPolygon = [&](const BPolygon& bp) {
-    CmPolygon cp;
-    cp.bounds = bp.bounds;
-    cp.plane = bp.plane;
-    cp.contents = bp.contents;
-    cp.material = modelMaterial(bp.material);
-    cp.firstEdge = static_cast<std::uint32_t>(model.polygonEdges.size());
-    cp.numEdges = static_cast<std::uint32_t>(bp.edges.size());
-    for (const int e : bp.edges) {
-      const int m = remap.edges[static_cast<std::size_t>(std::abs(e))];
-      model.polygonEdges.push_back(e < 0 ? -m : m);
-    }
-    return appended(model.polygons, cp);
-  };
-  auto newBrush = [&](const BBrush& bb) {
-    CmBrush cb;
-    cb.bounds = bb.bounds;
-    cb.contents = bb.contents;
-    cb.material = modelMaterial(bb.material);
-    cb.primitiveNum = bb.primitiveNum;
-    cb.firstPlane = static_cast<std::uint32_t>(model.brushPlanes.size());
-    cb.numPlanes = static_cast<std::uint32_t>(bb.planes.size());
-    model.brushPlanes.insert(model.brushPlanes.end(), bb.planes.begin(), bb.planes.end());
-    return appended(model.brushes, cb);
-  };
-
   struct Pending {
     int buildNode;
     int parent;
     int childSlot;
   };
   model.nodes.reserve(nodes_.size());
-  model.polygons.reserve(polygons_.size());
   model.polygonRefs.reserve(polygonRefs_.size());
-  model.brushes.reserve(brushes_.size());
   model.brushRefs.reserve(brushRefs_.size());
-  std::size_t numPolygonEdges = 0;
-  for (const BPolygon& p : polygons_) numPolygonEdges += p.freed ? 0 : p.edges.size();
-  model.polygonEdges.reserve(numPolygonEdges);
   std::vector<Pending> stack;
   stack.push_back({0, kNone, kNone});
   while (!stack.empty()) {
@@ -134,12 +110,20 @@ void ModelBuilder::flattenTree(ModelArrays& model, const Remap& remap) const {
     cn.planeDist = bn.isLeaf() ? Real(0) : bn.planeDist;
     cn.parent = cur.parent;
     cn.firstPolygonRef = static_cast<std::uint32_t>(model.polygonRefs.size());
-    for (const int p : polygonsAt(cur.buildNode))
-      model.polygonRefs.push_back(polygonIndex.get(p, [&] { return newPolygon(polygon(p)); }));
+    for (const int p : polygonsAt(cur.buildNode)) {
+      model.polygonRefs.push_back(polygonIndex.get(p, [&] {
+        met.push_back({p, false});
+        return numPolygons++;
+      }));
+    }
     cn.numPolygonRefs = static_cast<std::uint32_t>(model.polygonRefs.size()) - cn.firstPolygonRef;
     cn.firstBrushRef = static_cast<std::uint32_t>(model.brushRefs.size());
-    for (const int b : brushesAt(cur.buildNode))
-      model.brushRefs.push_back(brushIndex.get(b, [&] { return newBrush(brush(b)); }));
+    for (const int b : brushesAt(cur.buildNode)) {
+      model.brushRefs.push_back(brushIndex.get(b, [&] {
+        met.push_back({b, true});
+        return numBrushes++;
+      }));
+    }
     cn.numBrushRefs = static_cast<std::uint32_t>(model.brushRefs.size()) - cn.firstBrushRef;
     model.nodes.push_back(cn);
     if (!bn.isLeaf()) {
@@ -147,6 +131,53 @@ void ModelBuilder::flattenTree(ModelArrays& model, const Remap& remap) const {
       stack.push_back({bn.children[1], index, 1});
       stack.push_back({bn.children[0], index, 0});
     }
+  }
+
+  IndexMap materialIndex(0);
+  auto modelMaterial = [&](int m) -> std::int32_t {
+    if (m == kNone) return kNone;
+    return materialIndex.get(m, [&] { return appended(model.materials, materials_[m].name); });
+  };
+  model.polygons.reserve(static_cast<std::size_t>(numPolygons));
+  model.brushes.reserve(static_cast<std::size_t>(numBrushes));
+  std::size_t numPolygonEdges = 0;
+  for (const BPolygon& p : polygons_) numPolygonEdges += p.freed ? 0 : p.edges.size();
+  model.polygonEdges.reserve(numPolygonEdges);
+  // (far enough ahead to overlap a few fetches, near enough that the
+  // fetched lines are still there)
+  constexpr std::size_t kFetchAhead = 8;
+  for (std::size_t i = 0; i < met.size(); ++i) {
+    if (i + kFetchAhead < met.size() && !met[i + kFetchAhead].brush) {
+      const BPolygon* ahead = &polygon(met[i + kFetchAhead].item);
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(reinterpret_cast<const char*>(ahead) + sizeof(BPolygon) - 1);
+    }
+    if (met[i].brush) {
+      const BBrush& bb = brush(met[i].item);
+      CmBrush cb;
+      cb.bounds = bb.bounds;
+      cb.contents = bb.contents;
+      cb.material = modelMaterial(bb.material);
+      cb.primitiveNum = bb.primitiveNum;
+      cb.firstPlane = static_cast<std::uint32_t>(model.brushPlanes.size());
+      cb.numPlanes = static_cast<std::uint32_t>(bb.planes.size());
+      model.brushPlanes.insert(model.brushPlanes.end(), bb.planes.begin(), bb.planes.end());
+      model.brushes.push_back(cb);
+      continue;
+    }
+    const BPolygon& bp = polygon(met[i].item);
+    CmPolygon cp;
+    cp.bounds = bp.bounds;
+    cp.plane = bp.plane;
+    cp.contents = bp.contents;
+    cp.material = modelMaterial(bp.material);
+    cp.firstEdge = static_cast<std::uint32_t>(model.polygonEdges.size());
+    cp.numEdges = static_cast<std::uint32_t>(bp.edges.size());
+    for (const int e : bp.edges) {
+      const int m = remap.edges[static_cast<std::size_t>(std::abs(e))];
+      model.polygonEdges.push_back(e < 0 ? -m : m);
+    }
+    model.polygons.push_back(cp);
   }
 }
 
