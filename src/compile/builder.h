@@ -300,8 +300,12 @@ class ModelBuilder {
   // ---- merge.cpp
   /// Coplanar polygons that share an edge, merged into one convex polygon.
   void mergePolygons();
-  /// The merge index below, for the polygons and tree as they are.
+  /// The merge index below, for the polygons and tree as they are: the
+  /// edges' users first; the rest only when some pair may merge.
+  void prepareEdgeUsers();
   void prepareMergeIndex();
+  /// Whether two live polygons that share an edge pass mayMerge (merge.cpp).
+  bool anyPairMayMerge() const;
   void mergeTreePolygons(int node);
   bool mergePolygonWithTreePolygons(int polygon);
   /// True when walkTouching(0, bounds, ...) visits the node.

@@ -35,24 +35,53 @@ bool mayMerge(const BPolygon& p1, const BPolygon& p2) {
 
 void ModelBuilder::mergePolygons() {
   ++checkCount_;
-  prepareMergeIndex();
-  mergeTreePolygons(0);
+  // Every merge starts from two polygons that share an edge and pass
+  // mayMerge (tryMergePolygons tests it first). When no such pair exists,
+  // nothing merges, and the walk over the tree's lists is left out: a mesh
+  // of two-sided triangles, where a triangle shares its edges only with its
+  // reversed copy (its neighbours make edges of their own), met ~99 000
+  // polygons in turn and merged none.
+  prepareEdgeUsers();
+  if (anyPairMayMerge()) {
+    prepareMergeIndex();
+    mergeTreePolygons(0);
+  }
   edgeUsers_.clear();
   polygonNodes_.clear();
 }
 
-void ModelBuilder::prepareMergeIndex() {
+void ModelBuilder::prepareEdgeUsers() {
   edgeUsers_.clear();
-  polygonNodes_.clear();
   std::size_t numUses = 0;
   for (const BPolygon& p : polygons_) numUses += p.freed ? 0 : p.edges.size();
-  // (merged polygons add their uses and nodes later: a little more room)
+  // (merged polygons add their uses later: a little more room)
   edgeUsers_.reserve(edges_.size(), numUses + numUses / 4);
-  polygonNodes_.reserve(polygons_.size(), polygonRefs_.size() + polygonRefs_.size() / 4);
   for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
     if (polygon(p).freed) continue;
     for (const int e : polygon(p).edges) edgeUsers_.add(std::abs(e), p);
   }
+}
+
+bool ModelBuilder::anyPairMayMerge() const {
+  for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
+    const BPolygon& poly = polygon(p);
+    if (poly.freed) continue;
+    for (const int e : poly.edges) {
+      bool found = false;
+      // (each pair once: mayMerge is symmetric)
+      edgeUsers_.forEach(std::abs(e), [&](int q) {
+        found = found || (q > p && !polygon(q).freed && mayMerge(poly, polygon(q)));
+      });
+      if (found) return true;
+    }
+  }
+  return false;
+}
+
+void ModelBuilder::prepareMergeIndex() {
+  polygonNodes_.clear();
+  // (merged polygons add their nodes later: a little more room)
+  polygonNodes_.reserve(polygons_.size(), polygonRefs_.size() + polygonRefs_.size() / 4);
   for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
     for (const int p : polygonsAt(n)) polygonNodes_.add(p, n);
   }
