@@ -95,7 +95,7 @@ class EdgeList {
     if (other.onHeap()) {
       heap_ = other.heap_;
     } else {
-      std::memcpy(inline_, other.inline_, size_ * sizeof(int));
+      std::memcpy(inline_, other.inline_, sizeof inline_);  // (whole: no call for a size known late)
     }
     other.size_ = 0;
     other.capacity_ = kInline;
@@ -108,7 +108,7 @@ class EdgeList {
   std::uint32_t size_ = 0;
   std::uint32_t capacity_ = kInline;
   union {
-    int inline_[kInline];
+    int inline_[kInline] = {};  // (all set: a move copies the whole array)
     int* heap_;
   };
 };
