@@ -66,6 +66,21 @@ std::vector<std::uint32_t> polygonsInTreeOrder(const ModelArrays& model) {
   std::vector<std::uint32_t> order;
   if (model.nodes.empty()) return order;
   order.reserve(model.polygons.size());
+  // What the walk reads of a node, copied in one pass in the nodes' order:
+  // they are stored front child first, and the walk, back child first,
+  // jumps across the array at every step; a third of the bytes keeps more
+  // of them in the cache.
+  struct Step {
+    std::int32_t children[2];
+    std::uint32_t firstRef, numRefs;
+  };
+  std::vector<Step> steps(model.nodes.size());
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    const CmNode& node = model.nodes[n];
+    steps[n] = {{node.isLeaf() ? -1 : node.children[0], node.isLeaf() ? -1 : node.children[1]},
+                node.firstPolygonRef,
+                node.numPolygonRefs};
+  }
   std::vector<char> visited(model.polygons.size(), 0);
   // Pre-order walk: node list, back subtree, front subtree. The stack holds
   // nodes still to visit; pushing front before back pops back first.
@@ -76,15 +91,16 @@ std::vector<std::uint32_t> polygonsInTreeOrder(const ModelArrays& model) {
     stack.pop_back();
     if (nodeNum < 0 || std::size_t(nodeNum) >= model.nodes.size() || nodeSeen[std::size_t(nodeNum)]) continue;
     nodeSeen[std::size_t(nodeNum)] = 1;
-    const CmNode& node = model.nodes[std::size_t(nodeNum)];
-    for (const std::int32_t p : model.polygonsAt(node)) {
+    const Step& step = steps[std::size_t(nodeNum)];
+    for (std::uint32_t r = 0; r < step.numRefs; ++r) {
+      const std::int32_t p = model.polygonRefs[std::size_t(step.firstRef) + r];
       if (p < 0 || std::size_t(p) >= model.polygons.size() || visited[std::size_t(p)]) continue;
       visited[std::size_t(p)] = 1;
       order.push_back(std::uint32_t(p));
     }
-    if (node.isLeaf()) continue;
-    stack.push_back(node.children[0]);  // front: visited after the whole back subtree
-    stack.push_back(node.children[1]);  // back: next
+    if (step.children[0] < 0) continue;  // a leaf
+    stack.push_back(step.children[0]);   // front: visited after the whole back subtree
+    stack.push_back(step.children[1]);   // back: next
   }
   return order;
 }
