@@ -142,6 +142,11 @@ struct ModelBuilder::GrowingLists {
 
 namespace {
 
+/// Room reserved per polygon for the tree's polygon references, and per
+/// item for its nodes (readLists).
+constexpr std::size_t kRefsPerPolygonRoom = 3;
+constexpr std::size_t kNodesPerItemRoom = 1;
+
 /// The tree-filter rule's "not entirely on one side" of an axial plane (an
 /// item that straddles stays above it); false for bounds beyond or touching.
 bool straddles(const Bounds& b, int axis, Real dist) {
@@ -287,6 +292,14 @@ void ModelBuilder::readLists(GrowingLists& lists) {
   polygonRefs_.clear();
   brushRefs_.clear();
   freePolygonRef_ = kNone;
+  // Room from the start for what a tree of this many items usually makes:
+  // the generated scene of cmkit_peers lists its polygons ~2.9 times each
+  // (lt4's world 2.7) with about a node per polygon; grown by doubling,
+  // these arrays were copied twice and their pages touched again. (Only
+  // room: more than this still grows them.)
+  const std::size_t numItems = polygons_.size() + brushes_.size();
+  polygonRefs_.reserve(kRefsPerPolygonRoom * polygons_.size());
+  nodes_.reserve(kNodesPerItemRoom * numItems);
   node(0).polygons = kNone;
   node(0).brushes = kNone;
 }
