@@ -346,14 +346,18 @@ bool ModelBuilder::findSplitter(GrowingLists& lists, int nodeNum, const Bounds& 
     size[i] = bounds.max[i] - bounds.min[i];
     axis[i] = i;
   }
-  // Largest axis first (the original's restarting bubble sort).
-  for (int i = 0; i < 2; ++i) {
-    if (size[i] < size[i + 1]) {
-      std::swap(size[i], size[i + 1]);
-      std::swap(axis[i], axis[i + 1]);
-      i = -1;
-    }
-  }
+  // Largest axis first, equal sizes in axis order: what the original's
+  // restarting bubble sort gives, as three compare-and-swaps in registers
+  // (the loop kept the sizes in memory, and its restarts mispredicted).
+  auto order = [&](int i) {
+    const bool swap = size[i] < size[i + 1];
+    const Real s0 = swap ? size[i + 1] : size[i], s1 = swap ? size[i] : size[i + 1];
+    const int a0 = swap ? axis[i + 1] : axis[i], a1 = swap ? axis[i] : axis[i + 1];
+    size[i] = s0, size[i + 1] = s1, axis[i] = a0, axis[i + 1] = a1;
+  };
+  order(0);
+  order(1);
+  order(0);
   bool forceSplit = false;
   if (size[0] < tol::kMinNodeSize) {
     const GrowingLists::Span& span = lists.polygons.at[static_cast<std::size_t>(nodeNum)];
