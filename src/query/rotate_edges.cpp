@@ -1,13 +1,13 @@
-// The rotation test of a trace-model edge against a model edge
-// (rotate_edges.h): the first root of the two lines' product against the
-// model edge moved out by the clip epsilon (or, within the band, the far
-// side of the band), the meeting checked within both edges as the original
-// checks it, and the second root when the first falls beyond an edge's end.
+// The rotation test of a trace-model edge against a model edge once its
+// root search (rotate_edges.h, inline) has found the first root of the two
+// lines' product against the model edge moved out by the clip epsilon (or,
+// within the band, the far side of the band): the meeting checked within
+// both edges as the original checks it, and the second root when the first
+// falls beyond an edge's end.
 #include "query/rotate_edges.h"
 
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 
 namespace cmkit::detail {
 namespace {
@@ -89,44 +89,14 @@ Vec3 edgeContactNormal(const RotationWork& rw, const Vec3& unitNormal, const Vec
 
 }  // namespace
 
-void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
-                              const ModelEdgeLines& lines, int trmEdgeNum) {
+void edgePairContact(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
+                     int trmEdgeNum, double u, double later, bool inBand) {
   const CollisionModel& m = tw.model;
-  count(tw.scratch, &QueryStats::edgePairs);
   const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const Vec3& c0 = m.vertices()[std::size_t(edge.vertex[0])];
   const Vec3& d0 = m.vertices()[std::size_t(edge.vertex[1])];
-  const EdgeTurn& turn = rw.edgeTurn(tw, trmEdgeNum);
   const double sign = rw.sign;
-
-  // Is the trace-model edge line already between the model edge and the
-  // edge moved out by the epsilon (plus the range epsilon)?
-  const double f1 = lines.line.atStart(turn);
-  const double f2 = lines.lineIn.atStart(turn);
-  double u;
-  // The next root of the product whose root u is (below); none when u = 0
-  // in the band.
-  double later = std::numeric_limits<double>::quiet_NaN();
-  const bool inBand = (f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0);
-  if (inBand) {
-    // Within the band (on the model edge line included): the side of the
-    // epsilon line is the outside, so moving away from it is moving in.
-    // away = d|f1|/dt, with sign(f1) = -sign(f2) in the band.
-    const Sinusoid real = lines.line.sinusoid(turn, sign);
-    const double flip = f2 > 0 ? -1.0 : 1.0;
-    const double away = flip * real.v1;
-    if (away <= 0) {
-      u = 0;
-    } else {
-      const double furthest = firstExtremumTan(away, flip * real.v2);
-      if (!(furthest < rw.maxTan)) return;
-      if (!sinusoidRoot(lines.lineIn.sinusoid(turn, sign), furthest, rw.maxTan, u, &later)) return;
-    }
-  } else {
-    if (!sinusoidRoot(lines.lineEps.sinusoid(turn, sign), 0, rw.maxTan, u, &later)) return;
-  }
-  if (!(u < rw.maxTan)) return;
   Vec3 a, b, point;
   if (!collisionBetweenEdgeBounds(rw, te.start, te.end, c0, d0, u, a, b, point)) {
     // The lines met beyond the ends of an edge. Turning on, they can meet
