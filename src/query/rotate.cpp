@@ -179,8 +179,6 @@ bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum, double
 constexpr double kNoRootMargin = 1e-9;
 
 bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root, double* later) {
-  if (later) *later = std::numeric_limits<double>::quiet_NaN();
-  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
   // Most calls have no root before hi (the nearest hit so far): the
   // quadratic keeps one sign on [lo, hi] when it has the same sign, clearly,
   // at both ends and no extremum between them (its slope a u + b has one
@@ -199,6 +197,10 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
     if (oneSign && std::fabs(gLo) > kNoRootMargin * sizeLo && std::fabs(gHi) > kNoRootMargin * sizeHi)
       return false;
   }
+  // (After that test, which never rules a root out for a coefficient that
+  // is not finite: the sizes are then infinite or NaN, and no distance is
+  // greater than either.)
+  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return false;
   double r1, r2;
   if (a == 0) {
     if (b == 0) return false;
@@ -218,11 +220,13 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
     // (From just after r1 the other root is the first, when below hi; the
     // ends' signs there could not rule it out: the quadratic changes sign
     // at it.)
-    if (later && r2 > r1 && r2 < hi && std::isfinite(r2)) *later = r2;
+    if (later)
+      *later = r2 > r1 && r2 < hi && std::isfinite(r2) ? r2 : std::numeric_limits<double>::quiet_NaN();
     return true;
   }
   if (r2 >= lo && r2 < hi && std::isfinite(r2)) {
     root = r2;
+    if (later) *later = std::numeric_limits<double>::quiet_NaN();
     return true;
   }
   return false;

@@ -230,8 +230,9 @@ struct Sinusoid {
 /// The smallest root u of a u^2 + 2 b u + c = 0 with lo <= u < hi, in
 /// `root`. False when there is none. Numerically careful (no cancellation,
 /// no division by zero): never produces NaN or Inf. A double root (the
-/// curve only touches zero) is no crossing. `later` (when given) gets the
-/// root after `root` when there is one below hi, else NaN: the same value
+/// curve only touches zero) is no crossing. `later` (when given and a root
+/// is found) gets the root after `root` when there is one below hi, else
+/// NaN (left as it was when there is no root): the same value
 /// calling again from lo = std::nextafter(root, +inf) would find (the same
 /// roots, solved the same way), without solving again.
 bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root,

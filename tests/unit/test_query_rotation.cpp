@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -277,6 +279,27 @@ TEST(Rotation, QuadraticSolverFindsTheFirstRootInItsInterval) {
   EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, afterZero, 0.99, u));  // (u - 1)(u - 2)
   EXPECT_TRUE(cmkit::detail::firstQuadraticRoot(1, -1.5, 2, afterZero, 1.5, u));
   EXPECT_EQ(u, 1.0);
+  // A coefficient that is not finite: no root, u untouched, whether the
+  // ends' signs are tried first (lo 0 or not, hi finite) or not.
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const double lo : {0.0, 0.5})
+    for (const double hi : {3.0, inf})
+      for (const auto& [a, b, c] : {std::array{inf, -1.5, 2.0},
+                                    {-inf, -1.5, 2.0},
+                                    {1.0, inf, 2.0},
+                                    {1.0, -inf, 2.0},
+                                    {1.0, -1.5, inf},
+                                    {1.0, -1.5, -inf},
+                                    {nan, -1.5, 2.0},
+                                    {1.0, nan, 2.0},
+                                    {1.0, -1.5, nan}}) {
+        u = -1;
+        double later = -1;
+        EXPECT_FALSE(cmkit::detail::firstQuadraticRoot(a, b, c, lo, hi, u, &later))
+            << a << " " << b << " " << c << " [" << lo << ", " << hi << ")";
+        EXPECT_EQ(u, -1.0);
+        EXPECT_EQ(later, -1.0);
+      }
 
   // Random quadratics a (u - r1)(u - r2) and intervals: the root found (or
   // none) is the first of r1, r2 in [lo, hi), whichever way the solver
