@@ -86,8 +86,10 @@ inline std::uint64_t chunkPass(const BoundsLanes& bounds, const CullBlock* block
 /// Calls f(k, pass) for each block k of a chunk (k = 0 .. kChunkBlocks - 1)
 /// with a lane left in `mask` (chunkPass's), in order, `pass` its lanes (bit
 /// j for lane j); stops when f returns true, and returns whether it did.
+/// Always inline, into the walk of each kind: GCC left the rotations' copy
+/// out of line (with its lambda, a call per chunk of blocks).
 template <class F>
-bool forEachBlockPassing(std::uint64_t mask, F f) {
+[[gnu::always_inline]] inline bool forEachBlockPassing(std::uint64_t mask, F f) {
   while (mask) {
     const std::size_t k = std::size_t(std::countr_zero(mask)) / kLanes;
     const unsigned pass = unsigned(mask >> (kLanes * k)) & 0xFu;
