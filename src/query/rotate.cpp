@@ -148,20 +148,28 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
                      trmPolyNum);
 }
 
+// Contacts mode, a polygon's tests done: its earliest contact, if it has
+// one below the part's limit `limit`, is recorded with its angle, and the
+// limit restored for the next polygon.
+[[gnu::noinline]] void recordPolygonContact(TraceWork& tw, RotationWork& rw, std::int32_t polyNum,
+                                            double limit) {
+  if (rw.maxTan < limit) {
+    RotationContact& found = rw.contactsFound->emplace_back();
+    found.contact = tw.c;
+    found.contact.angle =
+        Real(double(rw.partStartAngle) + double(rw.sign) * std::atan(rw.maxTan) * 360 / kPi);
+    found.polygon = polyNum;
+    rw.maxTan = limit;
+  }
+}
+
 // A polygon's tests are done: a hit at the very start blocks completely.
-// Contacts mode: the polygon's earliest contact, if it has one below the
-// part's limit `limit`, is recorded with its angle, and the limit restored
-// for the next polygon (nothing blocks: the walk goes on).
-bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum, double limit) {
+// Contacts mode: recordPolygonContact (nothing blocks: the walk goes on).
+// (Always inline: GCC called it, a call for every polygon tested.)
+[[gnu::always_inline]] inline bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum,
+                                                 double limit) {
   if (rw.contactsFound) {
-    if (rw.maxTan < limit) {
-      RotationContact& found = rw.contactsFound->emplace_back();
-      found.contact = tw.c;
-      found.contact.angle =
-          Real(double(rw.partStartAngle) + double(rw.sign) * std::atan(rw.maxTan) * 360 / kPi);
-      found.polygon = polyNum;
-      rw.maxTan = limit;
-    }
+    recordPolygonContact(tw, rw, polyNum, limit);
     return false;
   }
   if (rw.maxTan != 0) return false;
