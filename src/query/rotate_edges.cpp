@@ -89,6 +89,20 @@ Vec3 edgeContactNormal(const RotationWork& rw, const Vec3& unitNormal, const Vec
 
 }  // namespace
 
+void RotationWork::makeEdgeTurn(const TraceWork& tw, int j) {
+  edgeTurnSet |= std::uint64_t(1) << j;
+  EdgeTurn& t = edges[std::size_t(j)].turn;
+  const WorkEdge& e = tw.edges[std::size_t(j)];
+  const DVec a(axis), s(e.start);
+  const DVec u = DVec(e.end) - s;
+  const DVec q = (s - DVec(origin)).cross(u);
+  const DVec uAxial = a * a.dot(u), qAxial = a * a.dot(q);
+  t.start.set(u, q);
+  t.axial.set(uAxial, qAxial);
+  t.across.set(u - uAxial, q - qAxial);
+  t.turned.set(u.cross(a), q.cross(a));
+}
+
 void edgePairContact(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std::int32_t edgeNum,
                      int trmEdgeNum, double u, double later, bool inBand) {
   const CollisionModel& m = tw.model;

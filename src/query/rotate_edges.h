@@ -22,16 +22,18 @@ namespace cmkit::detail {
 /// The model edge's ends are Real: an edge moved out by an epsilon is
 /// rounded as the original rounds it (a tiny turn's fraction shows it).
 struct ModelEdgeLine {
-  DVec w, p;
-  ModelEdgeLine(const RotationWork& rw, const Vec3& c, const Vec3& d)
-      : w(DVec(d) - DVec(c)), p(w.cross(DVec(c) - DVec(rw.origin))) {}
+  VectorPair pw;  ///< (P, w), for pairDotDifference with EdgeTurn's pairs
+  ModelEdgeLine(const RotationWork& rw, const Vec3& c, const Vec3& d) {
+    const DVec w = DVec(d) - DVec(c);
+    pw.set(w.cross(DVec(c) - DVec(rw.origin)), w);
+  }
   /// The product at the start of the part (t = 0).
-  double atStart(const EdgeTurn& t) const { return p.dot(t.u) - w.dot(t.q); }
+  double atStart(const EdgeTurn& t) const { return pairDotDifference(pw, t.start); }
   Sinusoid sinusoid(const EdgeTurn& t, double sign) const {
     Sinusoid s;
-    s.v0 = p.dot(t.uAxial) - w.dot(t.qAxial);
-    s.v2 = p.dot(t.uAcross) - w.dot(t.qAcross);
-    s.v1 = sign * (p.dot(t.uTurned) - w.dot(t.qTurned));
+    s.v0 = pairDotDifference(pw, t.axial);
+    s.v2 = pairDotDifference(pw, t.across);
+    s.v1 = sign * pairDotDifference(pw, t.turned);
     return s;
   }
 };

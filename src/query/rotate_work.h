@@ -16,21 +16,50 @@
 
 #include "math/dvec3.h"
 #include "query/trace_work.h"
+#include "util/simd.h"
 
 namespace cmkit::detail {
 
 /// The rotation equations are solved in double (inputs are Real).
 using DVec = DVec3;
 
+/// Two vectors a and b, their components interleaved (a.x, b.x, a.y, b.y,
+/// a.z, b.z): the operands of pairDotDifference.
+struct alignas(16) VectorPair {
+  double v[6];
+  void set(const DVec& a, const DVec& b) {
+    v[0] = a.x, v[1] = b.x, v[2] = a.y, v[3] = b.y, v[4] = a.z, v[5] = b.z;
+  }
+};
+
+/// a . m - b . n for the pairs (a, b) and (m, n): the two dot products in
+/// the two lanes of one register where there are double lanes, each lane
+/// computing DVec3::dot's products and sums in its order, so the same bits
+/// as a.dot(m) - b.dot(n).
+inline double pairDotDifference(const VectorPair& ab, const VectorPair& mn) {
+#ifdef CMKIT_SIMD_SSE2
+  using simd::D2;
+  const D2 d = D2::load(ab.v) * D2::load(mn.v) + D2::load(ab.v + 2) * D2::load(mn.v + 2) +
+               D2::load(ab.v + 4) * D2::load(mn.v + 4);
+  return d.low() - d.high();
+#else
+  const double* x = ab.v;
+  const double* y = mn.v;
+  return (x[0] * y[0] + x[2] * y[2] + x[4] * y[4]) - (x[1] * y[1] + x[3] * y[3] + x[5] * y[5]);
+#endif
+}
+
 /// A trace-model edge s -> e turning about the axis (unit a through o), for
 /// its line products with model edges (rotate_edges.h, ModelEdgeLine): the edge
 /// vector u = e - s and q = (s - o) x u, each split as R(t) x = axial +
 /// cos t across + sin t turned (axial = a (a . x), across = x - axial,
-/// turned = x x a: the library's direction of positive angles).
+/// turned = x x a: the library's direction of positive angles); each part of
+/// u beside the same part of q (VectorPair), for pairDotDifference.
 struct EdgeTurn {
-  DVec u, q;
-  DVec uAxial, uAcross, uTurned;
-  DVec qAxial, qAcross, qTurned;
+  VectorPair start;   ///< (u, q)
+  VectorPair axial;   ///< (u's axial part, q's)
+  VectorPair across;  ///< (u's across part, q's)
+  VectorPair turned;  ///< (u's turned part, q's)
 };
 
 /// Rotation data of a trace-model vertex.
@@ -155,25 +184,14 @@ struct RotationWork {
   std::vector<RotationContact> found;
   std::vector<std::int32_t> listedPolygons;
 
-  /// Trace-model edge j's turning parts (made on first use).
+  /// Trace-model edge j's turning parts (made on first use, by makeEdgeTurn:
+  /// once per part, out of line, while this test runs for every edge pair).
   const EdgeTurn& edgeTurn(const TraceWork& tw, int j) {
-    EdgeTurn& t = edges[std::size_t(j)].turn;
-    if (!(edgeTurnSet >> j & 1u)) {
-      edgeTurnSet |= std::uint64_t(1) << j;
-      const WorkEdge& e = tw.edges[std::size_t(j)];
-      const DVec a(axis), s(e.start);
-      t.u = DVec(e.end) - s;
-      t.q = (s - DVec(origin)).cross(t.u);
-      auto split = [&](const DVec& x, DVec& axial, DVec& across, DVec& turned) {
-        axial = a * a.dot(x);
-        across = x - axial;
-        turned = x.cross(a);
-      };
-      split(t.u, t.uAxial, t.uAcross, t.uTurned);
-      split(t.q, t.qAxial, t.qAcross, t.qTurned);
-    }
-    return t;
+    if (!(edgeTurnSet >> j & 1u)) makeEdgeTurn(tw, j);
+    return edges[std::size_t(j)].turn;
   }
+  /// Makes edges[j].turn (rotate_edges.cpp).
+  void makeEdgeTurn(const TraceWork& tw, int j);
 
   bool edgeLinesSet = false;  ///< the trace-model edges' lines (WorkEdge::pl) are made
 

@@ -1,9 +1,9 @@
 // Internal: the library's one SIMD layer. Algorithms that work four floats
-// at a time use F4 (four float lanes) and U4 (four 32-bit integer lanes) and
-// the functions below, never intrinsics; this header is the only one of the
-// query and ray code that includes them (the AVX2 ray kernel,
-// ray/ray_index_avx2.cpp, keeps its own: it is compiled for another
-// instruction set).
+// at a time use F4 (four float lanes) and U4 (four 32-bit integer lanes),
+// two doubles at a time D2 (two double lanes), and the functions below,
+// never intrinsics; this header is the only one of the query and ray code
+// that includes them (the AVX2 ray kernel, ray/ray_index_avx2.cpp, keeps its
+// own: it is compiled for another instruction set).
 //
 // One guard: CMKIT_SIMD_SSE2 is defined where SSE2 is there (every x86-64)
 // and the build does not ask for the portable code (-DCMKIT_NO_SIMD);
@@ -114,6 +114,21 @@ struct U4 {
 inline F4 noCommonBits(U4 a, U4 b) {
   return {_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(a.v, b.v), _mm_setzero_si128()))};
 }
+
+/// Two double lanes (for double arithmetic done two values at a time).
+struct D2 {
+  __m128d v;
+
+  /// Two doubles from 16-byte aligned memory.
+  static D2 load(const double* p) { return {_mm_load_pd(p)}; }
+  /// Lane 0.
+  double low() const { return _mm_cvtsd_f64(v); }
+  /// Lane 1.
+  double high() const { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); }
+};
+
+inline D2 operator+(D2 a, D2 b) { return {_mm_add_pd(a.v, b.v)}; }
+inline D2 operator*(D2 a, D2 b) { return {_mm_mul_pd(a.v, b.v)}; }
 
 }  // namespace cmkit::detail::simd
 
