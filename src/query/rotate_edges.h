@@ -65,9 +65,11 @@ void edgePairContact(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std
 /// The first contact of trace-model edge `trmEdgeNum` with model edge
 /// `edgeNum` (of `poly`, its lines in `lines`) before rw.maxTan: lowers
 /// rw.maxTan and records the contact (setRotationContact) when there is one.
-/// The root search is inline: it runs for every pair past the box culls and
-/// most pairs end there, before edgePairContact (a call per pair cost more
-/// than its own prologue: 21 instructions of saved registers a pair).
+/// The root search is inline (always: GCC left it out of line): it runs for
+/// every pair past the box culls, and about three pairs in four end there,
+/// before edgePairContact. Called, it cost about 30 instructions a pair in
+/// saved registers and arguments (lt4's 410 reference rotations, three
+/// passes: 28 269 pairs, 0.9 M of 41.8 M instructions).
 [[gnu::always_inline]] inline void rotateTrmEdgeThroughEdge(TraceWork& tw, RotationWork& rw,
                                                             const CmPolygon& poly, std::int32_t edgeNum,
                                                             const ModelEdgeLines& lines, int trmEdgeNum) {
