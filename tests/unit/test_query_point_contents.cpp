@@ -1,6 +1,6 @@
 // pointContents() (src/query/point_contents.cpp): the brushes containing a
 // point, on a turned model too; the planes tested four at a time agree with
-// one by one.
+// one by one; the usual query's test is the guard's.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +9,8 @@
 
 #include "cmkit/query.h"
 #include "model_fixtures.h"
+#include "query/query_guards.h"  // guardPointContents
+#include "query/trace_work.h"    // pointContentsMasked
 
 using namespace cmkit;
 using cmkit::test::ModelMaker;
@@ -84,4 +86,51 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
     EXPECT_GT(inside, 50) << shape.describe();  // both answers were met
     EXPECT_GT(onOrOutside, 50) << shape.describe();
   }
+}
+
+// pointContents decides the usual query (point and origin in range, the
+// model's axis exactly the identity) on the query's bit patterns, four
+// floats at a time where there are float lanes; any other query goes
+// through the guard. Each of the query's 15 floats set to values at and
+// past the limits (range: 1e9 and the next float, infinities, NaN, -0;
+// axis: -0 and 0 off the diagonal, 1 and its neighbours, -1, a subnormal):
+// the status and contents are those of the guard and the general path.
+TEST(PointContents, TheUsualQueryTestIsTheGuardsOnEveryFloat) {
+  const CollisionModel m = ModelMaker().addBox({{-10, -10, -10}, {10, 10, 10}}).build();
+  QueryWork work;
+  const Real lim = tol::kMaxQueryCoordinate, inf = std::numeric_limits<Real>::infinity();
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  const Real past = std::nextafter(lim, inf);
+  const std::vector<Real> rangeValues = {lim, -lim, past, -past, inf, -inf, nan, -0.0f, 0.0f, 5, -5};
+  const std::vector<Real> axisValues = {0.0f,
+                                        -0.0f,
+                                        1,
+                                        -1,
+                                        std::nextafter(Real(1), Real(2)),
+                                        std::nextafter(Real(1), Real(0)),
+                                        std::numeric_limits<Real>::denorm_min(),
+                                        -std::numeric_limits<Real>::denorm_min(),
+                                        0.5f,
+                                        nan};
+  int checked = 0, refused = 0;
+  for (int f = 0; f < 15; ++f)
+    for (const Real v : f < 6 ? rangeValues : axisValues) {
+      PointContentsQuery q{{1, 2, 3}, {}};
+      Real* value = f < 3   ? &q.point[f]
+                    : f < 6 ? &q.placement.origin[f - 3]
+                            : &q.placement.axis[(f - 6) / 3][(f - 6) % 3];
+      *value = v;
+      PointContentsQuery guarded = q;
+      const QueryStatus status = detail::guardPointContents(guarded);
+      const std::uint32_t contents =
+          status == QueryStatus::Ok ? detail::pointContentsMasked(m, q.point, q.placement, ~std::uint32_t(0))
+                                    : 0;
+      const PointContentsResult r = pointContents(m, q, work);
+      EXPECT_EQ(r.status, status) << "float " << f << " = " << v;
+      EXPECT_EQ(r.contents, contents) << "float " << f << " = " << v;
+      ++checked;
+      refused += status != QueryStatus::Ok;
+    }
+  EXPECT_GT(refused, 20);  // both outcomes were met
+  EXPECT_GT(checked - refused, 20);
 }
