@@ -1,9 +1,6 @@
 // Point contents: the brushes containing a point (every brush on the path
 // from the root to the point's leaf, including those stored at interior
 // nodes, unlike the original), and the public pointContents().
-#include <bit>
-#include <cstddef>
-#include <cstdint>
 #include <span>
 
 #include "query/query_guards.h"
@@ -190,46 +187,6 @@ namespace cmkit {
 
 using namespace detail;  // the query internals (trace_work.h)
 
-namespace {
-
-/// The usual point query: the point and the origin within
-/// tol::kMaxQueryCoordinate (withinQueryRange) and the model's axis exactly
-/// the identity (Mat3::isIdentity). Where there are float lanes, the same
-/// tests on the same bit patterns, the query's 15 floats four at a time (a
-/// fourth of the instructions of the tests one float at a time; a point
-/// query takes 10 to 40 ns on small maps).
-inline bool usualPointQuery(const PointContentsQuery& q) {
-#ifdef CMKIT_FLOAT_LANES
-  using simd::U4;
-  static_assert(offsetof(PointContentsQuery, point) == 0 && offsetof(PointContentsQuery, placement) == 12 &&
-                    offsetof(Placement, axis) == 12 && sizeof(PointContentsQuery) == 60,
-                "a PointContentsQuery is 15 floats: point, origin, axis rows");
-  constexpr std::uint32_t kOne = std::bit_cast<std::uint32_t>(1.0f), kAll = ~std::uint32_t(0);
-  constexpr std::uint32_t kAbs = 0x7fffffffu;  // drops the sign bit: -0 is 0, |v| of the others
-  constexpr std::uint32_t kMax = std::bit_cast<std::uint32_t>(tol::kMaxQueryCoordinate);
-  const auto* bytes = reinterpret_cast<const unsigned char*>(&q);
-  // Floats 0-3: point x y z, origin x; 4-7: origin y z, axis 00 01; 8-11:
-  // axis 02 10 11 12; 11-14: axis 12 20 21 22 (12 again, not tested there).
-  const U4 a = U4::loadBytes(bytes), b = U4::loadBytes(bytes + 16), c = U4::loadBytes(bytes + 32),
-           d = U4::loadBytes(bytes + 44);
-  // Beyond the range (withinQueryRange's test: |v| > the limit on the bit
-  // patterns, here as signed integers, both positive; NaN's are greater).
-  const U4 limit = U4::all(kMax);
-  const U4 beyond =
-      greaterSigned(a & U4::all(kAbs), limit) | greaterSigned(b & U4::lanes(kAbs, kAbs, 0, 0), limit);
-  // Identity (Mat3::isIdentity's test: a diagonal element's bits those of 1,
-  // an off-diagonal element +0 or -0); lanes masked to 0 compare equal to 0.
-  const U4 identity = ((b & U4::lanes(0, 0, kAll, kAbs)) == U4::lanes(0, 0, kOne, 0)) &
-                      ((c & U4::lanes(kAbs, kAbs, kAll, kAbs)) == U4::lanes(0, 0, kOne, 0)) &
-                      ((d & U4::lanes(0, kAbs, kAbs, kAll)) == U4::lanes(0, 0, 0, kOne));
-  return simd::bits(andNot(beyond, identity)) == 0xFu;
-#else
-  return withinQueryRange(q.point) && withinQueryRange(q.placement.origin) && !isRotated(q.placement.axis);
-#endif
-}
-
-}  // namespace
-
 PointContentsResult pointContents(const CollisionModel& model, const PointContentsQuery& query, QueryWork&) {
   PointContentsResult r;
   // The guard only decides the status: the contents are computed from the
@@ -240,7 +197,7 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
   // query costs a few tens of nanoseconds: the guard's copy and calls
   // showed).
   const Placement& placement = query.placement;
-  if (!usualPointQuery(query)) {
+  if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement.axis)) {
     PointContentsQuery checked = query;
     r.status = guardPointContents(checked);
     if (r.status == QueryStatus::Ok)

@@ -106,27 +106,9 @@ struct U4 {
 
   /// Four values from 16-byte aligned memory.
   static U4 load(const std::uint32_t* p) { return {_mm_load_si128(reinterpret_cast<const __m128i*>(p))}; }
-  /// The 16 bytes at any address, as four 32-bit lanes (the bit patterns of
-  /// whatever is stored there: four floats, say).
-  static U4 loadBytes(const void* p) { return {_mm_loadu_si128(static_cast<const __m128i*>(p))}; }
   /// The same value in every lane.
   static U4 all(std::uint32_t x) { return {_mm_set1_epi32(int(x))}; }
-  /// Lanes 0..3 set to a, b, c, d.
-  static U4 lanes(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
-    return {_mm_setr_epi32(int(a), int(b), int(c), int(d))};
-  }
 };
-
-inline U4 operator&(U4 a, U4 b) { return {_mm_and_si128(a.v, b.v)}; }
-inline U4 operator|(U4 a, U4 b) { return {_mm_or_si128(a.v, b.v)}; }
-/// A mask of the lanes where a == b.
-inline U4 operator==(U4 a, U4 b) { return {_mm_cmpeq_epi32(a.v, b.v)}; }
-/// A mask of the lanes where a > b, both read as signed 32-bit integers.
-inline U4 greaterSigned(U4 a, U4 b) { return {_mm_cmpgt_epi32(a.v, b.v)}; }
-/// ~a & b, bit by bit.
-inline U4 andNot(U4 a, U4 b) { return {_mm_andnot_si128(a.v, b.v)}; }
-/// One bit per lane (bit j: lane j's top bit, i.e. lane j of a mask is set).
-inline unsigned bits(U4 mask) { return unsigned(_mm_movemask_ps(_mm_castsi128_ps(mask.v))); }
 
 /// A float mask of the lanes where a & b is 0.
 inline F4 noCommonBits(U4 a, U4 b) {
