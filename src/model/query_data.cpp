@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
+#include <span>
+#include <vector>
 
 namespace cmkit::detail {
 
@@ -22,10 +24,29 @@ void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, L
 
 namespace cmkit::detail {
 
+namespace {
+
+/// writeEdgeLines of all the model's polygonEdges entries: each edge's line
+/// made once, in the edges' order (most edges are used by two polygons),
+/// then each entry copied from it. In the polygons' order an entry read its
+/// edge's record and two vertices, all three anywhere in memory.
+void writeModelEdgeLines(const ModelArrays& m, LineBlock* out) {
+  const std::span<const std::int32_t> entries = m.polygonEdges;
+  std::fill(out, out + blocksSpanned(0, entries.size()), LineBlock{});
+  std::vector<Pluecker> edgeLines(m.edges.size());
+  for (std::size_t e = 1; e < m.edges.size(); ++e) edgeLines[e] = modelEdgeLine(m, e);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const Pluecker& l = edgeLines[std::size_t(std::abs(entries[i]))];
+    for (std::size_t k = 0; k < 6; ++k) out[i / kLanes].c[k][i % kLanes] = l[int(k)];
+  }
+}
+
+}  // namespace
+
 std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
   auto d = std::make_shared<QueryData>();
   d->lines.resize(blocksSpanned(0, model.polygonEdges.size()));
-  writeEdgeLines(model, model.polygonEdges, d->lines.data());
+  writeModelEdgeLines(model, d->lines.data());
   if constexpr (kCullBlocks) {
     d->culls.resize(blocksSpanned(0, model.polygonRefs.size()));
     for (std::size_t r = 0; r < model.polygonRefs.size(); ++r) {
