@@ -82,7 +82,7 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   }
 #else
   for (std::size_t k = 0; k < RecentVertices::kRecent; ++k)
-    hits |= unsigned((r.x[k] == v.x) & (r.y[k] == v.y) & (r.z[k] == v.z)) << k;
+    hits |= (unsigned(r.x[k] == v.x) & unsigned(r.y[k] == v.y) & unsigned(r.z[k] == v.z)) << k;
 #endif
   hits &= r.valid;
   if (hits != 0) {
@@ -174,10 +174,10 @@ bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
   // Recent lookups whose point the new vertex matches may now give it.
   RecentVertices& r = recent_;
   for (std::size_t k = 0; k < RecentVertices::kRecent; ++k) {
-    const bool matches = (std::fabs(r.weldedZ[k] - vert[2]) < tol::kVertexEpsilon) &
-                         (std::fabs(r.weldedX[k] - vert[0]) < tol::kVertexEpsilon) &
-                         (std::fabs(r.weldedY[k] - vert[1]) < tol::kVertexEpsilon);
-    r.valid &= ~(unsigned(matches) << k);
+    const unsigned matches = unsigned(std::fabs(r.weldedZ[k] - vert[2]) < tol::kVertexEpsilon) &
+                             unsigned(std::fabs(r.weldedX[k] - vert[0]) < tol::kVertexEpsilon) &
+                             unsigned(std::fabs(r.weldedY[k] - vert[1]) < tol::kVertexEpsilon);
+    r.valid &= ~(matches << k);
   }
   return false;
 }
