@@ -12,36 +12,35 @@
 
 namespace cmkit::detail {
 
-void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, LineBlock* out) {
+namespace {
+
+/// Writes lineOf(e) for each entry e of `edges` (signed edge numbers, the
+/// line of |e|) into the blocks at `out`, as writeEdgeLines says.
+template <class LineOf>
+void writeLines(std::span<const std::int32_t> edges, LineBlock* out, LineOf&& lineOf) {
   std::fill(out, out + blocksSpanned(0, edges.size()), LineBlock{});
   for (std::size_t i = 0; i < edges.size(); ++i) {
-    const Pluecker l = modelEdgeLine(m, std::size_t(std::abs(edges[i])));
+    const Pluecker& l = lineOf(std::size_t(std::abs(edges[i])));
     for (std::size_t k = 0; k < 6; ++k) out[i / kLanes].c[k][i % kLanes] = l[int(k)];
   }
 }
-
-}  // namespace cmkit::detail
-
-namespace cmkit::detail {
-
-namespace {
 
 /// writeEdgeLines of all the model's polygonEdges entries: each edge's line
 /// made once, in the edges' order (most edges are used by two polygons),
 /// then each entry copied from it. In the polygons' order an entry read its
 /// edge's record and two vertices, all three anywhere in memory.
 void writeModelEdgeLines(const ModelArrays& m, LineBlock* out) {
-  const std::span<const std::int32_t> entries = m.polygonEdges;
-  std::fill(out, out + blocksSpanned(0, entries.size()), LineBlock{});
   std::vector<Pluecker> edgeLines(m.edges.size());
+  // (from 1: no polygon uses the dummy edge 0, whose vertices are never checked)
   for (std::size_t e = 1; e < m.edges.size(); ++e) edgeLines[e] = modelEdgeLine(m, e);
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    const Pluecker& l = edgeLines[std::size_t(std::abs(entries[i]))];
-    for (std::size_t k = 0; k < 6; ++k) out[i / kLanes].c[k][i % kLanes] = l[int(k)];
-  }
+  writeLines(m.polygonEdges, out, [&](std::size_t e) -> const Pluecker& { return edgeLines[e]; });
 }
 
 }  // namespace
+
+void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, LineBlock* out) {
+  writeLines(edges, out, [&](std::size_t e) { return modelEdgeLine(m, e); });
+}
 
 std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
   auto d = std::make_shared<QueryData>();
