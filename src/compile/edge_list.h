@@ -1,7 +1,6 @@
 // A polygon's signed edge numbers while its model is built (BPolygon::edges).
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <new>

@@ -89,11 +89,12 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
 }
 
 // pointContents decides the usual query (point and origin in range, the
-// model's axis exactly the identity) by its own tests on the bit patterns;
-// any other query goes through the guard. Each of the query's 15 floats set to values at and
-// past the limits (range: 1e9 and the next float, infinities, NaN, -0;
-// axis: -0 and 0 off the diagonal, 1 and its neighbours, -1, a subnormal):
-// the status and contents are those of the guard and the general path.
+// model's axis exactly the identity) by its own range and axis tests; any
+// other query goes through the guard. Each of the query's 15 floats set to
+// values at and past the limits (range: 1e9 and the next float, infinities,
+// NaN, -0; axis: -0 and 0 off the diagonal, 1 and its neighbours, -1, a
+// subnormal): the status and contents are those of the guard and the
+// general path.
 TEST(PointContents, TheUsualQueryTestIsTheGuardsOnEveryFloat) {
   const CollisionModel m = ModelMaker().addBox({{-10, -10, -10}, {10, 10, 10}}).build();
   QueryWork work;
