@@ -18,8 +18,10 @@ namespace {
 /// Bins per split search (binned surface-area heuristic): enough to find
 /// good planes, few enough that a split costs one pass over the set.
 constexpr int kBins = 12;
-/// Sets of bins filled side by side (see split).
-constexpr std::size_t kBinSets = 2;
+/// From this many items a split fills two sets of bins side by side (see
+/// Builder::fillBins); below it, making and folding the second set costs
+/// more than it saves.
+constexpr std::size_t kTwoBinSetsMin = 128;
 /// Below this depth splits search planes; past it (a chain of lopsided
 /// splits) they halve the set by count, which bounds the depth.
 constexpr std::size_t kMaxCostDepth = 40;
@@ -168,6 +170,30 @@ class Builder {
     return sum;
   }
 
+  /// Bins r's items by binOf: each bin's summary and count. With two sets,
+  /// neighbouring items (which mostly fall in the same bin) go to different
+  /// sets, halving the chains of updates to one bin in memory; the sets are
+  /// folded after. (Bounds and counts are the same in any order.)
+  template <std::size_t Sets, class BinOf>
+  void fillBins(Range r, const BinOf& binOf, std::array<Summary, kBins>& bins,
+                std::array<std::size_t, kBins>& counts) const {
+    std::array<std::array<Summary, kBins>, Sets - 1> more;
+    std::array<std::array<std::uint32_t, kBins>, Sets> countSets{};
+    for (std::size_t i = r.first; i < r.end; ++i) {
+      const std::size_t set = i % Sets;
+      const auto b = std::size_t(binOf(items_[i]));
+      if constexpr (Sets == 1)
+        bins[b].add(items_[i]);
+      else
+        (set == 0 ? bins : more[set - 1])[b].add(items_[i]);
+      ++countSets[set][b];
+    }
+    for (std::size_t b = 0; b < std::size_t(kBins); ++b) {
+      for (std::size_t set = 1; set < Sets; ++set) bins[b].add(more[set - 1][b]);
+      for (std::size_t set = 0; set < Sets; ++set) counts[b] += countSets[set][b];
+    }
+  }
+
   /// Splits r (summary `sum`) in two non-empty ranges (r.size() > 1):
   /// returns where the second starts, with the summaries of both.
   std::size_t split(Range r, const Summary& sum, std::size_t depth, Summary& left, Summary& right) {
@@ -181,24 +207,13 @@ class Builder {
       auto binOf = [&](const Item& it) {
         return std::min(kBins - 1, int((it.centre(std::size_t(axis)) - lo) * scale));
       };
-      // Neighbouring items mostly fall in the same bin: two sets of bins
-      // (even and odd items) halve the chains of updates to one bin in
-      // memory. (Bounds and counts are the same in any order.) Each bin
-      // also gathers what the two sides' summaries need.
-      std::array<std::array<Summary, kBins>, kBinSets> binSets;
-      std::array<std::array<std::uint32_t, kBins>, kBinSets> countSets{};
-      for (std::size_t i = r.first; i < r.end; ++i) {
-        const std::size_t set = i % kBinSets;
-        const auto b = std::size_t(binOf(items_[i]));
-        binSets[set][b].add(items_[i]);
-        ++countSets[set][b];
-      }
-      std::array<Summary, kBins>& bins = binSets[0];
+      // Each bin gathers what the two sides' summaries need.
+      std::array<Summary, kBins> bins;
       std::array<std::size_t, kBins> counts{};
-      for (std::size_t b = 0; b < std::size_t(kBins); ++b) {
-        for (std::size_t set = 1; set < kBinSets; ++set) bins[b].add(binSets[set][b]);
-        for (std::size_t set = 0; set < kBinSets; ++set) counts[b] += countSets[set][b];
-      }
+      if (r.size() >= kTwoBinSetsMin)
+        fillBins<2>(r, binOf, bins, counts);
+      else
+        fillBins<1>(r, binOf, bins, counts);
       // Cost of splitting after bin s: area(left) * count(left) + area(right) * count(right).
       std::array<float, kBins> rightCost{};
       Box rightBox;
