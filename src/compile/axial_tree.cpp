@@ -192,10 +192,14 @@ bool mostCentredSplitter(const std::vector<Source>& sources, int type, Real lo, 
   const F4 loV = F4::all(lo), hiV = F4::all(hi), sizeV = F4::all(size);
   F4 best = sizeV, bestD = F4::zero(), tied = F4::zero();
   auto candidates = [&](F4 d) {
-    const F4 t = simd::abs((hiV - d) - (d - loV));
-    const F4 inside = (d < hiV) & (d > loV);
-    const F4 less = inside & (t < best);
-    const F4 same = inside & (t == best) & simd::differentBits(d, bestD) & (best < sizeV);
+    // t, or a NaN (all bits set) where d is not strictly inside lo..hi: no
+    // comparison holds for it. (A lane still at `size` may be marked tied
+    // by a plane with t == size, which is no candidate; such a lane is
+    // never the least, or its mark is cleared by the next less.)
+    const F4 outside = (d >= hiV) | (d <= loV);
+    const F4 t = simd::abs((hiV - d) - (d - loV)) | outside;
+    const F4 less = t < best;
+    const F4 same = (t == best) & simd::differentBits(d, bestD);
     tied = simd::andNot(less, tied | same);
     best = simd::select(less, t, best);
     bestD = simd::select(less, d, bestD);
@@ -219,9 +223,12 @@ bool mostCentredSplitter(const std::vector<Source>& sources, int type, Real lo, 
       candidates(mins);
       candidates(maxs);
     }
-    for (; k < n; ++k) {  // the rest in lane 0 (lo in the others is never inside)
-      candidates(F4::lanes(it[k].bounds.min[type], lo, lo, lo));
-      candidates(F4::lanes(it[k].bounds.max[type], lo, lo, lo));
+    if (k < n) {  // the rest (one to three items) as one block, lo in the lanes left (never inside)
+      F4 mins = row(it[k]), r1 = k + 1 < n ? row(it[k + 1]) : loV, r2 = k + 2 < n ? row(it[k + 2]) : loV,
+         maxs = loV;
+      simd::transpose(mins, r1, r2, maxs);
+      candidates(mins);
+      candidates(maxs);
     }
   }
   const float least = simd::lowest(best);
