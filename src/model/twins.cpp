@@ -24,10 +24,21 @@ bool isTwin(const ModelArrays& m, const CmPolygon& a, const CmPolygon& b) {
     return false;
   for (int k = 0; k < 3; ++k)
     if (!isNegated(a.plane.normal[k], b.plane.normal[k])) return false;
+  const std::span<const std::int32_t> ea = m.edgesOf(a), eb = m.edgesOf(b);
+  // What a reversed copy made by the builders has: a's edges negated, in
+  // reverse order from one of them. (Enough: each edge then has its negation
+  // in the other list. Any other order is checked edge by edge below.)
+  const std::size_t n = ea.size();
+  if (n != 0) {
+    std::size_t start = 0;
+    while (start < n && ea[start] != -eb[0]) ++start;
+    bool reversed = start < n;
+    for (std::size_t k = 1; reversed && k < n; ++k) reversed = eb[k] == -ea[(start + n - k) % n];
+    if (reversed) return true;
+  }
   const auto has = [](std::span<const std::int32_t> edges, std::int32_t e) {
     return std::find(edges.begin(), edges.end(), e) != edges.end();
   };
-  const std::span<const std::int32_t> ea = m.edgesOf(a), eb = m.edgesOf(b);
   for (const std::int32_t e : ea)
     if (!has(eb, -e)) return false;
   for (const std::int32_t e : eb)
