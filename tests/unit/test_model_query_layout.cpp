@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "cmkit/contents.h"
 #include "cmkit/query.h"
 #include "model/model_access.h"
 #include "model/query_data.h"
@@ -148,6 +149,40 @@ TEST(PolygonBvh, HoldsATwoSidedSurfaceAsPairsInOneLane) {
   // one-sided triangles (merged into faces) have none.
   EXPECT_EQ(twins, std::size_t(24 * 24 * 2));
   EXPECT_LE(bvh.leaves.size() * 2, terrain->polygons().size() - twins);
+}
+
+/// A quad (edges 1..4) and polygons whose edge lists are `other`, of the
+/// quad's opposite plane, contents and edge count.
+bool quadTwinOf(std::vector<std::int32_t> other) {
+  ModelArrays m;
+  m.polygonEdges = {1, 2, 3, 4};
+  m.polygonEdges.insert(m.polygonEdges.end(), other.begin(), other.end());
+  CmPolygon a;
+  a.plane = Plane(Vec3{0, 0, 1}, 8);
+  a.contents = contents::kSolid;
+  a.firstEdge = 0;
+  a.numEdges = 4;
+  CmPolygon b = a;
+  b.plane = Plane(Vec3{-0.0f, -0.0f, -1}, -8);
+  b.firstEdge = 4;
+  b.numEdges = std::uint32_t(other.size());
+  return detail::isTwin(m, a, b) && detail::isTwin(m, b, a);
+}
+
+TEST(Twins, AreTheReversedEdgesInAnyOrder) {
+  // A builder's reversed copy: negated, in reverse order from any edge.
+  EXPECT_TRUE(quadTwinOf({-4, -3, -2, -1}));
+  EXPECT_TRUE(quadTwinOf({-2, -1, -4, -3}));
+  EXPECT_TRUE(quadTwinOf({-1, -4, -3, -2}));
+  // The same edges in another order (not a builder's, still the other side).
+  EXPECT_TRUE(quadTwinOf({-1, -2, -3, -4}));
+  EXPECT_TRUE(quadTwinOf({-3, -1, -4, -2}));
+  // Not the other side: an edge walked the same way, another edge, an edge
+  // twice, or another number of edges.
+  EXPECT_FALSE(quadTwinOf({-4, -3, 2, -1}));
+  EXPECT_FALSE(quadTwinOf({-4, -3, -5, -1}));
+  EXPECT_FALSE(quadTwinOf({-4, -4, -2, -1}));
+  EXPECT_FALSE(quadTwinOf({-4, -3, -2}));
 }
 
 TEST(PolygonBvh, SmallModelsHaveNone) {
