@@ -300,12 +300,15 @@ class ModelBuilder {
   // ---- merge.cpp
   /// Coplanar polygons that share an edge, merged into one convex polygon.
   void mergePolygons();
-  /// The merge index below, for the polygons and tree as they are: the
-  /// edges' users first; the rest only when some pair may merge.
+  /// The merge index below, for the polygons and tree as they are (made
+  /// only when some pair may merge).
   void prepareEdgeUsers();
   void prepareMergeIndex();
   /// Whether two live polygons that share an edge pass mayMerge (merge.cpp).
-  bool anyPairMayMerge() const;
+  bool anyPairMayMerge();
+  /// The same through the edges' users (prepareEdgeUsers first), for edges
+  /// of any number of users.
+  bool anyPairMayMergeByLists() const;
   void mergeTreePolygons(int node);
   bool mergePolygonWithTreePolygons(int polygon);
   /// True when walkTouching(0, bounds, ...) visits the node.

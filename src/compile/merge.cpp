@@ -3,7 +3,9 @@
 // TryMergePolygons and ReplacePolygons).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 #include "compile/builder.h"
 
@@ -41,8 +43,8 @@ void ModelBuilder::mergePolygons() {
   // of two-sided triangles, where a triangle shares its edges only with its
   // reversed copy (its neighbours make edges of their own), met ~99 000
   // polygons in turn and merged none.
-  prepareEdgeUsers();
   if (anyPairMayMerge()) {
+    prepareEdgeUsers();
     prepareMergeIndex();
     mergeTreePolygons(0);
   }
@@ -62,7 +64,35 @@ void ModelBuilder::prepareEdgeUsers() {
   }
 }
 
-bool ModelBuilder::anyPairMayMerge() const {
+bool ModelBuilder::anyPairMayMerge() {
+  // A polygon takes an edge already made only when one other polygon uses it
+  // (getEdge), so an edge has at most two users here: each pair is tested at
+  // its edge's second user, with the first user's number kept per edge. (An
+  // edge with a third live user would take the lists below.)
+  std::vector<int> firstUser(edges_.size(), kNone);
+  std::vector<std::uint8_t> users(edges_.size(), 0);
+  for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
+    const BPolygon& poly = polygon(p);
+    if (poly.freed) continue;
+    for (const int e : poly.edges) {
+      const auto edge = static_cast<std::size_t>(std::abs(e));
+      switch (users[edge]++) {
+        case 0:
+          firstUser[edge] = p;
+          break;
+        case 1:
+          if (mayMerge(polygon(firstUser[edge]), poly)) return true;
+          break;
+        default:
+          prepareEdgeUsers();
+          return anyPairMayMergeByLists();
+      }
+    }
+  }
+  return false;
+}
+
+bool ModelBuilder::anyPairMayMergeByLists() const {
   for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
     const BPolygon& poly = polygon(p);
     if (poly.freed) continue;
