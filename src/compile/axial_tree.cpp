@@ -335,11 +335,21 @@ void ModelBuilder::prependToList(GrowingLists& lists, ItemKind kind, int nodeNum
 
 void ModelBuilder::finishList(GrowingLists& lists, int nodeNum) {
   const auto n = static_cast<std::size_t>(nodeNum);
+  // Each item linked as linkToNode links it, a list at a time: its
+  // reference the next new one (none is free while the tree grows: readLists
+  // cleared them), prepended to the node's list.
+  CMKIT_ASSERT(freePolygonRef_ == kNone);
   for (const ItemKind kind : {ItemKind::Polygon, ItemKind::Brush}) {
     GrowingLists::Kind& k = lists.of(kind);
     const GrowingLists::Item* items = k.data(k.at[n]);
-    for (std::uint32_t i = 0; i < k.at[n].count; ++i)
-      GrowingLists::forEachItem(items[i].item, [&](int item) { linkToNode(kind, nodeNum, item); });
+    std::vector<BRef>& refs = kind == ItemKind::Polygon ? polygonRefs_ : brushRefs_;
+    int& head = kind == ItemKind::Polygon ? node(nodeNum).polygons : node(nodeNum).brushes;
+    for (std::uint32_t i = 0; i < k.at[n].count; ++i) {
+      GrowingLists::forEachItem(items[i].item, [&](int item) {
+        refs.push_back({item, head});
+        head = static_cast<int>(refs.size()) - 1;
+      });
+    }
     k.at[n].count = 0;
   }
   lists.done[n] = 1;
