@@ -199,9 +199,9 @@ bool mostCentredSplitter(const std::vector<Source>& sources, int type, Real lo, 
     const F4 outside = (d >= hiV) | (d <= loV);
     const F4 t = simd::abs((hiV - d) - (d - loV)) | outside;
     const F4 less = t < best;
-    const F4 same = (t == best) & simd::differentBits(d, bestD);
+    const F4 same = simd::andNot(simd::sameBits(d, bestD), t == best);  // (another plane, the same t)
     tied = simd::andNot(less, tied | same);
-    best = simd::select(less, t, best);
+    best = simd::min(t, best);  // (best where t is a NaN or not less)
     bestD = simd::select(less, d, bestD);
   };
   // An item's bounds from coordinate `type` of min on: lane 0 is min[type],

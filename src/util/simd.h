@@ -75,10 +75,9 @@ inline F4 operator<=(F4 a, F4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
 inline F4 operator>(F4 a, F4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
 inline F4 operator>=(F4 a, F4 b) { return {_mm_cmpge_ps(a.v, b.v)}; }
 inline F4 operator==(F4 a, F4 b) { return {_mm_cmpeq_ps(a.v, b.v)}; }
-/// A mask of the lanes whose bits differ (-0 and 0 differ; NaNs by their bits).
-inline F4 differentBits(F4 a, F4 b) {
-  const __m128i same = _mm_cmpeq_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v));
-  return {_mm_castsi128_ps(_mm_xor_si128(same, _mm_set1_epi32(-1)))};
+/// A mask of the lanes whose bits are the same (-0 and 0 differ; NaNs by their bits).
+inline F4 sameBits(F4 a, F4 b) {
+  return {_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v)))};
 }
 /// Lane by lane: mask ? a : b (mask lanes all set or all clear).
 inline F4 select(F4 mask, F4 a, F4 b) {
