@@ -226,6 +226,9 @@ class ModelBuilder {
   void clearHash(const Bounds& bounds);
   /// The welded vertex of v (true: an existing one).
   bool getVertex(const Vec3& v, int& vertexNum);
+  /// getVertex's answer when v is one of the recent lookups that still
+  /// holds (no side effects); false otherwise.
+  bool recentVertex(const Vec3& v, int& vertexNum) const;
   /// getVertex of a snapped point without the recent lookups: the hash
   /// search, a new vertex if none matches.
   bool findOrAddVertex(const Vec3& vert, int& vertexNum);
@@ -233,6 +236,11 @@ class ModelBuilder {
   /// A new edge from v1num to v2num with one user, in the edge hash.
   int addEdge(int v1num, int v2num);
   void createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum);
+  /// createPolygon of w reversed (plane flipped), when polygon `original`
+  /// was just made of w and the reversed copy would take each of its edges
+  /// (see polygons.cpp): made from the original's edges. False (nothing
+  /// done) otherwise.
+  bool createReversedCopy(const Winding& w, const Plane& plane, std::size_t original);
   void polygonFromWinding(Winding& w, const Plane& plane, int material, int primitiveNum);
   void warn(const std::string& message);
 

@@ -70,7 +70,30 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
   // the same until a new vertex matches it (findOrAddVertex drops such
   // entries).
   // (Entries with equal points hold the same vertex: any one that matches.)
+  if (recentVertex(v, vertexNum)) return true;
+  // Coordinates this close to an integer snap to it.
+  Vec3 vert;
+  for (int i = 0; i < 3; ++i) {
+    const Real r = floorOf(v[i] + Real(0.5));
+    vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
+  }
+  const bool found = findOrAddVertex(vert, vertexNum);
   RecentVertices& r = recent_;
+  const std::size_t k = r.next;
+  r.x[k] = v.x;
+  r.y[k] = v.y;
+  r.z[k] = v.z;
+  r.weldedX[k] = vert.x;
+  r.weldedY[k] = vert.y;
+  r.weldedZ[k] = vert.z;
+  r.vertexNum[k] = vertexNum;
+  r.valid |= 1u << k;
+  r.next = (k + 1) % RecentVertices::kRecent;
+  return found;
+}
+
+bool ModelBuilder::recentVertex(const Vec3& v, int& vertexNum) const {
+  const RecentVertices& r = recent_;
   unsigned hits = 0;
 #ifdef CMKIT_FLOAT_LANES
   static_assert(RecentVertices::kRecent % 4 == 0);
@@ -85,28 +108,9 @@ bool ModelBuilder::getVertex(const Vec3& v, int& vertexNum) {
     hits |= (unsigned(r.x[k] == v.x) & unsigned(r.y[k] == v.y) & unsigned(r.z[k] == v.z)) << k;
 #endif
   hits &= r.valid;
-  if (hits != 0) {
-    vertexNum = r.vertexNum[std::size_t(std::countr_zero(hits))];
-    return true;
-  }
-  // Coordinates this close to an integer snap to it.
-  Vec3 vert;
-  for (int i = 0; i < 3; ++i) {
-    const Real r = floorOf(v[i] + Real(0.5));
-    vert[i] = std::fabs(v[i] - r) < tol::kIntegralEpsilon ? r : v[i];
-  }
-  const bool found = findOrAddVertex(vert, vertexNum);
-  const std::size_t k = r.next;
-  r.x[k] = v.x;
-  r.y[k] = v.y;
-  r.z[k] = v.z;
-  r.weldedX[k] = vert.x;
-  r.weldedY[k] = vert.y;
-  r.weldedZ[k] = vert.z;
-  r.vertexNum[k] = vertexNum;
-  r.valid |= 1u << k;
-  r.next = (k + 1) % RecentVertices::kRecent;
-  return found;
+  if (hits == 0) return false;
+  vertexNum = r.vertexNum[std::size_t(std::countr_zero(hits))];
+  return true;
 }
 
 bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
@@ -280,12 +284,53 @@ void ModelBuilder::polygonFromWinding(Winding& w, const Plane& plane, int materi
          " is degenerate: a polygon reaches the world limit; dropped");
     return;
   }
+  const std::size_t made = polygons_.size();
   createPolygon(*out, plane, material, primitiveNum);
-  if (info.twoSided) {
+  if (info.twoSided && !createReversedCopy(*out, plane, made)) {
     reversed_ = *out;  // (keeps the room of the last one)
     reversed_.reverse();
     createPolygon(reversed_, plane.flipped(), material, primitiveNum);
   }
+}
+
+bool ModelBuilder::createReversedCopy(const Winding& w, const Plane& plane, std::size_t original) {
+  // What createPolygon of w reversed would do, worked out from the original
+  // polygon instead of the welding and edge hashes: when the original was
+  // made with one new edge per point of w (none dropped or truncated), each
+  // point's lookup still gives the vertex that the original's edge from it
+  // starts at (a recent lookup that holds: no new vertex matched it since),
+  // and each of those edges is still the newest of its direction with its one
+  // user, the reversed copy's getEdge finds each of them in turn and shares
+  // it: reversing w = p0..p(n-1) gives the edges -e(n-2), ..., -e0, -e(n-1)
+  // of the original's e0..e(n-1) (e(k) from p(k)). The rest of createPolygon
+  // (distinct edges, a closed loop) holds as it did for the original.
+  if (polygons_.size() != original + 1) return false;
+  const EdgeList& edges = polygons_[original].edges;
+  const std::size_t n = edges.size();
+  if (n != static_cast<std::size_t>(w.size())) return false;
+  for (std::size_t k = 0; k < n; ++k) {
+    const int e = edges[k];
+    if (e <= 0) return false;  // (shared with an earlier polygon)
+    const BEdge& be = edge(e);
+    int vertexNum = kNone;
+    if (be.numUsers != 1 || !recentVertex(w[static_cast<int>(k)], vertexNum) || vertexNum != be.v[0] ||
+        edgeHashHead_.find(edgeKey(be.v[0], be.v[1])) != e)
+      return false;
+  }
+  EdgeList reversedEdges;
+  reversedEdges.reserve(n);
+  for (std::size_t k = n - 1; k-- > 0;) reversedEdges.push_back(-edges[k]);
+  reversedEdges.push_back(-edges[n - 1]);
+  for (std::size_t k = 0; k < n; ++k) edge(edges[k]).numUsers++;
+  BPolygon p;
+  p.edges = std::move(reversedEdges);
+  p.contents = polygons_[original].contents;
+  p.material = polygons_[original].material;
+  p.plane = plane.flipped();
+  for (int k = w.size(); k-- > 0;) p.bounds.addPoint(w[k]);  // (in the reversed winding's order)
+  polygons_.push_back(std::move(p));
+  filterIntoTree(ItemKind::Polygon, 0, static_cast<int>(polygons_.size()) - 1);
+  return true;
 }
 
 }  // namespace cmkit::detail
