@@ -107,20 +107,20 @@ std::vector<std::uint32_t> polygonsInTreeOrder(const ModelArrays& model) {
 
 // Calls visit(polygon index) for every polygon referenced from the tree, once,
 // in the original's order (edge_normals.h). In that order the polygons, and
-// more so their edges, lie all over the model's arrays: a polygon's record
-// and edge list are fetched kFetchAhead polygons ahead, its edges half as
-// far ahead (from the list fetched before), so that a few wait for memory at
-// once instead of one at a time.
+// more so their edges, lie all over the model's arrays: a polygon's record is
+// fetched 2 * kFetchAhead polygons ahead, its edge list (found in the record,
+// by then at hand) kFetchAhead ahead, its edges half as far ahead (from the
+// list fetched before), so that a few wait for memory at once instead of one
+// at a time. (Reading the record for its list's place in the same step as
+// fetching it waited for memory every time.)
 template <class Visit>
 void visitPolygonsInTreeOrder(const ModelArrays& model, Visit&& visit) {
   constexpr std::size_t kFetchAhead = 16;
   const std::vector<std::uint32_t> order = polygonsInTreeOrder(model);
   for (std::size_t i = 0; i < order.size(); ++i) {
-    if (i + kFetchAhead < order.size()) {
-      const CmPolygon& ahead = model.polygons[order[i + kFetchAhead]];
-      __builtin_prefetch(&ahead);
-      __builtin_prefetch(model.polygonEdges.data() + ahead.firstEdge);
-    }
+    if (i + 2 * kFetchAhead < order.size()) __builtin_prefetch(&model.polygons[order[i + 2 * kFetchAhead]]);
+    if (i + kFetchAhead < order.size())
+      __builtin_prefetch(model.polygonEdges.data() + model.polygons[order[i + kFetchAhead]].firstEdge);
     if (i + kFetchAhead / 2 < order.size()) {
       for (const std::int32_t e : model.edgesOf(model.polygons[order[i + kFetchAhead / 2]])) {
         const auto edge = std::size_t(e < 0 ? -std::int64_t(e) : e);
