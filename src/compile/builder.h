@@ -223,7 +223,9 @@ class ModelBuilder {
   // ---- polygons.cpp
   /// The vertex welding hash, over the bounds of the brushes (or a default box).
   void prepareVertexHash();
-  void clearHash(const Bounds& bounds);
+  /// Empties the hashes; the vertex hash's minimum at bounds.min, with room
+  /// for about `expectedVertices` (see vertexHashSize_).
+  void clearHash(const Bounds& bounds, std::size_t expectedVertices = 0);
   /// The welded vertex of v (true: an existing one).
   bool getVertex(const Vec3& v, int& vertexNum);
   /// getVertex's answer when v is one of the recent lookups that still
@@ -456,7 +458,20 @@ class ModelBuilder {
   std::vector<std::int32_t> filterStack_;  ///< scratch of filterIntoTree
 
   // vertex and edge hashes (polygons.cpp)
+  /// The original's vertex hash size (a power of two): the least
+  /// vertexHashSize_.
   static constexpr int kVertexHashSize = 4096;
+  /// Buckets of the vertex hash: kVertexHashSize, or for a mesh of many
+  /// vertices the power of two from twice their number (up to
+  /// kMaxVertexHashSize). Any power of two from 256 on finds the same
+  /// vertices: two cells a weld can reach across (at most one cell apart
+  /// along each axis, kVertexEpsilon being below the 4-unit cells) have cell
+  /// keys (combineCells before the mask) that differ by at most 132, so they
+  /// share a bucket exactly when their keys are equal, whatever the size;
+  /// more buckets only leave out of a chain the vertices of far cells, which
+  /// never match, and keep the chain's order.
+  int vertexHashSize_ = kVertexHashSize;
+  static constexpr int kMaxVertexHashSize = 1 << 20;
   Vec3 hashMin_;
   std::vector<int> vertexHashHead_;
   /// Per vertex, what a search of its chain reads, side by side (one cache

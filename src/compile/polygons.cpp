@@ -54,10 +54,13 @@ void ModelBuilder::prepareVertexHash() {
   }
 }
 
-void ModelBuilder::clearHash(const Bounds& bounds) {
+void ModelBuilder::clearHash(const Bounds& bounds, std::size_t expectedVertices) {
   hashMin_ = bounds.min;
   recent_.clear();
-  vertexHashHead_.assign(kVertexHashSize, kNone);
+  vertexHashSize_ = kVertexHashSize;
+  while (vertexHashSize_ < kMaxVertexHashSize && std::size_t(vertexHashSize_) < 2 * expectedVertices)
+    vertexHashSize_ *= 2;
+  vertexHashHead_.assign(std::size_t(vertexHashSize_), kNone);
   vertexHashNodes_.clear();
   edgeHashHead_.clear();
   edgeHashNext_.clear();
@@ -130,7 +133,7 @@ bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
     }
     return kNone;
   };
-  const int midKey = combineCells(kMid, kVertexHashSize);
+  const int midKey = combineCells(kMid, vertexHashSize_);
   int found = searchCell(midKey);
   // The cells a weld reaches across, only when the vertex's own has no match.
   int kLo[3] = {};
@@ -146,7 +149,7 @@ bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
   if (found == kNone && differing == 1) {
     int other[3];
     for (int a = 0; a < 3; ++a) other[a] = kMid[a] == kLo[a] ? kHi[a] : kLo[a];
-    found = searchCell(combineCells(other, kVertexHashSize));
+    found = searchCell(combineCells(other, vertexHashSize_));
   } else if (found == kNone && differing > 1) {
     // The original searches all vertices in order here; any vertex within
     // the weld distance lies in one of these cells, so the lowest-numbered
@@ -156,7 +159,7 @@ bool ModelBuilder::findOrAddVertex(const Vec3& vert, int& vertexNum) {
     for (int c = 0; c < 8; ++c) {
       int k[3];
       for (int a = 0; a < 3; ++a) k[a] = (c >> a) & 1 ? kHi[a] : kLo[a];
-      const int key = combineCells(k, kVertexHashSize);
+      const int key = combineCells(k, vertexHashSize_);
       bool seen = false;
       for (int s = 0; s < numKeys; ++s) seen = seen || keys[s] == key;
       if (!seen) keys[numKeys++] = key;

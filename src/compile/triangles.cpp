@@ -23,7 +23,7 @@ void ModelBuilder::convertMeshSurfaces() {
   Bounds bounds;
   for (const Vec3& p : mesh.positions) bounds.addPoint(p);
   if (mesh.positions.empty()) bounds = Bounds{Vec3{}, Vec3{}};
-  clearHash(bounds);
+  clearHash(bounds, mesh.positions.size());
   std::size_t numIndices = 0;
   for (const MeshSurface& s : mesh.surfaces) numIndices += s.indices.size();
   edgeHashHead_.reserve(numIndices);  // each index starts an edge (the table grows for two-sided ones)
