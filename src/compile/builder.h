@@ -464,12 +464,14 @@ class ModelBuilder {
   /// Buckets of the vertex hash: kVertexHashSize, or for a mesh of many
   /// vertices the power of two from twice their number (up to
   /// kMaxVertexHashSize). Any power of two from 256 on finds the same
-  /// vertices: two cells a weld can reach across (at most one cell apart
-  /// along each axis, kVertexEpsilon being below the 4-unit cells) have cell
-  /// keys (combineCells before the mask) that differ by at most 132, so they
-  /// share a bucket exactly when their keys are equal, whatever the size;
-  /// more buckets only leave out of a chain the vertices of far cells, which
-  /// never match, and keep the chain's order.
+  /// vertices: a cell that findOrAddVertex searches (the point's, or one
+  /// next to it) and the cell of any vertex that can match the point (within
+  /// kVertexEpsilon, below the 4-unit cells: the point's cell or one next to
+  /// it) lie at most two cells apart along each axis, so their keys
+  /// (combineCells before the mask: k0 + 64 k1 + k2) differ by at most 132
+  /// and share a bucket exactly when they are equal, whatever the size. More
+  /// buckets only leave out of a chain vertices of far cells, which never
+  /// match, and keep the chain's order (newest first).
   int vertexHashSize_ = kVertexHashSize;
   static constexpr int kMaxVertexHashSize = 1 << 20;
   Vec3 hashMin_;
