@@ -72,7 +72,8 @@ std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
     makeBlocks<CullBlock>(
         model.polygonRefs.size(),
         [&](CullBlock& b, std::size_t j, std::size_t r) {
-          CMKIT_ASSERT(model.polygonRefs[r] >= 0 && std::size_t(model.polygonRefs[r]) < model.polygons.size());
+          CMKIT_ASSERT(model.polygonRefs[r] >= 0 &&
+                       std::size_t(model.polygonRefs[r]) < model.polygons.size());
           const CmPolygon& p = model.polygons[std::size_t(model.polygonRefs[r])];
           for (int k = 0; k < 3; ++k) {
             b.min[k][j] = p.bounds.min[k];
