@@ -155,6 +155,7 @@ class Builder {
     const Range all{0, items_.size()};
     (void)node(all, summaryOf(all), 1);
     out_.twins.shrink_to_fit();  // (grown lane by lane)
+    addPlanes();
   }
 
  private:
@@ -291,16 +292,34 @@ class Builder {
       // the builds that make the hierarchy)
       static_assert(!kCullBlocks || sizeof(Real) == sizeof(float));
       const Item& it = items_[r.first + j];
-      const Plane& plane = planes_[std::size_t(polyNum)];
       for (std::size_t k = 0; k < 3; ++k) {
         b.min[k][j] = it.min[k];
         b.max[k][j] = it.max[k];
-        b.normal[k][j] = plane.normal[int(k)];
       }
-      b.dist[j] = plane.dist;
-      b.contents[j] = it.contents;
+      b.contents[j] = it.contents;  // (the plane: addPlanes)
     }
     return number;
+  }
+
+  /// The leaves' planes, after the hierarchy: the leaves hold the items in
+  /// their final order, lane by lane, so each plane can be fetched some items
+  /// ahead (read by polygon number while each leaf was made, every read
+  /// waited for memory).
+  void addPlanes() {
+    constexpr std::size_t kFetchAhead = 32;
+    std::size_t i = 0;  // (items_[i]: the item in the lane being filled)
+    for (BvhLeaf& b : out_.leaves) {
+      for (std::size_t j = 0; j < kLanes; ++j) {
+        if (b.polygon[j] < 0) continue;  // unused (its plane was cleared)
+        if (i + kFetchAhead < items_.size())
+          __builtin_prefetch(&planes_[std::size_t(items_[i + kFetchAhead].polygon)]);
+        const Plane& plane = planes_[std::size_t(items_[i].polygon)];
+        for (std::size_t k = 0; k < 3; ++k) b.normal[k][j] = plane.normal[int(k)];
+        b.dist[j] = plane.dist;
+        ++i;
+      }
+    }
+    CMKIT_ASSERT(i == items_.size());
   }
 
   /// An inner node of the items of r (more than kLanes; summary `sum`): its number.
