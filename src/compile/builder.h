@@ -314,11 +314,9 @@ class ModelBuilder {
   /// only when some pair may merge).
   void prepareEdgeUsers();
   void prepareMergeIndex();
-  /// Whether two live polygons that share an edge pass mayMerge (merge.cpp).
-  bool anyPairMayMerge();
-  /// The same through the edges' users (prepareEdgeUsers first), for edges
-  /// of any number of users.
-  bool anyPairMayMergeByLists() const;
+  /// Whether two live polygons that share an edge may pass mayMerge (false:
+  /// none does; merge.cpp).
+  bool anyPairMayMerge() const;
   void mergeTreePolygons(int node);
   bool mergePolygonWithTreePolygons(int polygon);
   /// True when walkTouching(0, bounds, ...) visits the node.

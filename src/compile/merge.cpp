@@ -64,11 +64,12 @@ void ModelBuilder::prepareEdgeUsers() {
   }
 }
 
-bool ModelBuilder::anyPairMayMerge() {
+bool ModelBuilder::anyPairMayMerge() const {
   // A polygon takes an edge already made only when one other polygon uses it
   // (getEdge), so an edge has at most two users here: each pair is tested at
   // its edge's second user, with the first user's number kept per edge. (An
-  // edge with a third live user would take the lists below.)
+  // edge with a third live user answers yes: the walk, which was always
+  // right to run, then decides.)
   std::vector<int> firstUser(edges_.size(), kNone);
   std::vector<std::uint8_t> users(edges_.size(), 0);
   for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
@@ -84,25 +85,8 @@ bool ModelBuilder::anyPairMayMerge() {
           if (mayMerge(polygon(firstUser[edge]), poly)) return true;
           break;
         default:
-          prepareEdgeUsers();
-          return anyPairMayMergeByLists();
+          return true;
       }
-    }
-  }
-  return false;
-}
-
-bool ModelBuilder::anyPairMayMergeByLists() const {
-  for (int p = 0; p < static_cast<int>(polygons_.size()); ++p) {
-    const BPolygon& poly = polygon(p);
-    if (poly.freed) continue;
-    for (const int e : poly.edges) {
-      bool found = false;
-      // (each pair once: mayMerge is symmetric)
-      edgeUsers_.forEach(std::abs(e), [&](int q) {
-        found = found || (q > p && !polygon(q).freed && mayMerge(poly, polygon(q)));
-      });
-      if (found) return true;
     }
   }
   return false;
