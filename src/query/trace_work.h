@@ -55,6 +55,11 @@ struct TrmFeatures {
   std::array<WorkVertex, kMaxTrmVertices> vertices;
   std::array<WorkEdge, kMaxTrmEdges + 1> edges;
   std::array<WorkPolygon, kMaxTrmPolygons> polys;
+  /// A translation's moving vertices' paths (WorkVertex::pl) kLanes at a
+  /// time: lane v % kLanes of block v / kLanes is vertex v's, 0 for a vertex
+  /// that does not move (translate.cpp's SSE2 edge sides; other builds
+  /// leave it unused).
+  std::array<LineBlock, kMaxTrmVertices / kLanes> vertexLines;
 };
 
 /// Polygon edges per bit mask in the translation's edge tests.
@@ -92,8 +97,7 @@ struct QueryScratch {
   /// Bit i of vertexEdgeSides[group * kMaxTrmVertices + v]: the path of
   /// trace-model vertex v passes edge i's line on the negative side.
   std::vector<std::uint64_t> vertexEdgeSides;
-  std::vector<std::uint64_t> edgesReversed;  ///< per group: edges used backwards (negative edge number)
-  std::vector<std::uint64_t> edgesToTest;    ///< per group: edges to test against the trace-model edges
+  std::vector<std::uint64_t> edgesToTest;  ///< per group: edges to test against the trace-model edges
   /// The current polygon's edge lines (model/query_data.h), for a model
   /// without query data (ModelAccess::withoutQueryData: tests of that path).
   std::vector<LineBlock> edgeLines;

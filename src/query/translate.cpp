@@ -86,81 +86,149 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 namespace {
 
 // Which side of each edge line of the current polygon the path of every
-// moving trace-model vertex passes, and which edges are used backwards (see
-// the masks in QueryScratch). A side is the sign bit of (edge i's line,
-// stored direction) . (vertex v's line), the product the original caches per
-// model edge. It depends only on the edge and the vertex, so computing all of
-// a polygon's at once gives the same bits as the cache, without its branches
-// and scattered memory. Returns the moving vertices whose paths pass inside
-// every edge (on the negative side of the edges used backwards, the positive
-// of the others): those the vertex test tries.
+// moving trace-model vertex passes (see the masks in QueryScratch). A side is
+// the sign bit of (edge i's line, stored direction) . (vertex v's line), the
+// product the original caches per model edge. It depends only on the edge
+// and the vertex, so computing all of a polygon's at once gives the same
+// bits as the cache, without its branches and scattered memory. Returns the
+// moving vertices whose paths pass inside every edge (on the negative side of
+// the edges used backwards, the positive of the others): those the vertex
+// test tries.
+#ifdef CMKIT_SIDES_SSE2
+
+/// The 8 x 8 bit matrix whose row r is byte r of x (column c its bit c),
+/// transposed: bit 8r + c of the result is bit 8c + r of x. (Three exchanges
+/// of ever larger blocks across the diagonal.)
+constexpr std::uint64_t transposeBits8x8(std::uint64_t x) {
+  std::uint64_t t = (x ^ (x >> 7)) & 0x00AA00AA00AA00AAull;
+  x ^= t ^ (t << 7);
+  t = (x ^ (x >> 14)) & 0x0000CCCC0000CCCCull;
+  x ^= t ^ (t << 14);
+  t = (x ^ (x >> 28)) & 0x00000000F0F0F0F0ull;
+  x ^= t ^ (t << 28);
+  return x;
+}
+/// The transposition is linear over XOR, so the 64 one-bit matrices prove it.
+constexpr bool transposesEveryBit() {
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 8; ++c)
+      if (transposeBits8x8(std::uint64_t(1) << (8 * r + c)) != std::uint64_t(1) << (8 * c + r)) return false;
+  return true;
+}
+static_assert(transposesEveryBit());
+
+// Edge by edge, four vertices at a time: each edge's line broadcast against
+// the blocks of vertex paths (TrmFeatures::vertexLines, made with the
+// features), one mask of vertices per edge, then transposed into the
+// per-vertex masks of edges that the edge pairs read, eight by eight. Each
+// lane computes Pluecker::permutedInnerProduct's terms in its order (a
+// product of two floats is the same either way round), so the same sign
+// bits as one product at a time. For a box against a quadrilateral about a
+// third of the instructions of four edges at a time per vertex (the
+// polygon's lines start at any lane, so its four edges mostly straddle two
+// blocks).
 std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges,
                                   const PolygonLines& lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
     s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
-    s.edgesReversed.resize(groups);
+    s.edgesToTest.resize(groups);
+  }
+  using simd::F4;
+  static_assert(kLanes == 4 && kMaxTrmVertices <= 32);
+  const std::uint32_t moving = tw.movingVertices;
+  // The vertex blocks up to the last moving vertex.
+  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
+  const std::size_t vertexBlocks = std::size_t(numVerts + 3) / 4;
+  const LineBlock* vertexLines = tw.scratch.trm.vertexLines.data();
+  std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
+  // The 8-vertex rows of the transposition.
+  const int vertexRows = (numVerts + 7) / 8;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t first = g * kEdgeGroup;
+    const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
+    std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
+    // Per row of eight vertices, the sides of up to eight edges: byte j for
+    // edge j of the eight, its bit k for vertex k of the row.
+    std::uint64_t rows[kMaxTrmVertices / 8] = {};
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t entry = lines.first + first + i;
+      const LineBlock& b = lines.blocks[entry / kLanes];
+      const std::size_t lane = entry % kLanes;
+      const F4 c0 = F4::all(b.c[0][lane]), c1 = F4::all(b.c[1][lane]), c2 = F4::all(b.c[2][lane]);
+      const F4 c3 = F4::all(b.c[3][lane]), c4 = F4::all(b.c[4][lane]), c5 = F4::all(b.c[5][lane]);
+      std::uint32_t bits = 0;  // bit v: vertex v's side
+      for (std::size_t k = 0; k < vertexBlocks; ++k) {
+        const LineBlock& r = vertexLines[k];
+        F4 p = c0 * F4::load(r.c[4]);
+        p = p + c1 * F4::load(r.c[5]);
+        p = p + c2 * F4::load(r.c[3]);
+        p = p + c4 * F4::load(r.c[0]);
+        p = p + c5 * F4::load(r.c[1]);
+        p = p + c3 * F4::load(r.c[2]);
+        bits |= simd::bits(p) << (4 * k);
+      }
+      // Outside edge i: the side is not the one its use asks.
+      outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges[first + i] < 0));
+      for (int r = 0; r < vertexRows; ++r)
+        rows[r] |= std::uint64_t((bits >> (8 * r)) & 0xFFu) << (8 * (i % 8));
+      // After every eighth edge and the last: the rows transposed into the
+      // vertices' masks of edges (the first eight edges written, the others
+      // added; entries past the last vertex, up to a multiple of eight, are
+      // written and never read).
+      if (i % 8 == 7 || i + 1 == count) {
+        const std::size_t e0 = i - i % 8;
+        for (int r = 0; r < vertexRows; ++r) {
+          const std::uint64_t m = transposeBits8x8(rows[r]);
+          rows[r] = 0;
+          std::uint64_t* out = sides + 8 * r;
+          if (e0 == 0) {
+            for (int k = 0; k < 8; ++k) out[k] = (m >> (8 * k)) & 0xFFu;
+          } else {
+            for (int k = 0; k < 8; ++k) out[k] |= ((m >> (8 * k)) & 0xFFu) << e0;
+          }
+        }
+      }
+    }
+  }
+  return moving & ~outside;
+}
+
+/// TrmFeatures::vertexLines of the moving vertices (0 in the other lanes).
+void placeVertexLines(TraceWork& tw) {
+  std::array<LineBlock, kMaxTrmVertices / kLanes>& blocks = tw.scratch.trm.vertexLines;
+  const std::uint32_t moving = tw.movingVertices;
+  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
+  for (int v = 0; v < numVerts; ++v) {
+    LineBlock& b = blocks[std::size_t(v) / kLanes];
+    const std::size_t lane = std::size_t(v) % kLanes;
+    const bool isMoving = (moving >> v) & 1u;
+    const Pluecker& l = tw.vertices[std::size_t(v)].pl;
+    for (std::size_t k = 0; k < 6; ++k) b.c[k][lane] = isMoving ? l[k] : Real(0);
+  }
+  for (int v = numVerts; v % int(kLanes) != 0; ++v)  // the rest of the last block
+    for (std::size_t k = 0; k < 6; ++k) blocks[std::size_t(v) / kLanes].c[k][std::size_t(v) % kLanes] = 0;
+}
+
+#else  // one vertex at a time, edge by edge
+
+std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges,
+                                  const PolygonLines& lines) {
+  QueryScratch& s = tw.scratch;
+  const std::size_t groups = edgeGroups(edges.size());
+  if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
+    s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
     s.edgesToTest.resize(groups);
   }
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
-#ifdef CMKIT_SIDES_SSE2
-  // At most one vertex does not move. (Not std::popcount: without the POPCNT
-  // instruction, which baseline x86-64 lacks, it is a library call per polygon.)
-  const std::uint32_t still = allTrmVertices(tw.numVerts) & ~tw.movingVertices;
-  const bool almostAllMove = (still & (still - 1)) == 0;
-#endif
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
     const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
     std::uint64_t reversed = 0;
     for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges[first + i] < 0) << i;
-    s.edgesReversed[g] = reversed;
-    const std::uint64_t valid = count == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << count) - 1;
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     const std::size_t entry = lines.first + first;  // the group's first edge
-#ifdef CMKIT_SIDES_SSE2
-    // A block's four entries at a time: the same products (IEEE single
-    // precision in each lane, the same order of operations), so the same
-    // sign bits, shifted into place (the group may start at any lane of its
-    // first block; lanes outside the group are masked off).
-    static_assert(kLanes == 4);
-    const LineBlock* blocks = lines.blocks + entry / kLanes;
-    const std::size_t numBlocks = blocksSpanned(entry, count);
-    const std::size_t lane = entry % kLanes;
-    auto sidesOf = [&](int v) {
-      const Pluecker& r = tw.vertices[std::size_t(v)].pl;
-      using simd::F4;
-      const F4 r0 = F4::all(r[0]), r1 = F4::all(r[1]), r2 = F4::all(r[2]);
-      const F4 r3 = F4::all(r[3]), r4 = F4::all(r[4]), r5 = F4::all(r[5]);
-      std::uint64_t bits = 0;
-      // Block k's lane 0 is the group's edge kLanes * k - lane (the shift
-      // stays below 64: 17 blocks only when lane > 0).
-      for (std::size_t k = 0; k < numBlocks; ++k) {
-        const LineBlock& b = blocks[k];
-        F4 p = F4::load(b.c[0]) * r4;
-        p = p + F4::load(b.c[1]) * r5;
-        p = p + F4::load(b.c[2]) * r3;
-        p = p + F4::load(b.c[4]) * r0;
-        p = p + F4::load(b.c[5]) * r1;
-        p = p + F4::load(b.c[3]) * r2;
-        const std::uint64_t signs = simd::bits(p);
-        bits |= k == 0 ? signs >> lane : signs << (kLanes * k - lane);
-      }
-      sides[v] = bits & valid;
-      outside |= std::uint32_t(((bits & valid) ^ reversed) != 0) << v;
-    };
-    // When all vertices but one at most move (a box moving off the axes),
-    // every vertex in turn: a loop of as many as the trace model has, which
-    // the predictor learns (an unmoving vertex's sides go unused: a moving
-    // edge's ends move); else the moving ones.
-    if (almostAllMove) {
-      for (int v = 0; v < tw.numVerts; ++v) sidesOf(v);
-    } else {
-      for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1)
-        sidesOf(std::countr_zero(moving));
-    }
-#else
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
       const int v = std::countr_zero(moving);
       const Pluecker& r = tw.vertices[std::size_t(v)].pl;
@@ -172,13 +240,14 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
             c[0] * r[4] + c[1] * r[5] + c[2] * r[3] + c[4] * r[0] + c[5] * r[1] + c[3] * r[2];
         bits |= std::uint64_t(signBitSet(product)) << i;
       }
-      sides[v] = bits & valid;
-      outside |= std::uint32_t(((bits & valid) ^ reversed) != 0) << v;
+      sides[v] = bits;
+      outside |= std::uint32_t((bits ^ reversed) != 0) << v;
     }
-#endif
   }
   return tw.movingVertices & ~outside;
 }
+
+#endif
 
 // A trace-model vertex reaches the polygon at fraction f: the nearest hit so
 // far. (The hits are out of line, kept off the tests' path: most tested
@@ -377,6 +446,9 @@ void placeTranslationFeatures(TraceWork& tw) {
     WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
     v.pl = Pluecker::fromRay(v.p, tw.dir);
   }
+#ifdef CMKIT_SIDES_SSE2
+  placeVertexLines(tw);
+#endif
   const TraceModel& trm = *tw.placedTrm;
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
     const int i = std::countr_zero(moving);
