@@ -195,20 +195,20 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
   return moving & ~outside;
 }
 
-/// TrmFeatures::vertexLines of the moving vertices (0 in the other lanes).
-void placeVertexLines(TraceWork& tw) {
-  std::array<LineBlock, kMaxTrmVertices / kLanes>& blocks = tw.scratch.trm.vertexLines;
+/// Lane v % kLanes of TrmFeatures::vertexLines[v / kLanes]: vertex v's path.
+inline void setVertexLine(TraceWork& tw, int v, const Pluecker& l) {
+  LineBlock& b = tw.scratch.trm.vertexLines[std::size_t(v) / kLanes];
+  for (std::size_t k = 0; k < 6; ++k) b.c[k][std::size_t(v) % kLanes] = l[k];
+}
+
+/// Zeroes the lanes of TrmFeatures::vertexLines that the moving vertices'
+/// paths (set with them) leave, up to the last moving vertex's block.
+void clearStillVertexLines(TraceWork& tw) {
   const std::uint32_t moving = tw.movingVertices;
   const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
-  for (int v = 0; v < numVerts; ++v) {
-    LineBlock& b = blocks[std::size_t(v) / kLanes];
-    const std::size_t lane = std::size_t(v) % kLanes;
-    const bool isMoving = (moving >> v) & 1u;
-    const Pluecker& l = tw.vertices[std::size_t(v)].pl;
-    for (std::size_t k = 0; k < 6; ++k) b.c[k][lane] = isMoving ? l[k] : Real(0);
-  }
-  for (int v = numVerts; v % int(kLanes) != 0; ++v)  // the rest of the last block
-    for (std::size_t k = 0; k < 6; ++k) blocks[std::size_t(v) / kLanes].c[k][std::size_t(v) % kLanes] = 0;
+  const std::uint32_t blockLanes = numVerts >= 32 ? ~0u : (1u << ((numVerts + 3) & ~3)) - 1;
+  for (std::uint32_t still = blockLanes & ~moving; still; still &= still - 1)
+    setVertexLine(tw, std::countr_zero(still), Pluecker{});
 }
 
 #else  // one vertex at a time, edge by edge
@@ -443,11 +443,15 @@ void placeTranslationFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-    WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
+    const int i = std::countr_zero(moving);
+    WorkVertex& v = tw.vertices[std::size_t(i)];
     v.pl = Pluecker::fromRay(v.p, tw.dir);
+#ifdef CMKIT_SIDES_SSE2
+    setVertexLine(tw, i, v.pl);
+#endif
   }
 #ifdef CMKIT_SIDES_SSE2
-  placeVertexLines(tw);
+  clearStillVertexLines(tw);
 #endif
   const TraceModel& trm = *tw.placedTrm;
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
