@@ -18,6 +18,15 @@ per-step measure of docs/performance.md: two builds of one machine in one
 run. Alternate runs and several of them: on a 2-core VM one file's ratio
 moves by a few per cent between runs, the geometric mean by up to about 2.5%
 (docs/performance.md): a step of 1% needs repeated runs to show.
+
+--instructions counts instead of timing: each CLI runs each file's queries
+of a kind once under valgrind's callgrind (--repeat passes), counting the
+instructions inside cmkit::runParsedQueryUnformatted (the query and the
+harness's call of it, not the parsing or the model's build), and the ratio
+is old / new instructions a query. Deterministic, so one run settles what
+timing on a shared VM cannot; but it is not time (cache misses and
+mispredicted branches are free there). Slow: a few seconds a file and kind
+(--repeat 3 is plenty). Needs valgrind (apt-get install valgrind).
 """
 import argparse
 import json
@@ -62,6 +71,40 @@ def bench(cli, suite, repeat):
     return times
 
 
+def instructions(cli, suite, repeat, name, queries):
+    """Instructions a query of one file's queries (a suite of that file alone)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "callgrind.out")
+        subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
+                        "--toggle-collect=cmkit::runParsedQueryUnformatted(*",
+                        cli, "bench", "--suite", suite, "--repeat", str(repeat)],
+                       capture_output=True, text=True, check=True)
+        with open(out, encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("summary:"):
+                    return int(line.split()[1]) / (queries * repeat)
+    sys.exit(f"ab.py: no instruction count from {cli} on {name}")
+
+
+def count_instructions(a, kinds, dirs, tmp):
+    """{cli: {(kind, file): instructions a query}}, each file a suite of its own."""
+    counts = {a.old: {}, a.new: {}}
+    for kind in kinds:
+        for name in sorted(os.listdir(dirs[kind])):
+            one = os.path.join(tmp, "one", kind, name)
+            os.makedirs(os.path.join(one, "ref"))
+            os.symlink(os.path.join(dirs[kind], "..", "maps"), os.path.join(one, "maps"))
+            with open(os.path.join(dirs[kind], name), encoding="utf-8") as f:
+                lines = f.readlines()
+            with open(os.path.join(one, "ref", name), "w", encoding="utf-8") as f:
+                f.writelines(lines)
+            file = name[: -len(".queries.txt")]
+            for cli in (a.old, a.new):
+                counts[cli][(kind, file)] = instructions(cli, os.path.join(one, "ref"), a.repeat, file,
+                                                         len(lines))
+    return counts
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("old")
@@ -71,26 +114,35 @@ def main():
     p.add_argument("--runs", type=int, default=5)
     p.add_argument("--repeat", type=int, default=10)
     p.add_argument("--files", action="store_true", help="print every file's ratio")
+    p.add_argument("--instructions", action="store_true",
+                   help="count instructions a query under callgrind instead of timing (--runs is ignored)")
     a = p.parse_args()
     kinds = [k for k in a.kinds.split(",") if k]
     best = {a.old: {}, a.new: {}}
     with tempfile.TemporaryDirectory() as tmp:
         dirs = split_suite(a.suite, kinds, tmp)
-        for _ in range(a.runs):
-            for kind in kinds:
-                for cli in (a.old, a.new):  # (alternating: drifts of the machine hit both)
-                    for key, ns in bench(cli, dirs[kind], a.repeat).items():
-                        best[cli][key] = min(best[cli].get(key, math.inf), ns)
+        if a.instructions:
+            best = count_instructions(a, kinds, dirs, tmp)
+        else:
+            for _ in range(a.runs):
+                for kind in kinds:
+                    for cli in (a.old, a.new):  # (alternating: drifts of the machine hit both)
+                        for key, ns in bench(cli, dirs[kind], a.repeat).items():
+                            best[cli][key] = min(best[cli].get(key, math.inf), ns)
+    what = "instructions" if a.instructions else "ns"
     for kind in kinds:
         ratios = sorted((best[a.old][k] / best[a.new][k], k[1]) for k in best[a.old] if k[0] == kind)
         if not ratios:
             continue
         geo = math.exp(sum(math.log(r) for r, _ in ratios) / len(ratios))
-        print(f"{kind}: old/new geometric mean {geo:.3f} over {len(ratios)} files; "
+        print(f"{kind}: old/new {what} geometric mean {geo:.3f} over {len(ratios)} files; "
               f"min {ratios[0][0]:.3f} ({ratios[0][1]}), max {ratios[-1][0]:.3f} ({ratios[-1][1]})")
-        if a.files:
+        if a.files or a.instructions:
             for r, name in sorted(ratios, key=lambda x: x[1]):
-                print(f"  {name:<36} {r:.3f}")
+                extra = ""
+                if a.instructions:
+                    extra = f"  ({best[a.old][(kind, name)]:.0f} -> {best[a.new][(kind, name)]:.0f} a query)"
+                print(f"  {name:<36} {r:.3f}{extra}")
 
 
 if __name__ == "__main__":
