@@ -94,6 +94,14 @@ namespace {
 // moving vertices whose paths pass inside every edge (on the negative side of
 // the edges used backwards, the positive of the others): those the vertex
 // test tries.
+/// Room in the scratch for the masks of a polygon's `groups` edge groups.
+void sizeEdgeMasks(QueryScratch& s, std::size_t groups) {
+  if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
+    s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
+    s.edgesToTest.resize(groups);
+  }
+}
+
 #ifdef CMKIT_SIDES_SSE2
 
 /// The 8 x 8 bit matrix whose row r is byte r of x (column c its bit c),
@@ -131,10 +139,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
                                   const PolygonLines& lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
-  if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
-    s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
-    s.edgesToTest.resize(groups);
-  }
+  sizeEdgeMasks(s, groups);
   using simd::F4;
   static_assert(kLanes == 4 && kMaxTrmVertices <= 32);
   const std::uint32_t moving = tw.movingVertices;
@@ -217,10 +222,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
                                   const PolygonLines& lines) {
   QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size());
-  if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
-    s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
-    s.edgesToTest.resize(groups);
-  }
+  sizeEdgeMasks(s, groups);
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
