@@ -85,15 +85,6 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 
 namespace {
 
-// Which side of each edge line of the current polygon the path of every
-// moving trace-model vertex passes (see the masks in QueryScratch). A side is
-// the sign bit of (edge i's line, stored direction) . (vertex v's line), the
-// product the original caches per model edge. It depends only on the edge
-// and the vertex, so computing all of a polygon's at once gives the same
-// bits as the cache, without its branches and scattered memory. Returns the
-// moving vertices whose paths pass inside every edge (on the negative side of
-// the edges used backwards, the positive of the others): those the vertex
-// test tries.
 /// Room in the scratch for the masks of a polygon's `groups` edge groups.
 void sizeEdgeMasks(QueryScratch& s, std::size_t groups) {
   if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
@@ -102,6 +93,15 @@ void sizeEdgeMasks(QueryScratch& s, std::size_t groups) {
   }
 }
 
+// Which side of each edge line of the current polygon the path of every
+// moving trace-model vertex passes (see the masks in QueryScratch). A side is
+// the sign bit of (edge i's line, stored direction) . (vertex v's line), the
+// product the original caches per model edge. It depends only on the edge
+// and the vertex, so computing all of a polygon's at once gives the same
+// bits as the cache, without its branches and scattered memory. Returns the
+// moving vertices whose paths pass inside every edge (on the negative side of
+// the edges used backwards, the positive of the others): those the vertex
+// test tries. (Two ways: SSE2 float lanes, else one vertex at a time.)
 #ifdef CMKIT_SIDES_SSE2
 
 /// The 8 x 8 bit matrix whose row r is byte r of x (column c its bit c),
