@@ -5,8 +5,9 @@
 #   ./dev.sh test    install what is needed, build, run the whole test suite
 #                    (format check, release tests with the Python
 #                    package's pytest suite, the Doxygen reference, the
-#                    Clang build's tests, the double-precision build's
-#                    tests, ASan+UBSan tests)
+#                    Clang build's tests, with the queries' work counted
+#                    (CMKIT_QUERY_STATS: its tests run there), the
+#                    double-precision build's tests, ASan+UBSan tests)
 #   ./dev.sh check   the inner loop: build the `debug` preset (build/debug,
 #                    with the library's assertions, CMKIT_ASSERTS) and run its
 #                    tests on 2 cores; installs nothing (./dev.sh deps does)
@@ -139,7 +140,7 @@ case "${1:-}" in
     echo "== API reference (Doxygen; an undocumented public symbol fails)"
     mkdir -p build/docs
     doxygen docs/Doxyfile >/dev/null
-    echo "== Clang build and tests"
+    echo "== Clang build (with the queries' work counted) and tests"
     build clang
     ctest --preset clang
     echo "== double-precision build (CMKIT_DOUBLE) and its tests"
