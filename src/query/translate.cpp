@@ -156,7 +156,11 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     // Per row of eight vertices, the sides of up to eight edges: byte j for
     // edge j of the eight, its bit k for vertex k of the row.
-    std::uint64_t rows[kMaxTrmVertices / 8] = {};
+    // (Four stores, not a loop to vertexRows: GCC made such loops calls of
+    // memset, one or two a polygon.)
+    static_assert(kMaxTrmVertices / 8 == 4);
+    std::uint64_t rows[kMaxTrmVertices / 8];
+    rows[0] = rows[1] = rows[2] = rows[3] = 0;
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t entry = lines.first + first + i;
       const LineBlock& b = lines.blocks[entry / kLanes];
@@ -186,7 +190,6 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
         const std::size_t e0 = i - i % 8;
         for (int r = 0; r < vertexRows; ++r) {
           const std::uint64_t m = transposeBits8x8(rows[r]);
-          rows[r] = 0;
           std::uint64_t* out = sides + 8 * r;
           if (e0 == 0) {
             for (int k = 0; k < 8; ++k) out[k] = (m >> (8 * k)) & 0xFFu;
@@ -194,6 +197,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
             for (int k = 0; k < 8; ++k) out[k] |= ((m >> (8 * k)) & 0xFFu) << e0;
           }
         }
+        rows[0] = rows[1] = rows[2] = rows[3] = 0;
       }
     }
   }
