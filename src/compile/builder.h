@@ -238,6 +238,9 @@ class ModelBuilder {
   /// A new edge from v1num to v2num with one user, in the edge hash.
   int addEdge(int v1num, int v2num);
   void createPolygon(const Winding& w, const Plane& plane, int material, int primitiveNum);
+  /// A new polygon of these edges and values, filtered into the tree.
+  void addPolygon(EdgeList&& edges, std::uint32_t contents, int material, const Plane& plane,
+                  const Bounds& bounds);
   /// createPolygon of w reversed (plane flipped), when polygon `original`
   /// was just made of w and the reversed copy would take each of its edges
   /// (see polygons.cpp): made from the original's edges. False (nothing

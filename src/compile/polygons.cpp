@@ -260,12 +260,17 @@ void ModelBuilder::createPolygon(const Winding& w, const Plane& plane, int mater
          std::to_string(tol::kMaxPolygonEdges));
     polyEdges.truncate(static_cast<std::size_t>(tol::kMaxPolygonEdges));
   }
+  addPolygon(std::move(polyEdges), materials_[material].info.contents, material, plane, w.bounds());
+}
+
+void ModelBuilder::addPolygon(EdgeList&& edges, std::uint32_t contents, int material, const Plane& plane,
+                              const Bounds& bounds) {
   BPolygon p;
-  p.edges = std::move(polyEdges);
-  p.contents = materials_[material].info.contents;
+  p.edges = std::move(edges);
+  p.contents = contents;
   p.material = material;
   p.plane = plane;
-  p.bounds = w.bounds();
+  p.bounds = bounds;
   polygons_.push_back(std::move(p));
   filterIntoTree(ItemKind::Polygon, 0, static_cast<int>(polygons_.size()) - 1);
 }
@@ -325,14 +330,10 @@ bool ModelBuilder::createReversedCopy(const Winding& w, const Plane& plane, std:
   for (std::size_t k = n - 1; k-- > 0;) reversedEdges.push_back(-edges[k]);
   reversedEdges.push_back(-edges[n - 1]);
   for (std::size_t k = 0; k < n; ++k) edge(edges[k]).numUsers++;
-  BPolygon p;
-  p.edges = std::move(reversedEdges);
-  p.contents = polygons_[original].contents;
-  p.material = polygons_[original].material;
-  p.plane = plane.flipped();
-  for (int k = w.size(); k-- > 0;) p.bounds.addPoint(w[k]);  // (in the reversed winding's order)
-  polygons_.push_back(std::move(p));
-  filterIntoTree(ItemKind::Polygon, 0, static_cast<int>(polygons_.size()) - 1);
+  Bounds bounds;
+  for (int k = w.size(); k-- > 0;) bounds.addPoint(w[k]);  // (in the reversed winding's order)
+  const BPolygon& o = polygons_[original];
+  addPolygon(std::move(reversedEdges), o.contents, o.material, plane.flipped(), bounds);
   return true;
 }
 
