@@ -163,11 +163,14 @@ bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask
     return true;
   }
   // The near face of each axis is its min row, or its max row when the ray
-  // runs down the axis (and the far face the other).
+  // runs down the axis (and the far face the other). "Down" is the sign
+  // bit, as in the reciprocal's copysign: a direction of -0 (a start of +0
+  // and an end of -0 on that axis) has the reciprocal -kHugeInverse and must
+  // enter through the max row, or it enters no box at all.
   constexpr std::size_t kRowBytes = sizeof(Node::min[0]);
   constexpr std::size_t kMinToMax = offsetof(Node, max) - offsetof(Node, min);
   for (int k = 0; k < 3; ++k) {
-    const std::size_t down = dir[k] < 0 ? kMinToMax : 0;
+    const std::size_t down = std::signbit(dir[k]) ? kMinToMax : 0;
     ray.nearRow[k] = offsetof(Node, min) + std::size_t(k) * kRowBytes + down;
     ray.farRow[k] = offsetof(Node, max) + std::size_t(k) * kRowBytes - down;
   }

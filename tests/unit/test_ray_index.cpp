@@ -270,6 +270,31 @@ TEST(RayIndex, BadInputMisses) {
   EXPECT_EQ(RayIndex(*empty).numNodes(), 0u);
 }
 
+TEST(RayIndex, NegativeZeroDirectionsHit) {
+  // end - start is -0 on an axis when the start is +0 and the end -0 there:
+  // the ray does not move along that axis, whichever zero it is, and must
+  // cross the floor as the +0 ray does (with both node tests).
+  const CollisionModel m = floorBox();
+  for (const RayIndex::NodeTest test : {RayIndex::NodeTest::Auto, RayIndex::NodeTest::Baseline}) {
+    const RayIndex index(m, test);
+    for (int axis = 0; axis < 2; ++axis) {
+      Vec3 start{0, 0, 64}, end{0, 0, -64};
+      end[axis] = -0.0f;
+      ASSERT_TRUE(std::signbit((end - start)[axis]));
+      const RayHit h = index.cast({start, end});
+      ASSERT_TRUE(h.hit()) << "axis " << axis;
+      EXPECT_EQ(h.fraction, 0.5f);
+      EXPECT_EQ(h.polygon, polygonWithNormal(m, {0, 0, 1}));
+      // castMany walks packets (AVX2) or single casts: the same answer.
+      RayHit many[2];
+      const Vec3 starts[2] = {start, start}, ends[2] = {end, end};
+      index.castMany({{}, starts, ends}, many);
+      EXPECT_EQ(many[0].polygon, h.polygon);
+      EXPECT_EQ(many[1].fraction, h.fraction);
+    }
+  }
+}
+
 TEST(RayIndex, SameAsTestingEveryPolygonOnBundledMaps) {
   // lt4's world (11 489 polygons) and its inline models, the feature test
   // map, and the .cm files of the test data.
