@@ -34,20 +34,11 @@ inline constexpr std::size_t blocksSpanned(std::size_t first, std::size_t count)
   return count == 0 ? 0 : (first + count - 1) / kLanes - first / kLanes + 1;
 }
 
-/// The lines of kLanes polygonEdges entries' edges, each in its edge's stored
-/// direction (Pluecker::fromLine of vertex[0] -> vertex[1]): coordinate k of
-/// lane j at c[k][j].
+/// kLanes lines (Pluecker coordinates): coordinate k of lane j at c[k][j]
+/// (a translation's trace-model vertex paths, TrmFeatures::vertexLines).
 struct alignas(16) LineBlock {
   Real c[6][kLanes];
 };
-
-/// The line of entry i of an array of line blocks.
-inline Pluecker blockLine(const LineBlock* blocks, std::size_t i) {
-  const LineBlock& b = blocks[i / kLanes];
-  Pluecker l;
-  for (std::size_t k = 0; k < 6; ++k) l.p[k] = b.c[k][i % kLanes];
-  return l;
-}
 
 /// The line of model edge e (unsigned number) in its stored direction.
 inline Pluecker modelEdgeLine(const ModelArrays& m, std::size_t e) {
@@ -58,10 +49,9 @@ inline Pluecker modelEdgeLine(const ModelArrays& m, std::size_t e) {
 /// The line of model edge e (unsigned number) of a sealed model.
 inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) { return modelEdgeLine(m.arrays(), e); }
 
-/// Writes the lines of `edges` (signed edge numbers) as entries 0 ..
-/// edges.size() - 1 of the blocks at `out` (blocksSpanned(0, edges.size())
-/// of them; the lanes past the last are 0).
-void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, LineBlock* out);
+/// Writes the lines of `edges` (signed edge numbers: the line of |e|, in its
+/// stored direction) to out[0 .. edges.size() - 1].
+void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, Pluecker* out);
 
 /// What a translation's culls read of kLanes polygonRefs entries' polygons:
 /// lane j of each array is entry j's (lanes past the last entry are 0).

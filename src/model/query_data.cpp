@@ -29,39 +29,23 @@ void makeBlocks(std::size_t count, Fill&& fill, Put&& put) {
   }
 }
 
-/// The lines lineOf(e) of the entries e of `edges` (signed edge numbers, the
-/// line of |e|), as writeEdgeLines says, each block handed to put(block).
-template <class LineOf, class Put>
-void makeLines(std::span<const std::int32_t> edges, LineOf&& lineOf, Put&& put) {
-  makeBlocks<LineBlock>(
-      edges.size(),
-      [&](LineBlock& b, std::size_t j, std::size_t i) {
-        const Pluecker& l = lineOf(std::size_t(std::abs(edges[i])));
-        for (std::size_t k = 0; k < 6; ++k) b.c[k][j] = l[int(k)];
-      },
-      put);
-}
-
-/// The lines of all the model's polygonEdges entries, appended to `out`:
-/// each edge's line made once, in the edges' order (most edges are used by
-/// two polygons), then each entry copied from it. In the polygons' order an
+/// The lines of all the model's polygonEdges entries, in `out`: each edge's
+/// line made once, in the edges' order (most edges are used by two
+/// polygons), then each entry copied from it. In the polygons' order an
 /// entry read its edge's record and two vertices, all three anywhere in
 /// memory.
-void makeModelEdgeLines(const ModelArrays& m, std::vector<LineBlock>& out) {
+void makeModelEdgeLines(const ModelArrays& m, std::vector<Pluecker>& out) {
   std::vector<Pluecker> edgeLines(m.edges.size());
   // (from 1: no polygon uses the dummy edge 0, whose vertices are never checked)
   for (std::size_t e = 1; e < m.edges.size(); ++e) edgeLines[e] = modelEdgeLine(m, e);
-  out.reserve(blocksSpanned(0, m.polygonEdges.size()));
-  makeLines(
-      m.polygonEdges, [&](std::size_t e) -> const Pluecker& { return edgeLines[e]; },
-      [&](const LineBlock& b) { out.push_back(b); });
+  out.reserve(m.polygonEdges.size());
+  for (const std::int32_t e : m.polygonEdges) out.push_back(edgeLines[std::size_t(std::abs(e))]);
 }
 
 }  // namespace
 
-void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, LineBlock* out) {
-  makeLines(
-      edges, [&](std::size_t e) { return modelEdgeLine(m, e); }, [&](const LineBlock& b) { *out++ = b; });
+void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, Pluecker* out) {
+  for (const std::int32_t e : edges) *out++ = modelEdgeLine(m, std::size_t(std::abs(e)));
 }
 
 std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {

@@ -1,16 +1,16 @@
 // Internal: what the queries derive from a built model once instead of per
-// query (made with the model by its constructor, makeQueryData), in blocks of
-// kLanes entries with one array per number, for SIMD loads:
+// query (made with the model by its constructor, makeQueryData):
 //  - the line of every polygonEdges entry's edge (a polygon's edge lines are
-//    the entries firstEdge .. firstEdge + numEdges - 1);
+//    the entries firstEdge .. firstEdge + numEdges - 1, one after another);
 //  - the bounds, normal and contents of every polygonRefs entry's polygon (a
 //    node's polygons are the entries firstPolygonRef ..), for a
-//    translation's culls;
+//    translation's culls, in blocks of kLanes entries with one array per
+//    number, for SIMD loads;
 //  - the BSP tree in 8 bytes a node for point contents (point_tree.h);
 //  - the polygons' own hierarchy (polygon_bvh.h), which the translations
 //    walk instead of the BSP tree.
-// Entry i is lane i % kLanes of block i / kLanes: the arrays hold about 24
-// and 40 bytes per entry, in the order the queries read them.
+// Block entry i is lane i % kLanes of block i / kLanes. The lines and culls
+// hold about 24 and 40 bytes per entry, in the order the queries read them.
 #pragma once
 
 #include <array>
@@ -29,8 +29,11 @@
 namespace cmkit::detail {
 
 struct QueryData {
-  /// Per polygonEdges entry: its edge's line.
-  std::vector<LineBlock> lines;
+  /// Per polygonEdges entry: its edge's line (in the edge's stored
+  /// direction). One after another, not in blocks of four: a polygon's
+  /// lines are one run of memory (a triangle's 72 bytes), where blocks
+  /// spread them over two blocks' lines whenever they start past lane 0.
+  std::vector<Pluecker> lines;
   /// Per polygonRefs entry: its polygon's culls (kCullBlocks builds; else empty).
   std::vector<CullBlock> culls;
   /// The polygons' hierarchy (kCullBlocks builds; else empty).

@@ -100,7 +100,7 @@ struct QueryScratch {
   std::vector<std::uint64_t> edgesToTest;  ///< per group: edges to test against the trace-model edges
   /// The current polygon's edge lines (model/query_data.h), for a model
   /// without query data (ModelAccess::withoutQueryData: tests of that path).
-  std::vector<LineBlock> edgeLines;
+  std::vector<Pluecker> edgeLines;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
     std::int32_t node;
@@ -442,12 +442,11 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
   }
 }
 
-/// A polygon's edge lines (each in its edge's stored direction): edge i's at
-/// entry first + i of `blocks` (model/query_data.h).
+/// A polygon's edge lines (each in its edge's stored direction), edge i's at
+/// lines[i] (model/query_data.h).
 struct PolygonLines {
-  const LineBlock* blocks;
-  std::size_t first;
-  Pluecker line(std::size_t i) const { return blockLine(blocks, first + i); }
+  const Pluecker* lines;
+  const Pluecker& line(std::size_t i) const { return lines[i]; }
 };
 /// The lines of a polygon's edges: the model's (query data), or made in the
 /// scratch (edgeLines) for a model without them, valid until the next call.

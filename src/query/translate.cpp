@@ -162,11 +162,9 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     std::uint64_t rows[kMaxTrmVertices / 8];
     rows[0] = rows[1] = rows[2] = rows[3] = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t entry = lines.first + first + i;
-      const LineBlock& b = lines.blocks[entry / kLanes];
-      const std::size_t lane = entry % kLanes;
-      const F4 c0 = F4::all(b.c[0][lane]), c1 = F4::all(b.c[1][lane]), c2 = F4::all(b.c[2][lane]);
-      const F4 c3 = F4::all(b.c[3][lane]), c4 = F4::all(b.c[4][lane]), c5 = F4::all(b.c[5][lane]);
+      const Pluecker& l = lines.line(first + i);
+      const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
+      const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
       std::uint32_t bits = 0;  // bit v: vertex v's side
       for (std::size_t k = 0; k < vertexBlocks; ++k) {
         const LineBlock& r = vertexLines[k];
@@ -234,14 +232,13 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     std::uint64_t reversed = 0;
     for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges[first + i] < 0) << i;
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
-    const std::size_t entry = lines.first + first;  // the group's first edge
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
       const int v = std::countr_zero(moving);
       const Pluecker& r = tw.vertices[std::size_t(v)].pl;
       std::uint64_t bits = 0;
       for (std::size_t i = 0; i < count; ++i) {
         // Pluecker::permutedInnerProduct, term for term in the same order.
-        const Pluecker c = blockLine(lines.blocks, entry + i);
+        const Pluecker& c = lines.line(first + i);
         const Real product =
             c[0] * r[4] + c[1] * r[5] + c[2] * r[3] + c[4] * r[0] + c[5] * r[1] + c[3] * r[2];
         bits |= std::uint64_t(signBitSet(product)) << i;

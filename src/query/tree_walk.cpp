@@ -213,13 +213,12 @@ void walkSegment(TraceWork& tw) {
 }  // namespace
 
 PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly) {
-  if (tw.queryData) return {tw.queryData->lines.data(), poly.firstEdge};
+  if (tw.queryData) return {tw.queryData->lines.data() + poly.firstEdge};
   const auto edges = tw.model.edgesOf(poly);
-  std::vector<LineBlock>& blocks = tw.scratch.edgeLines;
-  const std::size_t size = blocksSpanned(0, edges.size());
-  if (blocks.size() < size) blocks.resize(size);
-  writeEdgeLines(tw.model.arrays(), edges, blocks.data());
-  return {blocks.data(), 0};
+  std::vector<Pluecker>& lines = tw.scratch.edgeLines;
+  if (lines.size() < edges.size()) lines.resize(edges.size());
+  writeEdgeLines(tw.model.arrays(), edges, lines.data());
+  return {lines.data()};
 }
 
 void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {

@@ -33,8 +33,8 @@ TEST(SealedModel, CreateTakesTheArraysAsGiven) {
   EXPECT_EQ(model.vertices().data(), model.arrays().vertices.data());  // spans of its own arrays
   EXPECT_EQ(model.arrays().polygonEdges, arrays.polygonEdges);
   ASSERT_NE(detail::queryDataOf(model), nullptr);
-  // Lines for every polygon edge entry, four to a block.
-  EXPECT_EQ(detail::queryDataOf(model)->lines.size(), (arrays.polygonEdges.size() + 3) / 4);
+  // A line for every polygon edge entry.
+  EXPECT_EQ(detail::queryDataOf(model)->lines.size(), arrays.polygonEdges.size());
 }
 
 TEST(SealedModel, CopiesShareTheQueryData) {

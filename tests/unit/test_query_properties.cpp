@@ -319,13 +319,14 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
   const CollisionModel m = generatedScene();
   const detail::QueryData* d = detail::queryDataOf(m);
   ASSERT_NE(d, nullptr);
+  ASSERT_EQ(d->lines.size(), m.polygonEdges().size());  // one a polygonEdges entry
   for (std::size_t p = 0; p < m.polygons().size(); ++p) {
     const auto edges = m.edgesOf(m.polygons()[p]);
     for (std::size_t j = 0; j < edges.size(); ++j) {
       const CmEdge& e = m.edges()[std::size_t(std::abs(edges[j]))];
       const Pluecker want =
           Pluecker::fromLine(m.vertices()[std::size_t(e.vertex[0])], m.vertices()[std::size_t(e.vertex[1])]);
-      const Pluecker got = detail::blockLine(d->lines.data(), m.polygons()[p].firstEdge + j);
+      const Pluecker& got = d->lines[m.polygons()[p].firstEdge + j];
       for (int k = 0; k < 6; ++k) ASSERT_EQ(got[k], want[k]) << "polygon " << p << " edge " << j;
     }
   }
