@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <span>
 
 #include "cmkit/model.h"
@@ -49,9 +50,25 @@ inline Pluecker modelEdgeLine(const ModelArrays& m, std::size_t e) {
 /// The line of model edge e (unsigned number) of a sealed model.
 inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) { return modelEdgeLine(m.arrays(), e); }
 
-/// Writes the lines of `edges` (signed edge numbers: the line of |e|, in its
-/// stored direction) to out[0 .. edges.size() - 1].
-void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, Pluecker* out);
+/// What a translation's test of a polygon reads of one of its polygonEdges
+/// entries, side by side: a polygon's entries one after another, in place
+/// of the entry, its edge's record and its line in three arrays (for a
+/// large mesh, two of them read at random).
+struct EdgeUse {
+  Pluecker line;                    ///< the edge's line, in its stored direction (vertex[0] -> vertex[1])
+  std::int32_t edgeNum = 0;         ///< the entry: the edge's number, negative when used reversed
+  std::int32_t vertex[2] = {0, 0};  ///< the edge's vertices (CmEdge::vertex)
+  std::uint32_t internal = 0;       ///< CmEdge::internal
+};
+
+/// The EdgeUse of polygonEdges entry `edgeNum` whose edge's line is `line`.
+inline EdgeUse edgeUse(const ModelArrays& m, std::int32_t edgeNum, const Pluecker& line) {
+  const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
+  return {line, edgeNum, {edge.vertex[0], edge.vertex[1]}, edge.internal ? 1u : 0u};
+}
+
+/// Writes the uses of `edges` (signed edge numbers) to out[0 .. edges.size() - 1].
+void writeEdgeUses(const ModelArrays& m, std::span<const std::int32_t> edges, EdgeUse* out);
 
 /// What a translation's culls read of kLanes polygonRefs entries' polygons:
 /// lane j of each array is entry j's (lanes past the last entry are 0).

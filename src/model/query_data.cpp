@@ -29,28 +29,29 @@ void makeBlocks(std::size_t count, Fill&& fill, Put&& put) {
   }
 }
 
-/// The lines of all the model's polygonEdges entries, in `out`: each edge's
+/// The uses of all the model's polygonEdges entries, in `out`: each edge's
 /// line made once, in the edges' order (most edges are used by two
-/// polygons), then each entry copied from it. In the polygons' order an
-/// entry read its edge's record and two vertices, all three anywhere in
-/// memory.
-void makeModelEdgeLines(const ModelArrays& m, std::vector<Pluecker>& out) {
+/// polygons), then each entry's use made with it. In the polygons' order an
+/// entry's line read its edge's record and two vertices, all three anywhere
+/// in memory.
+void makeModelEdgeUses(const ModelArrays& m, std::vector<EdgeUse>& out) {
   std::vector<Pluecker> edgeLines(m.edges.size());
   // (from 1: no polygon uses the dummy edge 0, whose vertices are never checked)
   for (std::size_t e = 1; e < m.edges.size(); ++e) edgeLines[e] = modelEdgeLine(m, e);
   out.reserve(m.polygonEdges.size());
-  for (const std::int32_t e : m.polygonEdges) out.push_back(edgeLines[std::size_t(std::abs(e))]);
+  for (const std::int32_t e : m.polygonEdges)
+    out.push_back(edgeUse(m, e, edgeLines[std::size_t(std::abs(e))]));
 }
 
 }  // namespace
 
-void writeEdgeLines(const ModelArrays& m, std::span<const std::int32_t> edges, Pluecker* out) {
-  for (const std::int32_t e : edges) *out++ = modelEdgeLine(m, std::size_t(std::abs(e)));
+void writeEdgeUses(const ModelArrays& m, std::span<const std::int32_t> edges, EdgeUse* out) {
+  for (const std::int32_t e : edges) *out++ = edgeUse(m, e, modelEdgeLine(m, std::size_t(std::abs(e))));
 }
 
 std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
   auto d = std::make_shared<QueryData>();
-  makeModelEdgeLines(model, d->lines);
+  makeModelEdgeUses(model, d->edgeUses);
   if constexpr (kCullBlocks) {
     d->culls.reserve(blocksSpanned(0, model.polygonRefs.size()));
     makeBlocks<CullBlock>(
@@ -86,7 +87,7 @@ ModelMemory modelMemory(const CollisionModel& model) {
              bytes(model.polygons()) + bytes(model.brushPlanes()) + bytes(model.brushes()) +
              bytes(model.nodes()) + bytes(model.polygonRefs()) + bytes(model.brushRefs());
   if (const detail::QueryData* d = detail::queryDataOf(model))
-    m.queryData = bytes(d->lines) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
+    m.queryData = bytes(d->edgeUses) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
                   bytes(d->bvh.twins) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) +
                   bytes(d->pointTree.modelNodes);
   return m;

@@ -1,7 +1,8 @@
 // Internal: what the queries derive from a built model once instead of per
 // query (made with the model by its constructor, makeQueryData):
-//  - the line of every polygonEdges entry's edge (a polygon's edge lines are
-//    the entries firstEdge .. firstEdge + numEdges - 1, one after another);
+//  - every polygonEdges entry with its edge's line, vertices and internal
+//    flag (a polygon's are the entries firstEdge .. firstEdge + numEdges - 1,
+//    one after another);
 //  - the bounds, normal and contents of every polygonRefs entry's polygon (a
 //    node's polygons are the entries firstPolygonRef ..), for a
 //    translation's culls, in blocks of kLanes entries with one array per
@@ -9,8 +10,8 @@
 //  - the BSP tree in 8 bytes a node for point contents (point_tree.h);
 //  - the polygons' own hierarchy (polygon_bvh.h), which the translations
 //    walk instead of the BSP tree.
-// Block entry i is lane i % kLanes of block i / kLanes. The lines and culls
-// hold about 24 and 40 bytes per entry, in the order the queries read them.
+// Block entry i is lane i % kLanes of block i / kLanes. The edge uses and
+// culls hold about 40 bytes per entry, in the order the queries read them.
 #pragma once
 
 #include <array>
@@ -29,11 +30,11 @@
 namespace cmkit::detail {
 
 struct QueryData {
-  /// Per polygonEdges entry: its edge's line (in the edge's stored
-  /// direction). One after another, not in blocks of four: a polygon's
-  /// lines are one run of memory (a triangle's 72 bytes), where blocks
-  /// spread them over two blocks' lines whenever they start past lane 0.
-  std::vector<Pluecker> lines;
+  /// Per polygonEdges entry: the entry with its edge's line (in the edge's
+  /// stored direction), vertices and internal flag. One after another, not
+  /// in blocks of four: a polygon's are one run of memory (a triangle's 120
+  /// bytes).
+  std::vector<EdgeUse> edgeUses;
   /// Per polygonRefs entry: its polygon's culls (kCullBlocks builds; else empty).
   std::vector<CullBlock> culls;
   /// The polygons' hierarchy (kCullBlocks builds; else empty).

@@ -98,9 +98,9 @@ struct QueryScratch {
   /// trace-model vertex v passes edge i's line on the negative side.
   std::vector<std::uint64_t> vertexEdgeSides;
   std::vector<std::uint64_t> edgesToTest;  ///< per group: edges to test against the trace-model edges
-  /// The current polygon's edge lines (model/query_data.h), for a model
+  /// The current polygon's edge uses (model/query_data.h), for a model
   /// without query data (ModelAccess::withoutQueryData: tests of that path).
-  std::vector<Pluecker> edgeLines;
+  std::vector<EdgeUse> edgeUses;
   /// A part of the move still to walk: node, fractions and points at its ends.
   struct WalkSegment {
     std::int32_t node;
@@ -396,19 +396,34 @@ inline bool insideBox(const Bounds& b, const Vec3& p) {
            (p.z > b.max.z));
 }
 
+/// A polygon's edges as its tests read them: edge i's entry, line (in the
+/// edge's stored direction), vertices and internal flag at uses[i]
+/// (model/query_data.h).
+struct PolygonEdges {
+  const EdgeUse* uses;
+  std::size_t size;
+  const EdgeUse& operator[](std::size_t i) const { return uses[i]; }
+  const Pluecker& line(std::size_t i) const { return uses[i].line; }
+};
+/// A polygon's edges: the model's (query data), or made in the scratch
+/// (edgeUses) for a model without them, valid until the next call.
+PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly);
+
 /// Calls f(vertex number, position) for the vertices of a polygon's edges
 /// that the query meets for the first time and that lie in the trace bounds:
 /// every model edge and vertex once per query (marked as met), internal
 /// edges skipped. The box test makes all six comparisons (which vertices lie
 /// in the bounds is unpredictable: insideBox).
-template <class F>
-void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
+/// (edgeAt(i), i < count, gives edge i's number, vertices and internal flag:
+/// an EdgeUse or a CmEdge.)
+template <class EdgeAt, class F>
+void forEachNewModelVertex(TraceWork& tw, std::size_t count, EdgeAt edgeAt, F f) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
-  for (const std::int32_t edgeNum : edges) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto [edgeNum, edge] = edgeAt(i);
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edges[e])) continue;
-    const CmEdge& edge = m.edges()[e];
     if (edge.internal) continue;
     for (int k = 0; k < 2; ++k) {
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
@@ -417,6 +432,24 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
       if (insideBox(tw.bounds, p)) f(vn, p);
     }
   }
+}
+/// The same over a polygon's edge list (reading each edge's record).
+template <class F>
+void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
+  const CollisionModel& m = tw.model;
+  forEachNewModelVertex(
+      tw, edges.size(),
+      [&](std::size_t i) {
+        return std::pair<std::int32_t, const CmEdge&>(edges[i], m.edges()[std::size_t(std::abs(edges[i]))]);
+      },
+      f);
+}
+/// The same over a polygon's edge uses.
+template <class F>
+void forEachNewModelVertex(TraceWork& tw, const PolygonEdges& uses, F f) {
+  forEachNewModelVertex(
+      tw, uses.size,
+      [&](std::size_t i) { return std::pair<std::int32_t, const EdgeUse&>(uses[i].edgeNum, uses[i]); }, f);
 }
 
 /// What the plane test of a polygon against the trace bounds decides.
@@ -442,18 +475,9 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
   }
 }
 
-/// A polygon's edge lines (each in its edge's stored direction), edge i's at
-/// lines[i] (model/query_data.h).
-struct PolygonLines {
-  const Pluecker* lines;
-  const Pluecker& line(std::size_t i) const { return lines[i]; }
-};
-/// The lines of a polygon's edges: the model's (query data), or made in the
-/// scratch (edgeLines) for a model without them, valid until the next call.
-PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly);
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges, one
 /// Pluecker each (for the loops that read a polygon's lines many times):
-/// polygonLines' copied.
+/// polygonEdges' copied.
 void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly);
 
 // ---- placing the trace model (placement.cpp) ------------------------------

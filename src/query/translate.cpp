@@ -133,12 +133,11 @@ static_assert(transposesEveryBit());
 // product of two floats is the same either way round), so the same sign
 // bits as one product at a time. For a box against a quadrilateral about a
 // third of the instructions of four edges at a time per vertex (the
-// polygon's lines start at any lane, so its four edges mostly straddle two
-// blocks).
-std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges,
-                                  const PolygonLines& lines) {
+// polygon's lines, then in blocks of four, started at any lane, so its four
+// edges mostly straddled two blocks).
+std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
   QueryScratch& s = tw.scratch;
-  const std::size_t groups = edgeGroups(edges.size());
+  const std::size_t groups = edgeGroups(edges.size);
   sizeEdgeMasks(s, groups);
   using simd::F4;
   static_assert(kLanes == 4 && kMaxTrmVertices <= 32);
@@ -152,7 +151,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
   const int vertexRows = (numVerts + 7) / 8;
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
-    const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
+    const std::size_t count = std::min(kEdgeGroup, edges.size - first);
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     // Per row of eight vertices, the sides of up to eight edges: byte j for
     // edge j of the eight, its bit k for vertex k of the row.
@@ -162,7 +161,8 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
     std::uint64_t rows[kMaxTrmVertices / 8];
     rows[0] = rows[1] = rows[2] = rows[3] = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      const Pluecker& l = lines.line(first + i);
+      const EdgeUse& use = edges[first + i];
+      const Pluecker& l = use.line;
       const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
       const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
       std::uint32_t bits = 0;  // bit v: vertex v's side
@@ -177,7 +177,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
         bits |= simd::bits(p) << (4 * k);
       }
       // Outside edge i: the side is not the one its use asks.
-      outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges[first + i] < 0));
+      outside |= bits ^ (std::uint32_t(0) - std::uint32_t(use.edgeNum < 0));
       for (int r = 0; r < vertexRows; ++r)
         rows[r] |= std::uint64_t((bits >> (8 * r)) & 0xFFu) << (8 * (i % 8));
       // After every eighth edge and the last: the rows transposed into the
@@ -220,17 +220,16 @@ void clearStillVertexLines(TraceWork& tw) {
 
 #else  // one vertex at a time, edge by edge
 
-std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> edges,
-                                  const PolygonLines& lines) {
+std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
   QueryScratch& s = tw.scratch;
-  const std::size_t groups = edgeGroups(edges.size());
+  const std::size_t groups = edgeGroups(edges.size);
   sizeEdgeMasks(s, groups);
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t first = g * kEdgeGroup;
-    const std::size_t count = std::min(kEdgeGroup, edges.size() - first);
+    const std::size_t count = std::min(kEdgeGroup, edges.size - first);
     std::uint64_t reversed = 0;
-    for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges[first + i] < 0) << i;
+    for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges[first + i].edgeNum < 0) << i;
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
       const int v = std::countr_zero(moving);
@@ -238,7 +237,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, std::span<const std::int32_t> e
       std::uint64_t bits = 0;
       for (std::size_t i = 0; i < count; ++i) {
         // Pluecker::permutedInnerProduct, term for term in the same order.
-        const Pluecker& c = lines.line(first + i);
+        const Pluecker& c = edges.line(first + i);
         const Real product =
             c[0] * r[4] + c[1] * r[5] + c[2] * r[3] + c[4] * r[0] + c[5] * r[1] + c[3] * r[2];
         bits |= std::uint64_t(signBitSet(product)) << i;
@@ -331,25 +330,26 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
 
 // Trace-model edge trmEdgeNum against edge i of the polygon, whose line
 // its two vertices pass on different sides.
-void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines,
+void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges,
                                  int trmEdgeNum, std::size_t i) {
   const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   count(s, &QueryStats::edgePairs);
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const std::int32_t edgeNum = m.edgesOf(poly)[i];
-  const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
+  const EdgeUse& use = edges[i];
+  const std::int32_t edgeNum = use.edgeNum;
   // The polygon edge's two vertices must pass the trm edge on different sides.
-  const std::size_t v1 = std::size_t(edge.vertex[edgeNum < 0 ? 1 : 0]);
-  const std::size_t v2 = std::size_t(edge.vertex[edgeNum < 0 ? 0 : 1]);
+  const std::size_t v1 = std::size_t(use.vertex[edgeNum < 0 ? 1 : 0]);
+  const std::size_t v2 = std::size_t(use.vertex[edgeNum < 0 ? 0 : 1]);
   if (modelVertexSide(te, m.vertices()[v1], tw.dir) == modelVertexSide(te, m.vertices()[v2], tw.dir)) return;
 
-  const Vec3& start = m.vertices()[std::size_t(edge.vertex[0])];
-  const Vec3& end = m.vertices()[std::size_t(edge.vertex[1])];
+  const Vec3& start = m.vertices()[std::size_t(use.vertex[0])];
+  const Vec3& end = m.vertices()[std::size_t(use.vertex[1])];
   Real f1;
-  if (!translateEdgeThroughEdge(te.cross, te.pl, lines.line(i), f1)) return;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, use.line, f1)) return;
   if (f1 < 0) return;  // moving away from the edge
   // The same against the edge moved out along its normal by the clip epsilon.
+  const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];
   const Pluecker epsPl =
       Pluecker::fromLine(start + edge.normal * tol::kClipEpsilon, end + edge.normal * tol::kClipEpsilon);
   Real f2;
@@ -366,9 +366,9 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
 // pass on different sides, in their order. The pairs are found first, without
 // a branch per trace-model edge (most edges cross none of a polygon's edge
 // lines, unpredictably), then tested.
-void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonLines& lines) {
+void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges) {
   const QueryScratch& s = tw.scratch;
-  const std::size_t groups = edgeGroups(poly.numEdges);
+  const std::size_t groups = edgeGroups(edges.size);
   std::uint64_t crossing[kMaxTrmEdges + 1];
   std::uint8_t crossingEdge[kMaxTrmEdges + 1];
   for (std::size_t g = 0; g < groups; ++g) {
@@ -386,7 +386,7 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
     }
     for (std::size_t k = 0; k < n; ++k)
       for (std::uint64_t c = crossing[k]; c; c &= c - 1)
-        translateTrmEdgeThroughEdge(tw, poly, lines, crossingEdge[k],
+        translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k],
                                     g * kEdgeGroup + std::size_t(std::countr_zero(c)));
   }
 }
@@ -480,27 +480,25 @@ void placeTranslationFeatures(TraceWork& tw) {
 }  // namespace
 
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
-  const CollisionModel& m = tw.model;
   QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
   count(s, &QueryStats::polygonsTested);
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
-  const auto edges = m.edgesOf(poly);
-  const PolygonLines lines = polygonLines(tw, poly);
-  const std::uint32_t inside = sidesOfPolygonEdges(tw, edges, lines);
+  const PolygonEdges edges = polygonEdges(tw, poly);
+  const std::uint32_t inside = sidesOfPolygonEdges(tw, edges);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
   // after the edge tests, so these masks hold for every trace-model edge).
   bool anyToTest = false;
   if (tw.numEdges > 0) {
-    for (std::size_t first = 0; first < edges.size(); first += kEdgeGroup) {
+    for (std::size_t first = 0; first < edges.size; first += kEdgeGroup) {
       std::uint64_t toTest = 0;
-      for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size()); ++i) {
-        const std::size_t e = std::size_t(std::abs(edges[i]));
+      for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size); ++i) {
+        const std::size_t e = std::size_t(std::abs(edges[i].edgeNum));
         // (& not &&: whether an edge was met before is unpredictable.)
-        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edges[e])) & unsigned(!m.edges()[e].internal))
+        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edges[e])) & unsigned(!edges[i].internal))
                   << (i - first);
       }
       s.edgesToTest[first / kEdgeGroup] = toTest;
@@ -509,7 +507,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   }
 
   translateTrmVerticesThroughPolygon(tw, polyNum, poly, inside);
-  if (anyToTest) translateTrmEdgesThroughPolygon(tw, poly, lines);
+  if (anyToTest) translateTrmEdgesThroughPolygon(tw, poly, edges);
   // Model vertices through the trace model's front polygons. A vertex
   // farther from a heart plane than its limit is left out: its path (along
   // the move, so parallel to both planes) stays at that distance, and every

@@ -212,19 +212,19 @@ void walkSegment(TraceWork& tw) {
 
 }  // namespace
 
-PolygonLines polygonLines(TraceWork& tw, const CmPolygon& poly) {
-  if (tw.queryData) return {tw.queryData->lines.data() + poly.firstEdge};
+PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly) {
+  if (tw.queryData) return {tw.queryData->edgeUses.data() + poly.firstEdge, poly.numEdges};
   const auto edges = tw.model.edgesOf(poly);
-  std::vector<Pluecker>& lines = tw.scratch.edgeLines;
-  if (lines.size() < edges.size()) lines.resize(edges.size());
-  writeEdgeLines(tw.model.arrays(), edges, lines.data());
-  return {lines.data()};
+  std::vector<EdgeUse>& uses = tw.scratch.edgeUses;
+  if (uses.size() < edges.size()) uses.resize(edges.size());
+  writeEdgeUses(tw.model.arrays(), edges, uses.data());
+  return {uses.data(), poly.numEdges};
 }
 
 void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {
   std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
   if (lines.size() < poly.numEdges) lines.resize(poly.numEdges);
-  const PolygonLines from = polygonLines(tw, poly);
+  const PolygonEdges from = polygonEdges(tw, poly);
   for (std::size_t i = 0; i < poly.numEdges; ++i) lines[i] = from.line(i);
 }
 

@@ -239,7 +239,7 @@ TEST(BuildReference, CliInfoMemoryLine) {
       << out;
   EXPECT_GT(arraysKb, 1000);  // lt4: about 3.5 MB
   EXPECT_GT(queryDataKb, 0);
-  EXPECT_LE(ratio, 1.5);  // (QueryData.AtMostOneAndAHalfTimesTheModelsArrays)
+  EXPECT_LE(ratio, 2.0);  // (QueryData.AtMostTwiceTheModelsArrays)
 }
 
 TEST(BuildReference, CliRejectsBrokenMapsWithFileAndLine) {

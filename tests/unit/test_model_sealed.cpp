@@ -33,8 +33,8 @@ TEST(SealedModel, CreateTakesTheArraysAsGiven) {
   EXPECT_EQ(model.vertices().data(), model.arrays().vertices.data());  // spans of its own arrays
   EXPECT_EQ(model.arrays().polygonEdges, arrays.polygonEdges);
   ASSERT_NE(detail::queryDataOf(model), nullptr);
-  // A line for every polygon edge entry.
-  EXPECT_EQ(detail::queryDataOf(model)->lines.size(), arrays.polygonEdges.size());
+  // An edge use for every polygon edge entry.
+  EXPECT_EQ(detail::queryDataOf(model)->edgeUses.size(), arrays.polygonEdges.size());
 }
 
 TEST(SealedModel, CopiesShareTheQueryData) {

@@ -315,19 +315,23 @@ TEST(QueryData, PreparedAndBareModelsAnswerAlikeBundledLt4) {
       test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map"));
 }
 
-TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
+TEST(QueryData, PreparedEdgeUsesAndCullsAreTheModels) {
   const CollisionModel m = generatedScene();
   const detail::QueryData* d = detail::queryDataOf(m);
   ASSERT_NE(d, nullptr);
-  ASSERT_EQ(d->lines.size(), m.polygonEdges().size());  // one a polygonEdges entry
+  ASSERT_EQ(d->edgeUses.size(), m.polygonEdges().size());  // one a polygonEdges entry
   for (std::size_t p = 0; p < m.polygons().size(); ++p) {
     const auto edges = m.edgesOf(m.polygons()[p]);
     for (std::size_t j = 0; j < edges.size(); ++j) {
       const CmEdge& e = m.edges()[std::size_t(std::abs(edges[j]))];
       const Pluecker want =
           Pluecker::fromLine(m.vertices()[std::size_t(e.vertex[0])], m.vertices()[std::size_t(e.vertex[1])]);
-      const Pluecker& got = d->lines[m.polygons()[p].firstEdge + j];
-      for (int k = 0; k < 6; ++k) ASSERT_EQ(got[k], want[k]) << "polygon " << p << " edge " << j;
+      const detail::EdgeUse& use = d->edgeUses[m.polygons()[p].firstEdge + j];
+      for (int k = 0; k < 6; ++k) ASSERT_EQ(use.line[k], want[k]) << "polygon " << p << " edge " << j;
+      ASSERT_EQ(use.edgeNum, edges[j]);
+      ASSERT_EQ(use.vertex[0], e.vertex[0]);
+      ASSERT_EQ(use.vertex[1], e.vertex[1]);
+      ASSERT_EQ(use.internal != 0, e.internal);
     }
   }
   // What the culls read of every node's polygons, entry by entry of polygonRefs
@@ -356,12 +360,12 @@ TEST(QueryData, PreparedLinesAndCullsAreTheModels) {
   Result<ModelPtr> again = CollisionModel::create(m.arrays());
   ASSERT_TRUE(again.ok()) << again.error().toString();
   ASSERT_NE(detail::queryDataOf(**again), nullptr);
-  EXPECT_EQ(detail::queryDataOf(**again)->lines.size(), d->lines.size());
+  EXPECT_EQ(detail::queryDataOf(**again)->edgeUses.size(), d->edgeUses.size());
 }
 
-// The query data adds less memory than the model's own arrays (the speed
-// issue's limit: the model with its query data within twice the model).
-TEST(QueryData, AtMostOneAndAHalfTimesTheModelsArrays) {
+// The query data adds at most twice the model's own arrays (the speed
+// issue's limit: the model with its query data within twice 33f7cee's).
+TEST(QueryData, AtMostTwiceTheModelsArrays) {
   const auto lt4 = test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map");
   std::vector<ModelPtr> models(lt4.begin(), lt4.end());
   models.push_back(std::make_shared<const CollisionModel>(generatedScene()));
@@ -369,8 +373,10 @@ TEST(QueryData, AtMostOneAndAHalfTimesTheModelsArrays) {
     const ModelMemory memory = modelMemory(*m);
     EXPECT_GT(memory.queryData, 0u) << m->name();
     // (The budget: model and query data together at most twice
-    // 33f7cee's, whose query data was 0.82x of the arrays on lt4.)
-    EXPECT_LE(memory.queryData, memory.arrays * 3 / 2) << m->name();
+    // 33f7cee's, whose query data was 0.82x of the arrays on lt4: query
+    // data up to 2.64x the arrays. Each model is held to 2x; lt4's world
+    // takes 1.46x since the edge uses.)
+    EXPECT_LE(memory.queryData, memory.arrays * 2) << m->name();
   }
   // A copy without it.
   const CollisionModel bare = detail::ModelAccess::withoutQueryData(*models.front());
