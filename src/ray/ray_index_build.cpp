@@ -34,21 +34,19 @@ constexpr std::uint32_t kMaxLeafPolygons = RayLayout::kLeafLanes;
 /// sizes the walk's stack.
 constexpr int kSahDepthLimit = 36;
 static_assert(kSahDepthLimit + 32 <= detail::kMaxDepth, "the walk's stack is sized by kMaxDepth");
-/// The surface-area heuristic's cost of visiting a node, in polygon tests.
+/// The surface-area heuristic's cost of visiting a node (the unit of leafCost).
 constexpr Real kNodeCost = 1;
-/// The surface-area heuristic's cost of testing `n` polygons in leaves, in
-/// node visits: each leaf of up to kMaxLeafPolygons costs 1 (its head and
-/// edge rows are read and tested for all lanes at once, and take the same
-/// memory however many lanes are used), and each polygon beyond a leaf's
-/// first 0.5 (its share of the crossings and edge rows that pass). Costing
-/// every polygon 1 (as before 2026-11-29) made leaves of one or two
-/// polygons, half their memory unused (the generated scene of cmkit_peers:
-/// 24 317 leaves for 49 416 items); costing each leaf 1 whatever it holds
-/// filled them but cost the casts of cmkit_peers' lt4 scene about 6 %. This
-/// middle: lt4.map's world index 5.4 MB -> 3.4 MB (and a quarter less time
-/// to build), cmkit_peers' generated
-/// scene's 18.7 MB -> 15.3 MB and its 100 000 casts about 7 % faster, the lt4
-/// scene's unchanged (docs/performance.md, "The ray index's leaves fuller").
+/// The surface-area heuristic's cost of testing `n` polygons in leaves: each
+/// leaf of up to kMaxLeafPolygons costs 1 (its head and edge rows are read
+/// and tested for all lanes at once, and take the same memory however many
+/// lanes are used), and each polygon beyond a leaf's first 0.5 (its share of
+/// the crossings and edge rows that pass). Costing every polygon 1 (before
+/// 2026-11-29) made leaves of one or two polygons, half their memory unused;
+/// costing each leaf 1 whatever it holds filled them but slowed the casts
+/// through lt4's triangles. This middle: lt4.map's world index 5.4 MB ->
+/// 3.4 MB (and a quarter less time to build), cmkit_peers' generated scene's
+/// 18.7 MB -> 15.3 MB and its 100 000 casts about 7 % faster, lt4's scene
+/// unchanged (docs/performance.md, "The ray index's leaves fuller").
 Real leafCost(std::uint32_t n) {
   const std::uint32_t leaves = (n + kMaxLeafPolygons - 1) / kMaxLeafPolygons;
   return Real(leaves) + Real(0.5) * Real(n - leaves);
