@@ -53,6 +53,13 @@ bool CmkitEngine::buildModel(const Scene& scene) {
 void CmkitEngine::buildRayIndex() { s_->rays = std::make_unique<cmkit::RayIndex>(*s_->model); }
 
 bool CmkitEngine::rayIndexUsesAvx2() const { return s_->rays && s_->rays->usesAvx2(); }
+std::string CmkitEngine::modelSize() const {
+  if (!s_->model) return "none";
+  const cmkit::ModelMemory m = cmkit::modelMemory(*s_->model);
+  return std::to_string(m.arrays / 1024) + " KB of arrays, " + std::to_string(m.queryData / 1024) +
+         " KB of query data";
+}
+
 std::string CmkitEngine::rayIndexSize() const {
   if (!s_->rays) return "none";
   return std::to_string(s_->rays->numPolygons()) + " polygons, " + std::to_string(s_->rays->numNodes()) +

@@ -26,6 +26,8 @@ class CmkitEngine {
   bool rayIndexUsesAvx2() const;
   /// The ray index's size: "N polygons, M nodes, K KB".
   std::string rayIndexSize() const;
+  /// The model's memory (cmkit::modelMemory), for --verbose.
+  std::string modelSize() const;
   /// The moving shape: a cmkit::TraceModel::parse spec ("point",
   /// "box:...", "cylinder:8:...") turned by `axis` (rows = the shape's
   /// axes). Fills `spec` with what the peers get. False on a bad spec.

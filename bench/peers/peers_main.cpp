@@ -304,7 +304,10 @@ SceneReport runScene(const Scene& scene, std::size_t n, int passes, int threads,
   for (double& ms : r.buildMs)
     if (ms >= 0) ms *= 1e-6;
   r.rayIndexMs = fastest(buildPasses, 1, [&] { cmkit.buildRayIndex(); }) * 1e-6;
-  if (verbose) std::printf("  cmkit's ray index: %s\n", cmkit.rayIndexSize().c_str());
+  if (verbose) {
+    std::printf("  cmkit's model: %s\n", cmkit.modelSize().c_str());
+    std::printf("  cmkit's ray index: %s\n", cmkit.rayIndexSize().c_str());
+  }
   const std::vector<Query> qs = makeQueries(scene, n);
   const RefScene refScene(scene);
   float axis[9];
@@ -411,7 +414,7 @@ void help() {
       "  --markdown    print the tables as Markdown\n"
       "  --threads N   threads of the reference (not timed; default 2)\n"
       "  --verbose     the reference's time and each engine's largest distance error per kind;\n"
-      "                the size of cmkit's ray index\n"
+      "                the size of cmkit's model and ray index\n"
       "  --list        also every query on which an engine disagrees (before its kind's line)\n"
       "  --kinds K,..  only these kinds (point ray, box, box+axis, cylinder:8, cylinder:8+axis;\n"
       "                default all), e.g. --kinds 'point ray,box+axis'\n"
