@@ -52,19 +52,23 @@ inline Pluecker modelEdgeLine(const CollisionModel& m, std::size_t e) { return m
 
 /// What a translation's test of a polygon reads of one of its polygonEdges
 /// entries, side by side: a polygon's entries one after another, in place
-/// of the entry, its edge's record and its line in three arrays (for a
-/// large mesh, two of them read at random).
+/// of the entry and its edge's record in two arrays (for a large mesh, the
+/// record read at random). 16 bytes: the edge's line is not stored but made
+/// from the two vertices when a polygon is tested (trace_work.h,
+/// polygonEdges), the model's vertex array being a fraction of the size of
+/// the lines (a large mesh's lines in the uses made them 2.5 times as large
+/// and its sweeps wait on memory: docs/performance.md).
 struct EdgeUse {
-  Pluecker line;                    ///< the edge's line, in its stored direction (vertex[0] -> vertex[1])
   std::int32_t edgeNum = 0;         ///< the entry: the edge's number, negative when used reversed
   std::int32_t vertex[2] = {0, 0};  ///< the edge's vertices (CmEdge::vertex)
   std::uint32_t internal = 0;       ///< CmEdge::internal
 };
+static_assert(sizeof(EdgeUse) == 16);
 
-/// The EdgeUse of polygonEdges entry `edgeNum` whose edge's line is `line`.
-inline EdgeUse edgeUse(const ModelArrays& m, std::int32_t edgeNum, const Pluecker& line) {
+/// The EdgeUse of polygonEdges entry `edgeNum`.
+inline EdgeUse edgeUse(const ModelArrays& m, std::int32_t edgeNum) {
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];
-  return {line, edgeNum, {edge.vertex[0], edge.vertex[1]}, edge.internal ? 1u : 0u};
+  return {edgeNum, {edge.vertex[0], edge.vertex[1]}, edge.internal ? 1u : 0u};
 }
 
 /// Writes the uses of `edges` (signed edge numbers) to out[0 .. edges.size() - 1].

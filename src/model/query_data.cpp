@@ -29,24 +29,16 @@ void makeBlocks(std::size_t count, Fill&& fill, Put&& put) {
   }
 }
 
-/// The uses of all the model's polygonEdges entries, in `out`: each edge's
-/// line made once, in the edges' order (most edges are used by two
-/// polygons), then each entry's use made with it. In the polygons' order an
-/// entry's line read its edge's record and two vertices, all three anywhere
-/// in memory.
+/// The uses of all the model's polygonEdges entries, in `out`.
 void makeModelEdgeUses(const ModelArrays& m, std::vector<EdgeUse>& out) {
-  std::vector<Pluecker> edgeLines(m.edges.size());
-  // (from 1: no polygon uses the dummy edge 0, whose vertices are never checked)
-  for (std::size_t e = 1; e < m.edges.size(); ++e) edgeLines[e] = modelEdgeLine(m, e);
   out.reserve(m.polygonEdges.size());
-  for (const std::int32_t e : m.polygonEdges)
-    out.push_back(edgeUse(m, e, edgeLines[std::size_t(std::abs(e))]));
+  for (const std::int32_t e : m.polygonEdges) out.push_back(edgeUse(m, e));
 }
 
 }  // namespace
 
 void writeEdgeUses(const ModelArrays& m, std::span<const std::int32_t> edges, EdgeUse* out) {
-  for (const std::int32_t e : edges) *out++ = edgeUse(m, e, modelEdgeLine(m, std::size_t(std::abs(e))));
+  for (const std::int32_t e : edges) *out++ = edgeUse(m, e);
 }
 
 std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {

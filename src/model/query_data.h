@@ -1,8 +1,9 @@
 // Internal: what the queries derive from a built model once instead of per
 // query (made with the model by its constructor, makeQueryData):
-//  - every polygonEdges entry with its edge's line, vertices and internal
-//    flag (a polygon's are the entries firstEdge .. firstEdge + numEdges - 1,
-//    one after another);
+//  - every polygonEdges entry with its edge's vertices and internal flag
+//    (a polygon's are the entries firstEdge .. firstEdge + numEdges - 1,
+//    one after another; the edges' lines are made from the vertices when a
+//    polygon is tested);
 //  - the bounds, normal and contents of every polygonRefs entry's polygon (a
 //    node's polygons are the entries firstPolygonRef ..), for a
 //    translation's culls, in blocks of kLanes entries with one array per
@@ -10,8 +11,8 @@
 //  - the BSP tree in 8 bytes a node for point contents (point_tree.h);
 //  - the polygons' own hierarchy (polygon_bvh.h), which the translations
 //    walk instead of the BSP tree.
-// Block entry i is lane i % kLanes of block i / kLanes. The edge uses and
-// culls hold about 40 bytes per entry, in the order the queries read them.
+// Block entry i is lane i % kLanes of block i / kLanes. The edge uses hold 16
+// bytes per entry, the culls 40, in the order the queries read them.
 #pragma once
 
 #include <array>
@@ -30,10 +31,9 @@
 namespace cmkit::detail {
 
 struct QueryData {
-  /// Per polygonEdges entry: the entry with its edge's line (in the edge's
-  /// stored direction), vertices and internal flag. One after another, not
-  /// in blocks of four: a polygon's are one run of memory (a triangle's 120
-  /// bytes).
+  /// Per polygonEdges entry: the entry with its edge's vertices and
+  /// internal flag. One after another: a polygon's are one run of memory (a
+  /// triangle's 48 bytes).
   std::vector<EdgeUse> edgeUses;
   /// Per polygonRefs entry: its polygon's culls (kCullBlocks builds; else empty).
   std::vector<CullBlock> culls;

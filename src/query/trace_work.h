@@ -92,7 +92,7 @@ struct QueryScratch {
   std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
   std::vector<Feature> edges;                 ///< per model edge
   std::vector<std::uint32_t> vertexChecked;   ///< model vertex tested this query
-  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon (setPolygonEdgeLines)
+  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon (polygonEdges)
   // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
   // of a group's mask standing for edge kEdgeGroup * group + i.
   /// Bit i of vertexEdgeSides[group * kMaxTrmVertices + v]: the path of
@@ -397,18 +397,36 @@ inline bool insideBox(const Bounds& b, const Vec3& p) {
            (p.z > b.max.z));
 }
 
-/// A polygon's edges as its tests read them: edge i's entry, line (in the
-/// edge's stored direction), vertices and internal flag at uses[i]
-/// (model/query_data.h).
+/// A polygon's edges as its tests read them: edge i's entry, vertices and
+/// internal flag at uses[i] (model/query_data.h), its line (in the edge's
+/// stored direction) at lines[i].
 struct PolygonEdges {
   const EdgeUse* uses;
+  const Pluecker* lines;
   std::size_t size;
   const EdgeUse& operator[](std::size_t i) const { return uses[i]; }
-  const Pluecker& line(std::size_t i) const { return uses[i].line; }
+  const Pluecker& line(std::size_t i) const { return lines[i]; }
 };
-/// A polygon's edges: the model's (query data), or made in the scratch
-/// (edgeUses) for a model without them, valid until the next call.
-PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly);
+/// The uses of a polygon's edges made in the scratch (edgeUses), for a
+/// model without query data; the lines' array sized for them.
+const EdgeUse* makePolygonEdgeUses(TraceWork& tw, const CmPolygon& poly);
+/// A polygon's edges: the model's uses (query data), or made in the scratch
+/// (edgeUses) for a model without them; their lines made in the scratch
+/// (polygonEdgeLines) from the vertices, as modelEdgeLine makes them (the
+/// same bits). Valid until the next call. (Inline: every tested polygon's.)
+inline PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly) {
+  std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
+  const EdgeUse* uses;
+  if (tw.queryData && lines.size() >= poly.numEdges) [[likely]]
+    uses = tw.queryData->edgeUses.data() + poly.firstEdge;
+  else
+    uses = makePolygonEdgeUses(tw, poly);
+  const Vec3* vertices = tw.model.vertices().data();
+  Pluecker* out = lines.data();
+  for (std::size_t i = 0; i < poly.numEdges; ++i)
+    out[i] = Pluecker::fromLine(vertices[uses[i].vertex[0]], vertices[uses[i].vertex[1]]);
+  return {uses, out, poly.numEdges};
+}
 
 /// Calls f(vertex number, position) for the vertices of a polygon's edges
 /// that the query meets for the first time and that lie in the trace bounds:
@@ -477,8 +495,8 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
 }
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges, one
-/// Pluecker each (for the loops that read a polygon's lines many times):
-/// polygonEdges' copied.
+/// Pluecker each (for the loops that read a polygon's lines many times): as
+/// polygonEdges does.
 void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly);
 
 // ---- placing the trace model (placement.cpp) ------------------------------

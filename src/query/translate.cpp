@@ -162,7 +162,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
     rows[0] = rows[1] = rows[2] = rows[3] = 0;
     for (std::size_t i = 0; i < count; ++i) {
       const EdgeUse& use = edges[first + i];
-      const Pluecker& l = use.line;
+      const Pluecker& l = edges.line(first + i);
       const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
       const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
       std::uint32_t bits = 0;  // bit v: vertex v's side
@@ -346,7 +346,7 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   const Vec3& start = m.vertices()[std::size_t(use.vertex[0])];
   const Vec3& end = m.vertices()[std::size_t(use.vertex[1])];
   Real f1;
-  if (!translateEdgeThroughEdge(te.cross, te.pl, use.line, f1)) return;
+  if (!translateEdgeThroughEdge(te.cross, te.pl, edges.line(i), f1)) return;
   if (f1 < 0) return;  // moving away from the edge
   // The same against the edge moved out along its normal by the clip epsilon.
   const CmEdge& edge = m.edges()[std::size_t(std::abs(edgeNum))];

@@ -212,21 +212,18 @@ void walkSegment(TraceWork& tw) {
 
 }  // namespace
 
-PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly) {
-  if (tw.queryData) return {tw.queryData->edgeUses.data() + poly.firstEdge, poly.numEdges};
-  const auto edges = tw.model.edgesOf(poly);
-  std::vector<EdgeUse>& uses = tw.scratch.edgeUses;
-  if (uses.size() < edges.size()) uses.resize(edges.size());
-  writeEdgeUses(tw.model.arrays(), edges, uses.data());
-  return {uses.data(), poly.numEdges};
-}
-
-void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) {
+const EdgeUse* makePolygonEdgeUses(TraceWork& tw, const CmPolygon& poly) {
   std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
   if (lines.size() < poly.numEdges) lines.resize(poly.numEdges);
-  const PolygonEdges from = polygonEdges(tw, poly);
-  for (std::size_t i = 0; i < poly.numEdges; ++i) lines[i] = from.line(i);
+  if (tw.queryData) return tw.queryData->edgeUses.data() + poly.firstEdge;
+  const auto edges = tw.model.edgesOf(poly);
+  std::vector<EdgeUse>& made = tw.scratch.edgeUses;
+  if (made.size() < edges.size()) made.resize(edges.size());
+  writeEdgeUses(tw.model.arrays(), edges, made.data());
+  return made.data();
 }
+
+void setPolygonEdgeLines(TraceWork& tw, const CmPolygon& poly) { polygonEdges(tw, poly); }
 
 void translateThroughModel(TraceWork& tw) {
   if (translateThroughBvh(tw)) return;  // the polygons' hierarchy, where the model has one
