@@ -96,7 +96,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
   if (tw.isConvex) {
     for (std::int32_t edgeNum : edges) {
       const std::size_t e = std::size_t(std::abs(edgeNum));
-      if (s.isChecked(s.edges[e])) continue;
+      if (s.isChecked(s.edgeChecked, e)) continue;
       for (int j = 0; j < 2; ++j) {
         const std::size_t vn = std::size_t(m.edges()[e].vertex[j]);
         if (s.isChecked(s.vertexChecked, vn)) continue;
@@ -146,7 +146,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (s.testAndMark(s.edges[e])) continue;
+    if (s.testAndMark(s.edgeChecked, e)) continue;
     const CmEdge& edge = m.edges()[e];
     const std::size_t v1 = std::size_t(edge.vertex[0]), v2 = std::size_t(edge.vertex[1]);
     for (int j = 0; j < tw.numPolys; ++j) {

@@ -29,13 +29,15 @@ void QueryScratch::begin(const CollisionModel& model) {
   grow(polygonChecked, np);
   if constexpr (kQueryStats) grow(polygonMet, np);
   grow(brushChecked, nb);
-  grow(edges, ne);
+  grow(edgeChecked, ne);
+  grow(edgePairs, ne);
   grow(vertexChecked, nv);
   if (++generation == 0) {  // wrapped: clear every mark once every 2^32 queries
     std::fill(polygonChecked.begin(), polygonChecked.end(), 0u);
     std::fill(polygonMet.begin(), polygonMet.end(), 0u);
     std::fill(brushChecked.begin(), brushChecked.end(), 0u);
-    std::fill(edges.begin(), edges.end(), Feature{});
+    std::fill(edgeChecked.begin(), edgeChecked.end(), 0u);
+    std::fill(edgePairs.begin(), edgePairs.end(), EdgePairs{});
     std::fill(vertexChecked.begin(), vertexChecked.end(), 0u);
     generation = 1;
   }

@@ -319,7 +319,7 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
     const std::size_t e = std::size_t(std::abs(edgeNum));
     const CmEdge& edge = m.edges()[e];
     if (edge.internal) continue;
-    std::uint32_t& tested = s.testedPairs(s.edges[e]);
+    std::uint32_t& tested = s.testedPairs(s.edgePairs[e]);
     const std::uint32_t todo = collecting ? trmEdgesHere : trmEdgesHere & ~tested;
     if (!todo) continue;
     tested |= todo;

@@ -74,23 +74,25 @@ inline constexpr std::size_t edgeGroups(std::size_t numEdges) {
 /// holds). A mark or cache entry is valid when its generation equals the
 /// current one, so starting a query costs nothing but a counter increment.
 struct QueryScratch {
-  /// What a query keeps about one model edge: its mark, and for rotations
-  /// the trace-model edges already tested against it (bit trmEdgeBit(j)),
-  /// together so that one cache line serves both. Side tests are computed
-  /// where they are needed, in one operand order per test, not cached: a
-  /// scattered cache entry cost more than the products it saved.
-  struct Feature {
-    std::uint32_t checked = 0;      ///< tested this query (== generation)
+  /// What a rotation keeps about one model edge: the trace-model edges
+  /// already tested against it (bit trmEdgeBit(j)). (Apart from the edge's
+  /// mark, edgeChecked: a translation reads only the mark, and a large
+  /// mesh's marks then take a third of the memory, 4 bytes an edge.) Side
+  /// tests are computed where they are needed, in one operand order per
+  /// test, not cached: a scattered cache entry cost more than the products
+  /// it saved.
+  struct EdgePairs {
     std::uint32_t pairsGen = 0;     ///< testedPairs valid (== generation)
     std::uint32_t testedPairs = 0;  ///< rotation: trace-model edges tested against this edge
   };
-  static_assert(kMaxTrmEdges <= 32, "a Feature has one bit per trace-model edge");
+  static_assert(kMaxTrmEdges <= 32, "EdgePairs has one bit per trace-model edge");
 
   std::uint32_t generation = 0;
   std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
   std::vector<std::uint32_t> polygonMet;      ///< polygon counted as met (QueryStats builds only)
   std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
-  std::vector<Feature> edges;                 ///< per model edge
+  std::vector<std::uint32_t> edgeChecked;     ///< model edge tested this query
+  std::vector<EdgePairs> edgePairs;           ///< per model edge (rotations)
   std::vector<std::uint32_t> vertexChecked;   ///< model vertex tested this query
   std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon (polygonEdges)
   // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
@@ -144,14 +146,8 @@ struct QueryScratch {
     marks[i] = generation;
     return false;
   }
-  bool testAndMark(Feature& f) {
-    if (f.checked == generation) return true;
-    f.checked = generation;
-    return false;
-  }
-  bool isChecked(const Feature& f) const { return f.checked == generation; }
   /// The rotation's tested pairs of an edge for this query (zeroed on first use).
-  std::uint32_t& testedPairs(Feature& f) {
+  std::uint32_t& testedPairs(EdgePairs& f) {
     if (f.pairsGen != generation) {
       f.pairsGen = generation;
       f.testedPairs = 0;
@@ -442,7 +438,7 @@ void forEachNewModelVertex(TraceWork& tw, std::size_t count, EdgeAt edgeAt, F f)
   for (std::size_t i = 0; i < count; ++i) {
     const auto [edgeNum, edge] = edgeAt(i);
     const std::size_t e = std::size_t(std::abs(edgeNum));
-    if (s.testAndMark(s.edges[e])) continue;
+    if (s.testAndMark(s.edgeChecked, e)) continue;
     if (edge.internal) continue;
     for (int k = 0; k < 2; ++k) {
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);

@@ -498,7 +498,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
       for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size); ++i) {
         const std::size_t e = std::size_t(std::abs(edges[i].edgeNum));
         // (& not &&: whether an edge was met before is unpredictable.)
-        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edges[e])) & unsigned(!edges[i].internal))
+        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edgeChecked, e)) & unsigned(!edges[i].internal))
                   << (i - first);
       }
       s.edgesToTest[first / kEdgeGroup] = toTest;
