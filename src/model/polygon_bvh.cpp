@@ -120,6 +120,12 @@ struct Summary {
 class Builder {
  public:
   Builder(const ModelArrays& m, PolygonBvh& out) : out_(out) {
+    // (A leaf holds a polygon's edge count in 16 bits: a model with a longer
+    // polygon, which no map or mesh has, gets no hierarchy.)
+    fits_ = std::all_of(m.polygons.begin(), m.polygons.end(), [](const CmPolygon& p) {
+      return p.numEdges <= std::numeric_limits<std::uint16_t>::max();
+    });
+    if (!fits_) return;
     // A polygon and its reversed twin of the same bounds are one item (the
     // lower number's), the twin held beside it in the leaf.
     std::vector<std::uint32_t> all(m.polygons.size());
@@ -130,12 +136,13 @@ class Builder {
     for (std::size_t i = 0; i < twin_.size(); ++i)
       if (twin_[i] >= 0 && !sameBounds(m.polygons[i].bounds, m.polygons[std::size_t(twin_[i])].bounds))
         twin_[i] = -1;  // (then its twin's entry is cleared too: the test is symmetric)
-    hasTwins_ = std::any_of(twin_.begin(), twin_.end(), [](std::int32_t t) { return t >= 0; });
     items_.reserve(m.polygons.size());
     planes_.reserve(m.polygons.size());
+    edges_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
       const CmPolygon& p = m.polygons[i];
-      planes_.push_back(p.plane);                                // (by polygon number: a twin's too)
+      planes_.push_back(p.plane);  // (by polygon number: a twin's too)
+      edges_.push_back({p.material, p.firstEdge, p.numEdges});
       if (twin_[i] >= 0 && std::size_t(twin_[i]) < i) continue;  // in its twin's item
       Item item;
       for (int k = 0; k < 3; ++k) {
@@ -148,14 +155,14 @@ class Builder {
     }
   }
 
-  void build() {
-    if (items_.empty()) return;
+  void build(std::span<const EdgeUse> uses) {
+    if (!fits_ || items_.empty()) return;
     out_.nodes.reserve(items_.size() / 2 + 1);
     out_.leaves.reserve(items_.size() / 2 + 1);
     const Range all{0, items_.size()};
     (void)node(all, summaryOf(all), 1);
-    out_.twins.shrink_to_fit();  // (grown lane by lane)
     addPlanes();
+    addUses(uses);
   }
 
  private:
@@ -277,7 +284,9 @@ class Builder {
       const std::int32_t polyNum = used ? items_[r.first + j].polygon : -1;
       const std::int32_t twin = used ? twin_[std::size_t(polyNum)] : -1;
       b.polygon[j] = twin >= 0 ? polyNum | BvhLeaf::kHasTwin : polyNum;
-      if (hasTwins_) out_.twins.push_back(twin);
+      b.twin[j] = twin;
+      b.material[j] = b.twinMaterial[j] = -1;  // (addUses)
+      b.numEdges[j] = 0;
       if (!used) {
         for (int k = 0; k < 3; ++k) {
           b.min[k][j] = std::numeric_limits<float>::max();
@@ -320,6 +329,40 @@ class Builder {
       }
     }
     CMKIT_ASSERT(i == items_.size());
+  }
+
+  /// The leaves' materials, edge counts and edge uses (copied from the
+  /// model's, `uses`, in the leaves' order), after the hierarchy, each
+  /// polygon's fetched some lanes ahead as in addPlanes.
+  void addUses(std::span<const EdgeUse> uses) {
+    constexpr std::size_t kFetchAhead = 16;
+    std::vector<std::int32_t> order;  // the polygons in the order their uses are copied
+    order.reserve(items_.size() * 2);
+    std::size_t total = 0;
+    for (BvhLeaf& b : out_.leaves) {
+      b.firstUse = std::uint32_t(total);
+      for (std::size_t j = 0; j < kLanes; ++j) {
+        if (b.polygon[j] < 0) continue;
+        const PolygonUses& e = edges_[std::size_t(b.polygonAt(j))];
+        b.numEdges[j] = std::uint16_t(e.numEdges);
+        b.material[j] = e.material;
+        order.push_back(b.polygonAt(j));
+        total += e.numEdges;
+        if (b.twin[j] < 0) continue;
+        b.twinMaterial[j] = edges_[std::size_t(b.twin[j])].material;
+        order.push_back(b.twin[j]);
+        total += e.numEdges;  // (a twin's edges are its polygon's: model/twins.h)
+      }
+    }
+    out_.uses.reserve(total);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      if (i + kFetchAhead < order.size())
+        __builtin_prefetch(uses.data() + edges_[std::size_t(order[i + kFetchAhead])].firstEdge);
+      const PolygonUses& e = edges_[std::size_t(order[i])];
+      out_.uses.insert(out_.uses.end(), uses.begin() + std::ptrdiff_t(e.firstEdge),
+                       uses.begin() + std::ptrdiff_t(e.firstEdge + e.numEdges));
+    }
+    CMKIT_ASSERT(out_.uses.size() == total && total <= std::numeric_limits<std::uint32_t>::max());
   }
 
   /// An inner node of the items of r (more than kLanes; summary `sum`): its number.
@@ -386,17 +429,23 @@ class Builder {
   PolygonBvh& out_;
   std::vector<Item> items_;
   std::vector<std::int32_t> twin_;  ///< per polygon: its reversed twin of the same bounds, or -1
-  bool hasTwins_ = false;           ///< some polygon has one (else PolygonBvh::twins stays empty)
+  bool fits_ = true;                ///< every polygon's edge count fits a leaf's 16 bits
   /// The polygons' planes, by number (the leaves read them in the items'
   /// order, at random: a compact array instead of the model's polygons).
   std::vector<Plane> planes_;
+  /// What addUses reads of a polygon, by number (compact, as planes_).
+  struct PolygonUses {
+    std::int32_t material;
+    std::uint32_t firstEdge, numEdges;
+  };
+  std::vector<PolygonUses> edges_;
 };
 
 }  // namespace
 
-PolygonBvh buildPolygonBvh(const ModelArrays& m) {
+PolygonBvh buildPolygonBvh(const ModelArrays& m, std::span<const EdgeUse> uses) {
   PolygonBvh bvh;
-  if (m.polygons.size() > kBvhMinPolygons) Builder(m, bvh).build();
+  if (m.polygons.size() > kBvhMinPolygons) Builder(m, bvh).build(uses);
   return bvh;
 }
 

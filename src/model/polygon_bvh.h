@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "model/query_blocks.h"
@@ -36,13 +37,34 @@ static_assert(sizeof(BvhNode) == 128);
 /// waited for), each with a flag for a reversed twin (model/twins.h): a
 /// two-sided surface's two sides take one lane, whose culls are the same
 /// for both but the facing one, which tells the sides apart (the twin's
-/// plane is exactly the lane's negated, its bounds the same).
+/// plane is exactly the lane's negated, its bounds and contents the same).
+/// The fourth cache line holds the rest of what a translation's test reads
+/// of a lane's polygons (so not the model's polygon records, read at
+/// random): their materials, twins, edge counts, and where their edge uses
+/// start (PolygonBvh::uses, the leaf's one after another).
 struct alignas(64) BvhLeaf : CullBlock {
-  /// A lane's polygon number with this bit: it has a twin (PolygonBvh::twins).
+  /// A lane's polygon number with this bit: it has a twin (BvhLeaf::twin).
   static constexpr std::int32_t kHasTwin = std::int32_t(1) << 30;
   Real dist[kLanes];
   /// Lane j's polygon number, with kHasTwin when it has a twin (-1: unused).
   std::int32_t polygon[kLanes];
+  /// Lane j's polygon's reversed twin (-1: none).
+  std::int32_t twin[kLanes];
+  /// The materials of lane j's polygon and of its twin (CmPolygon::material).
+  std::int32_t material[kLanes];
+  std::int32_t twinMaterial[kLanes];
+  /// The leaf's edge uses start at PolygonBvh::uses[firstUse]: lane 0's
+  /// polygon's numEdges[0], its twin's numEdges[0] (when it has one), lane
+  /// 1's, ... (a twin has as many edges as its polygon).
+  std::uint32_t firstUse;
+  std::uint16_t numEdges[kLanes];  ///< lane j's polygon's (CmPolygon::numEdges)
+  /// Lane j's polygon's edge uses.
+  std::size_t usesOf(std::size_t j) const {
+    std::size_t at = firstUse;
+    for (std::size_t i = 0; i < j; ++i)
+      at += std::size_t(numEdges[i]) << unsigned((polygon[i] & kHasTwin) != 0);
+    return at;
+  }
   /// Lane j's polygon number (lane j used).
   std::int32_t polygonAt(std::size_t j) const { return polygon[j] & ~kHasTwin; }
   /// The used lanes whose polygon has a twin (bit j for lane j).
@@ -55,7 +77,7 @@ struct alignas(64) BvhLeaf : CullBlock {
 };
 // (Only the float builds that make the hierarchy: a double build's blocks
 // are twice as large, and it walks the BSP tree.)
-static_assert(sizeof(Real) != sizeof(float) || sizeof(BvhLeaf) == 192);
+static_assert(sizeof(Real) != sizeof(float) || sizeof(BvhLeaf) == 256);
 
 /// The hierarchy of a model's polygons.
 struct PolygonBvh {
@@ -64,11 +86,11 @@ struct PolygonBvh {
   /// Leaf b's polygons' culls (bounds, contents, normal); an unused lane
   /// has contents 0 and inverted bounds.
   std::vector<BvhLeaf> leaves;
-  /// The reversed twin of leaf b's lane j at b * kLanes + j, for the lanes
-  /// with BvhLeaf::kHasTwin (else -1); empty when no lane has one. (Beside
-  /// the leaves, not in them: a leaf's 192 bytes are full, and the twin is
-  /// read only when it faces the move.)
-  std::vector<std::int32_t> twins;
+  /// The leaves' polygons' edge uses (query_blocks.h), leaf by leaf in the
+  /// leaves' order (BvhLeaf::firstUse): a leaf's in one run of memory, the
+  /// leaves near one another in space near one another here. (A copy of
+  /// the model's edge uses in another order, for the translations' tests.)
+  std::vector<EdgeUse> uses;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
   std::size_t depth = 0;
@@ -86,10 +108,12 @@ struct PolygonBvh {
 inline constexpr std::size_t kBvhMinPolygons = 256;
 
 /// The hierarchy of the model's polygons (the arrays' numbers in range);
-/// empty for a model with kBvhMinPolygons or fewer.
+/// empty for a model with kBvhMinPolygons or fewer, or with a polygon of
+/// more than 65 535 edges (BvhLeaf::numEdges). `uses`: the model's edge
+/// uses (QueryData::edgeUses), copied into the leaves' order.
 /// Made top-down, splitting each set of polygons in two at the cheapest of
 /// a few planes along its widest axis by the surface-area cost (binned), into
 /// up to kLanes children per node; sets of up to kLanes polygons are leaves.
-PolygonBvh buildPolygonBvh(const ModelArrays& m);
+PolygonBvh buildPolygonBvh(const ModelArrays& m, std::span<const EdgeUse> uses);
 
 }  // namespace cmkit::detail

@@ -60,7 +60,7 @@ std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
           b.contents[j] = p.contents;
         },
         [&](const CullBlock& b) { d->culls.push_back(b); });
-    d->bvh = buildPolygonBvh(model);
+    d->bvh = buildPolygonBvh(model, d->edgeUses);
   }
   d->pointTree = buildPointTree(model);
   return d;
@@ -80,7 +80,7 @@ ModelMemory modelMemory(const CollisionModel& model) {
              bytes(model.nodes()) + bytes(model.polygonRefs()) + bytes(model.brushRefs());
   if (const detail::QueryData* d = detail::queryDataOf(model))
     m.queryData = bytes(d->edgeUses) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
-                  bytes(d->bvh.twins) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) +
+                  bytes(d->bvh.uses) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) +
                   bytes(d->pointTree.modelNodes);
   return m;
 }

@@ -322,6 +322,10 @@ bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> 
 /// plane test, then the trace-model vertices, edges and the model vertices
 /// against it; true when the trace model is blocked completely.
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly);
+/// The same with the polygon's edge uses given (poly.numEdges of them from
+/// `uses`; poly.firstEdge is not read): the polygons' hierarchy's copy.
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                const EdgeUse* uses);
 /// A point trace (no edges, no polygons) through a polygon. The edge sides
 /// are not cached: a point meets few polygons, and computing a side costs
 /// less than reading a cache entry of a large model.
@@ -406,22 +410,28 @@ struct PolygonEdges {
 /// The uses of a polygon's edges made in the scratch (edgeUses), for a
 /// model without query data; the lines' array sized for them.
 const EdgeUse* makePolygonEdgeUses(TraceWork& tw, const CmPolygon& poly);
-/// A polygon's edges: the model's uses (query data), or made in the scratch
-/// (edgeUses) for a model without them; their lines made in the scratch
-/// (polygonEdgeLines) from the vertices, as modelEdgeLine makes them (the
-/// same bits). Valid until the next call. (Inline: every tested polygon's.)
-inline PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly) {
+/// Sizes the scratch's lines for a polygon of `numEdges` edges.
+void sizePolygonEdgeLines(TraceWork& tw, std::size_t numEdges);
+/// A polygon's edges whose uses are `uses[0 .. numEdges - 1]`: their lines
+/// made in the scratch (polygonEdgeLines) from the vertices, as
+/// modelEdgeLine makes them (the same bits). Valid until the next call.
+/// (Inline: every tested polygon's.)
+inline PolygonEdges polygonEdges(TraceWork& tw, const EdgeUse* uses, std::size_t numEdges) {
   std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
-  const EdgeUse* uses;
-  if (tw.queryData && lines.size() >= poly.numEdges) [[likely]]
-    uses = tw.queryData->edgeUses.data() + poly.firstEdge;
-  else
-    uses = makePolygonEdgeUses(tw, poly);
+  if (lines.size() < numEdges) [[unlikely]]
+    sizePolygonEdgeLines(tw, numEdges);
   const Vec3* vertices = tw.model.vertices().data();
   Pluecker* out = lines.data();
-  for (std::size_t i = 0; i < poly.numEdges; ++i)
+  for (std::size_t i = 0; i < numEdges; ++i)
     out[i] = Pluecker::fromLine(vertices[uses[i].vertex[0]], vertices[uses[i].vertex[1]]);
-  return {uses, out, poly.numEdges};
+  return {uses, out, numEdges};
+}
+/// A polygon's edges: the model's uses (query data), or made in the scratch
+/// (edgeUses) for a model without them; their lines as above.
+inline PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly) {
+  const EdgeUse* uses =
+      tw.queryData ? tw.queryData->edgeUses.data() + poly.firstEdge : makePolygonEdgeUses(tw, poly);
+  return polygonEdges(tw, uses, poly.numEdges);
 }
 
 /// Calls f(vertex number, position) for the vertices of a polygon's edges

@@ -479,14 +479,18 @@ void placeTranslationFeatures(TraceWork& tw) {
 
 }  // namespace
 
-bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+namespace {
+
+// (uses: the polygon's edge uses, or null for the model's)
+bool translateTrmThroughPolygonUses(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                    const EdgeUse* uses) {
   QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
   count(s, &QueryStats::polygonsTested);
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
-  const PolygonEdges edges = polygonEdges(tw, poly);
+  const PolygonEdges edges = uses ? polygonEdges(tw, uses, poly.numEdges) : polygonEdges(tw, poly);
   const std::uint32_t inside = sidesOfPolygonEdges(tw, edges);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
@@ -532,6 +536,17 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
 
   shrinkTraceBounds(tw);
   return tw.fraction == 0;
+}
+
+}  // namespace
+
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
+  return translateTrmThroughPolygonUses(tw, polyNum, poly, nullptr);
+}
+
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                const EdgeUse* uses) {
+  return translateTrmThroughPolygonUses(tw, polyNum, poly, uses);
 }
 
 }  // namespace cmkit::detail

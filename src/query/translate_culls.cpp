@@ -149,9 +149,22 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
   unsigned front = pass & facing.front, back = pass & facing.back & b.twinLanes();
   // A polygon's tests; false when the query is over (blocked completely).
   // The trace bounds shrank at a hit: the lanes left are culled again.
-  const auto test = [&](std::int32_t polyNum) {
+  // What the tests read of the polygon, the leaf holds (not the model's
+  // record, read at random): its plane (a twin's exactly negated), contents,
+  // material, edge count and edge uses; not its bounds, which a
+  // translation's tests do not read past the culls.
+  const auto test = [&](std::size_t lane, bool twin) {
+    CmPolygon poly;
+    const Real sign = twin ? Real(-1) : Real(1);
+    poly.plane.normal = {sign * b.normal[0][lane], sign * b.normal[1][lane], sign * b.normal[2][lane]};
+    poly.plane.dist = sign * b.dist[lane];
+    poly.contents = b.contents[lane];
+    poly.material = twin ? b.twinMaterial[lane] : b.material[lane];
+    poly.numEdges = b.numEdges[lane];
+    const std::int32_t polyNum = twin ? b.twin[lane] : b.polygonAt(lane);
+    const EdgeUse* uses = bvh.uses.data() + b.usesOf(lane) + (twin ? poly.numEdges : 0);
     const Real before = tw.fraction;
-    if (translateTrmThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return false;
+    if (translateTrmThroughPolygon(tw, polyNum, poly, uses)) return false;
     if (tw.fraction != before && (front | back)) {
       const BoundsLanes bounds(tw);
       const unsigned left = bounds.pass(b) & leafPlanesCrossed(tw, b);
@@ -165,11 +178,11 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
     const unsigned bit = 1u << lane;
     if (front & bit) {
       front &= ~bit;
-      if (!test(b.polygonAt(std::size_t(lane)))) return true;
+      if (!test(std::size_t(lane), false)) return true;
     }
     if (back & bit) {
       back &= ~bit;
-      if (!test(bvh.twins[leaf * kLanes + std::size_t(lane)])) return true;
+      if (!test(std::size_t(lane), true)) return true;
     }
   }
   return false;
@@ -185,7 +198,7 @@ bool translatePointThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::siz
     std::int32_t polyNum = b.polygonAt(lane);
     if (pointThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
     if (!(twins >> lane & 1u)) continue;
-    polyNum = bvh.twins[leaf * kLanes + lane];  // (the polygon or its twin faces away: its cull)
+    polyNum = b.twin[lane];  // (the polygon or its twin faces away: its cull)
     if (pointThroughPolygon(tw, polyNum, tw.model.polygons()[std::size_t(polyNum)])) return true;
   }
   return false;

@@ -212,10 +212,12 @@ void walkSegment(TraceWork& tw) {
 
 }  // namespace
 
-const EdgeUse* makePolygonEdgeUses(TraceWork& tw, const CmPolygon& poly) {
+void sizePolygonEdgeLines(TraceWork& tw, std::size_t numEdges) {
   std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
-  if (lines.size() < poly.numEdges) lines.resize(poly.numEdges);
-  if (tw.queryData) return tw.queryData->edgeUses.data() + poly.firstEdge;
+  if (lines.size() < numEdges) lines.resize(numEdges);
+}
+
+const EdgeUse* makePolygonEdgeUses(TraceWork& tw, const CmPolygon& poly) {
   const auto edges = tw.model.edgesOf(poly);
   std::vector<EdgeUse>& made = tw.scratch.edgeUses;
   if (made.size() < edges.size()) made.resize(edges.size());

@@ -61,14 +61,33 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
       }
       const CmPolygon& p = m.polygons()[std::size_t(polyNum)];
       ++seen[std::size_t(polyNum)];
-      const std::int32_t twin = bvh.twins.empty() ? -1 : bvh.twins[leaf * kLanes + j];
+      const std::int32_t twin = b.twin[j];
       EXPECT_EQ(b.twinLanes() >> j & 1u, unsigned(twin >= 0)) << "the lane's flag says whether it has a twin";
+      // What a translation's test reads of the lane's polygons: the leaf's
+      // copies (materials, edge counts, the uses one polygon after another).
+      const auto expectUses = [&](const CmPolygon& q, std::size_t at) {
+        ASSERT_LE(at + q.numEdges, bvh.uses.size());
+        const detail::QueryData* d = detail::queryDataOf(m);
+        for (std::size_t i = 0; i < q.numEdges; ++i) {
+          const detail::EdgeUse& want = d->edgeUses[q.firstEdge + i];
+          const detail::EdgeUse& got = bvh.uses[at + i];
+          EXPECT_EQ(got.edgeNum, want.edgeNum);
+          EXPECT_EQ(got.vertex[0], want.vertex[0]);
+          EXPECT_EQ(got.vertex[1], want.vertex[1]);
+          EXPECT_EQ(got.internal, want.internal);
+        }
+      };
+      EXPECT_EQ(b.numEdges[j], p.numEdges);
+      EXPECT_EQ(b.material[j], p.material);
+      expectUses(p, b.usesOf(j));
       if (twin >= 0) {  // the lane's other side: reversed, its culls the lane's
         const CmPolygon& t = m.polygons()[std::size_t(twin)];
         ++seen[std::size_t(twin)];
         EXPECT_TRUE(detail::isTwin(m.arrays(), p, t)) << "polygon " << polyNum << " twin " << twin;
         EXPECT_EQ(t.bounds.min, p.bounds.min);
         EXPECT_EQ(t.bounds.max, p.bounds.max);
+        EXPECT_EQ(b.twinMaterial[j], t.material);
+        expectUses(t, b.usesOf(j) + p.numEdges);  // (a twin's uses follow its polygon's)
       }
       contents |= p.contents;
       EXPECT_EQ(b.contents[j], p.contents);
@@ -122,6 +141,7 @@ TEST(PolygonBvh, HoldsEveryPolygonOnceInBoxesThatContainIt) {
   std::vector<int> seen(world->polygons().size(), 0);
   const std::size_t depth = checkSubtree(*world, bvh, 0, nullptr, 0, seen);
   for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "polygon " << i;
+  EXPECT_EQ(bvh.uses.size(), world->polygonEdges().size()) << "every polygon's uses copied once";
   EXPECT_EQ(depth, bvh.depth) << "the walks' stacks are sized by the depth";
   // A leaf per about three polygons at least (kLanes a leaf at most).
   EXPECT_GE(bvh.leaves.size() * kLanes, world->polygons().size());
@@ -193,7 +213,7 @@ TEST(PolygonBvh, SmallModelsHaveNone) {
   const detail::QueryData* d = detail::queryDataOf(box);
   ASSERT_NE(d, nullptr);
   EXPECT_TRUE(d->bvh.empty());
-  EXPECT_TRUE(detail::buildPolygonBvh(ModelArrays{}).empty());
+  EXPECT_TRUE(detail::buildPolygonBvh(ModelArrays{}, {}).empty());
 }
 
 /// Walks the model's node `nodeNum` and the point tree's place `place`
