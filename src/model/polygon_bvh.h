@@ -103,8 +103,9 @@ struct PolygonBvh {
 /// Models with at most this many polygons get no hierarchy (their
 /// translations walk the BSP tree): a walk of a small model's tree meets a
 /// handful of polygons as fast, and a hierarchy's nodes and leaves (128 and
-/// 192 bytes, a leaf for about three polygons) would outweigh the model's
-/// own arrays (a map's small brush entities: 1.6x their arrays at 32).
+/// 256 bytes, a leaf for about three polygons, besides a copy of their edge
+/// uses) would outweigh the model's own arrays (a map's small brush
+/// entities: 1.6x their arrays at 32, when a leaf was 192 bytes).
 inline constexpr std::size_t kBvhMinPolygons = 256;
 
 /// The hierarchy of the model's polygons (the arrays' numbers in range);

@@ -147,6 +147,12 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
   // when the move runs along their plane), in lane order.
   const FacingLanes facing = blockFacing(tw, b);
   unsigned front = pass & facing.front, back = pass & facing.back & b.twinLanes();
+  // The lanes' edge uses, asked for together (each polygon's test waits for
+  // its own first: this overlaps the waits of the lanes after the first).
+  for (unsigned lanes = front | back; lanes; lanes &= lanes - 1) {
+    const std::size_t lane = std::size_t(std::countr_zero(lanes));
+    prefetch(bvh.uses.data() + b.usesOf(lane) + ((front >> lane) & 1u ? 0 : b.numEdges[lane]));
+  }
   // A polygon's tests; false when the query is over (blocked completely).
   // The trace bounds shrank at a hit: the lanes left are culled again.
   // What the tests read of the polygon, the leaf holds (not the model's
