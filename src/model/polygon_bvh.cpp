@@ -347,22 +347,24 @@ class Builder {
         b.numEdges[j] = std::uint16_t(e.numEdges);
         b.material[j] = e.material;
         order.push_back(b.polygonAt(j));
-        total += e.numEdges;
+        total += BvhLeaf::usesStride(e.numEdges);
         if (b.twin[j] < 0) continue;
         b.twinMaterial[j] = edges_[std::size_t(b.twin[j])].material;
         order.push_back(b.twin[j]);
-        total += e.numEdges;  // (a twin's edges are its polygon's: model/twins.h)
+        total += BvhLeaf::usesStride(e.numEdges);  // (a twin's edges are its polygon's: model/twins.h)
       }
     }
-    out_.uses.reserve(total);
+    out_.uses.resize(total);  // (the entries past a polygon's, up to a line's end, stay zero)
+    std::size_t at = 0;
     for (std::size_t i = 0; i < order.size(); ++i) {
       if (i + kFetchAhead < order.size())
         __builtin_prefetch(uses.data() + edges_[std::size_t(order[i + kFetchAhead])].firstEdge);
       const PolygonUses& e = edges_[std::size_t(order[i])];
-      out_.uses.insert(out_.uses.end(), uses.begin() + std::ptrdiff_t(e.firstEdge),
-                       uses.begin() + std::ptrdiff_t(e.firstEdge + e.numEdges));
+      std::copy_n(uses.begin() + std::ptrdiff_t(e.firstEdge), e.numEdges,
+                  out_.uses.begin() + std::ptrdiff_t(at));
+      at += BvhLeaf::usesStride(e.numEdges);
     }
-    CMKIT_ASSERT(out_.uses.size() == total && total <= std::numeric_limits<std::uint32_t>::max());
+    CMKIT_ASSERT(at == total && total <= std::numeric_limits<std::uint32_t>::max());
   }
 
   /// An inner node of the items of r (more than kLanes; summary `sum`): its number.

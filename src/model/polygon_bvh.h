@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "model/query_blocks.h"
+#include "util/aligned_allocator.h"
 
 namespace cmkit::detail {
 
@@ -55,16 +56,24 @@ struct alignas(64) BvhLeaf : CullBlock {
   std::int32_t twinMaterial[kLanes];
   /// The leaf's edge uses start at PolygonBvh::uses[firstUse]: lane 0's
   /// polygon's numEdges[0], its twin's numEdges[0] (when it has one), lane
-  /// 1's, ... (a twin has as many edges as its polygon).
+  /// 1's, ... (a twin has as many edges as its polygon), each polygon's
+  /// starting a cache line (usesStride).
   std::uint32_t firstUse;
   std::uint16_t numEdges[kLanes];  ///< lane j's polygon's (CmPolygon::numEdges)
-  /// Lane j's polygon's edge uses.
+  /// The uses a polygon of n edges takes in PolygonBvh::uses: n, rounded up
+  /// to whole cache lines (a triangle's 48 bytes are one line, not two
+  /// lines three times in four).
+  static std::size_t usesStride(std::size_t n) { return (n + kUsesPerLine - 1) & ~(kUsesPerLine - 1); }
+  static constexpr std::size_t kUsesPerLine = 64 / sizeof(EdgeUse);
+  /// Where lane j's polygon's edge uses start.
   std::size_t usesOf(std::size_t j) const {
     std::size_t at = firstUse;
     for (std::size_t i = 0; i < j; ++i)
-      at += std::size_t(numEdges[i]) << unsigned((polygon[i] & kHasTwin) != 0);
+      at += usesStride(numEdges[i]) << unsigned((polygon[i] & kHasTwin) != 0);
     return at;
   }
+  /// Where the edge uses of lane j's polygon's twin start.
+  std::size_t twinUsesOf(std::size_t j) const { return usesOf(j) + usesStride(numEdges[j]); }
   /// Lane j's polygon number (lane j used).
   std::int32_t polygonAt(std::size_t j) const { return polygon[j] & ~kHasTwin; }
   /// The used lanes whose polygon has a twin (bit j for lane j).
@@ -88,9 +97,11 @@ struct PolygonBvh {
   std::vector<BvhLeaf> leaves;
   /// The leaves' polygons' edge uses (query_blocks.h), leaf by leaf in the
   /// leaves' order (BvhLeaf::firstUse): a leaf's in one run of memory, the
-  /// leaves near one another in space near one another here. (A copy of
-  /// the model's edge uses in another order, for the translations' tests.)
-  std::vector<EdgeUse> uses;
+  /// leaves near one another in space near one another here, each polygon's
+  /// from the start of a cache line (the entries up to the next line's
+  /// unused). (A copy of the model's edge uses in another order, for the
+  /// translations' tests.)
+  std::vector<EdgeUse, AlignedAllocator<EdgeUse, 64>> uses;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
   std::size_t depth = 0;

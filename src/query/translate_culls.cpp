@@ -151,7 +151,7 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
   // its own first: this overlaps the waits of the lanes after the first).
   for (unsigned lanes = front | back; lanes; lanes &= lanes - 1) {
     const std::size_t lane = std::size_t(std::countr_zero(lanes));
-    prefetch(bvh.uses.data() + b.usesOf(lane) + ((front >> lane) & 1u ? 0 : b.numEdges[lane]));
+    prefetch(bvh.uses.data() + ((front >> lane) & 1u ? b.usesOf(lane) : b.twinUsesOf(lane)));
   }
   // A polygon's tests; false when the query is over (blocked completely).
   // The trace bounds shrank at a hit: the lanes left are culled again.
@@ -168,7 +168,7 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
     poly.material = twin ? b.twinMaterial[lane] : b.material[lane];
     poly.numEdges = b.numEdges[lane];
     const std::int32_t polyNum = twin ? b.twin[lane] : b.polygonAt(lane);
-    const EdgeUse* uses = bvh.uses.data() + b.usesOf(lane) + (twin ? poly.numEdges : 0);
+    const EdgeUse* uses = bvh.uses.data() + (twin ? b.twinUsesOf(lane) : b.usesOf(lane));
     const Real before = tw.fraction;
     if (translateTrmThroughPolygon(tw, polyNum, poly, uses)) return false;
     if (tw.fraction != before && (front | back)) {

@@ -80,6 +80,7 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
       EXPECT_EQ(b.numEdges[j], p.numEdges);
       EXPECT_EQ(b.material[j], p.material);
       expectUses(p, b.usesOf(j));
+      EXPECT_EQ(b.usesOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
       if (twin >= 0) {  // the lane's other side: reversed, its culls the lane's
         const CmPolygon& t = m.polygons()[std::size_t(twin)];
         ++seen[std::size_t(twin)];
@@ -87,7 +88,8 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
         EXPECT_EQ(t.bounds.min, p.bounds.min);
         EXPECT_EQ(t.bounds.max, p.bounds.max);
         EXPECT_EQ(b.twinMaterial[j], t.material);
-        expectUses(t, b.usesOf(j) + p.numEdges);  // (a twin's uses follow its polygon's)
+        expectUses(t, b.twinUsesOf(j));  // (a twin's uses follow its polygon's)
+        EXPECT_EQ(b.twinUsesOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
       }
       contents |= p.contents;
       EXPECT_EQ(b.contents[j], p.contents);
@@ -141,7 +143,10 @@ TEST(PolygonBvh, HoldsEveryPolygonOnceInBoxesThatContainIt) {
   std::vector<int> seen(world->polygons().size(), 0);
   const std::size_t depth = checkSubtree(*world, bvh, 0, nullptr, 0, seen);
   for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "polygon " << i;
-  EXPECT_EQ(bvh.uses.size(), world->polygonEdges().size()) << "every polygon's uses copied once";
+  std::size_t uses = 0;  // every polygon's copied once, each from a line's start
+  for (const CmPolygon& p : world->polygons()) uses += BvhLeaf::usesStride(p.numEdges);
+  EXPECT_EQ(bvh.uses.size(), uses);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(bvh.uses.data()) % 64, 0u);
   EXPECT_EQ(depth, bvh.depth) << "the walks' stacks are sized by the depth";
   // A leaf per about three polygons at least (kLanes a leaf at most).
   EXPECT_GE(bvh.leaves.size() * kLanes, world->polygons().size());
