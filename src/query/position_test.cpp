@@ -4,6 +4,7 @@
 #include <span>
 
 #include "query/cull_lanes.h"
+#include "query/polygon_edges.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {

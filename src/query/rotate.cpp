@@ -17,6 +17,7 @@
 #include <type_traits>
 
 #include "query/cull_lanes.h"
+#include "query/polygon_edges.h"
 #include "query/rotate_edges.h"
 #include "query/rotate_work.h"
 

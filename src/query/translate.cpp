@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 
+#include "query/polygon_edges.h"
 #include "query/trace_work.h"
 
 // SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time); any other target, or

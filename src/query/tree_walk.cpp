@@ -6,6 +6,7 @@
 
 #include "model/point_tree.h"
 #include "model/query_data.h"
+#include "query/polygon_edges.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
