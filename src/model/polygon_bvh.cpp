@@ -138,11 +138,11 @@ class Builder {
         twin_[i] = -1;  // (then its twin's entry is cleared too: the test is symmetric)
     items_.reserve(m.polygons.size());
     planes_.reserve(m.polygons.size());
-    edges_.reserve(m.polygons.size());
+    polygonUses_.reserve(m.polygons.size());
     for (std::size_t i = 0; i < m.polygons.size(); ++i) {
       const CmPolygon& p = m.polygons[i];
       planes_.push_back(p.plane);  // (by polygon number: a twin's too)
-      edges_.push_back({p.material, p.firstEdge, p.numEdges});
+      polygonUses_.push_back({p.material, p.firstEdge, p.numEdges});
       if (twin_[i] >= 0 && std::size_t(twin_[i]) < i) continue;  // in its twin's item
       Item item;
       for (int k = 0; k < 3; ++k) {
@@ -343,13 +343,13 @@ class Builder {
       b.firstUse = std::uint32_t(total);
       for (std::size_t j = 0; j < kLanes; ++j) {
         if (b.polygon[j] < 0) continue;
-        const PolygonUses& e = edges_[std::size_t(b.polygonAt(j))];
+        const PolygonUses& e = polygonUses_[std::size_t(b.polygonAt(j))];
         b.numEdges[j] = std::uint16_t(e.numEdges);
         b.material[j] = e.material;
         order.push_back(b.polygonAt(j));
         total += BvhLeaf::usesStride(e.numEdges);
         if (b.twin[j] < 0) continue;
-        b.twinMaterial[j] = edges_[std::size_t(b.twin[j])].material;
+        b.twinMaterial[j] = polygonUses_[std::size_t(b.twin[j])].material;
         order.push_back(b.twin[j]);
         total += BvhLeaf::usesStride(e.numEdges);  // (a twin's edges are its polygon's: model/twins.h)
       }
@@ -358,8 +358,8 @@ class Builder {
     std::size_t at = 0;
     for (std::size_t i = 0; i < order.size(); ++i) {
       if (i + kFetchAhead < order.size())
-        __builtin_prefetch(uses.data() + edges_[std::size_t(order[i + kFetchAhead])].firstEdge);
-      const PolygonUses& e = edges_[std::size_t(order[i])];
+        __builtin_prefetch(uses.data() + polygonUses_[std::size_t(order[i + kFetchAhead])].firstEdge);
+      const PolygonUses& e = polygonUses_[std::size_t(order[i])];
       std::copy_n(uses.begin() + std::ptrdiff_t(e.firstEdge), e.numEdges,
                   out_.uses.begin() + std::ptrdiff_t(at));
       at += BvhLeaf::usesStride(e.numEdges);
@@ -440,7 +440,7 @@ class Builder {
     std::int32_t material;
     std::uint32_t firstEdge, numEdges;
   };
-  std::vector<PolygonUses> edges_;
+  std::vector<PolygonUses> polygonUses_;
 };
 
 }  // namespace

@@ -320,12 +320,11 @@ bool translateTrmThroughNode(TraceWork& tw, const CmNode& node);
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 /// The tests of one polygon past a translation's culls (translate.cpp): the
 /// plane test, then the trace-model vertices, edges and the model vertices
-/// against it; true when the trace model is blocked completely.
-bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly);
-/// The same with the polygon's edge uses given (poly.numEdges of them from
-/// `uses`; poly.firstEdge is not read): the polygons' hierarchy's copy.
+/// against it; true when the trace model is blocked completely. `uses`: the
+/// polygon's edge uses (poly.numEdges of them; the polygons' hierarchy's
+/// copy, poly.firstEdge then not read), or null for the model's.
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
-                                const EdgeUse* uses);
+                                const EdgeUse* uses = nullptr);
 /// A point trace (no edges, no polygons) through a polygon. The edge sides
 /// are not cached: a point meets few polygons, and computing a side costs
 /// less than reading a cache entry of a large model.

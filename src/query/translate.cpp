@@ -480,11 +480,8 @@ void placeTranslationFeatures(TraceWork& tw) {
 
 }  // namespace
 
-namespace {
-
-// (uses: the polygon's edge uses, or null for the model's)
-bool translateTrmThroughPolygonUses(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
-                                    const EdgeUse* uses) {
+bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                const EdgeUse* uses) {
   QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
@@ -537,17 +534,6 @@ bool translateTrmThroughPolygonUses(TraceWork& tw, std::int32_t polyNum, const C
 
   shrinkTraceBounds(tw);
   return tw.fraction == 0;
-}
-
-}  // namespace
-
-bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly) {
-  return translateTrmThroughPolygonUses(tw, polyNum, poly, nullptr);
-}
-
-bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
-                                const EdgeUse* uses) {
-  return translateTrmThroughPolygonUses(tw, polyNum, poly, uses);
 }
 
 }  // namespace cmkit::detail
