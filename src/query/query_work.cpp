@@ -21,24 +21,18 @@ bool queryStatsEnabled() { return detail::kQueryStats; }
 namespace cmkit::detail {
 
 void QueryScratch::begin(const CollisionModel& model) {
-  auto grow = [](auto& v, std::size_t n) {
-    if (v.size() < n) v.resize(n);
-  };
   const std::size_t np = model.polygons().size(), nb = model.brushes().size();
   const std::size_t ne = model.edges().size(), nv = model.vertices().size();
-  grow(polygonChecked, np);
-  if constexpr (kQueryStats) grow(polygonMet, np);
-  grow(brushChecked, nb);
-  grow(edgeChecked, ne);
-  grow(edgePairs, ne);
-  grow(vertexChecked, nv);
-  if (++generation == 0) {  // wrapped: clear every mark once every 2^32 queries
-    std::fill(polygonChecked.begin(), polygonChecked.end(), 0u);
-    std::fill(polygonMet.begin(), polygonMet.end(), 0u);
-    std::fill(brushChecked.begin(), brushChecked.end(), 0u);
-    std::fill(edgeChecked.begin(), edgeChecked.end(), 0u);
+  for (FeatureMarks* m : {&polygonChecked, &polygonMet, &brushChecked, &edgeChecked, &vertexChecked})
+    m->clear();
+  polygonChecked.grow(np);
+  if constexpr (kQueryStats) polygonMet.grow(np);
+  brushChecked.grow(nb);
+  edgeChecked.grow(ne);
+  if (edgePairs.size() < ne) edgePairs.resize(ne);
+  vertexChecked.grow(nv);
+  if (++generation == 0) {  // wrapped: clear the caches once every 2^32 queries
     std::fill(edgePairs.begin(), edgePairs.end(), EdgePairs{});
-    std::fill(vertexChecked.begin(), vertexChecked.end(), 0u);
     generation = 1;
   }
 }

@@ -70,14 +70,50 @@ inline constexpr std::size_t edgeGroups(std::size_t numEdges) {
   return (numEdges + kEdgeGroup - 1) / kEdgeGroup;
 }
 
+/// One query's marks of a kind of model feature (its polygons, brushes,
+/// edges or vertices): a 16-bit stamp per feature, marked when it equals the
+/// current one. clear() starts the next query's marks by a new stamp (every
+/// stamp cleared when they run out: once every 65 535 queries, a few bytes a
+/// query however large the model). Two bytes, not four: a large mesh's
+/// marks, read at random by its sweeps, take half the memory.
+class FeatureMarks {
+ public:
+  /// Room for n features (grown only).
+  void grow(std::size_t n) {
+    if (stamps_.size() < n) stamps_.resize(n);
+  }
+  bool isSet(std::size_t i) const {
+    CMKIT_ASSERT(i < stamps_.size());
+    return stamps_[i] == current_;
+  }
+  /// Marks feature i; true when it was marked already.
+  bool testAndSet(std::size_t i) {
+    CMKIT_ASSERT(i < stamps_.size());
+    if (stamps_[i] == current_) return true;
+    stamps_[i] = current_;
+    return false;
+  }
+  /// Clears every mark.
+  void clear() {
+    if (++current_ == 0) {  // the stamps ran out: start again from 1
+      std::fill(stamps_.begin(), stamps_.end(), std::uint16_t(0));
+      current_ = 1;
+    }
+  }
+
+ private:
+  std::vector<std::uint16_t> stamps_;  ///< 0: never marked
+  std::uint16_t current_ = 1;
+};
+
 /// Per-model-feature marks and caches, valid for one query (what a QueryWork
-/// holds). A mark or cache entry is valid when its generation equals the
-/// current one, so starting a query costs nothing but a counter increment.
+/// holds). A mark or cache entry is valid when its stamp or generation
+/// equals the current one (FeatureMarks), so starting a query costs nothing
+/// but a counter increment per kind.
 struct QueryScratch {
   /// What a rotation keeps about one model edge: the trace-model edges
   /// already tested against it (bit trmEdgeBit(j)). (Apart from the edge's
-  /// mark, edgeChecked: a translation reads only the mark, and a large
-  /// mesh's marks then take a third of the memory, 4 bytes an edge.) Side
+  /// mark, edgeChecked: a translation reads only the mark.) Side
   /// tests are computed where they are needed, in one operand order per
   /// test, not cached: a scattered cache entry cost more than the products
   /// it saved.
@@ -87,14 +123,14 @@ struct QueryScratch {
   };
   static_assert(kMaxTrmEdges <= 32, "EdgePairs has one bit per trace-model edge");
 
-  std::uint32_t generation = 0;
-  std::vector<std::uint32_t> polygonChecked;  ///< polygon tested this query
-  std::vector<std::uint32_t> polygonMet;      ///< polygon counted as met (QueryStats builds only)
-  std::vector<std::uint32_t> brushChecked;    ///< brush tested this query
-  std::vector<std::uint32_t> edgeChecked;     ///< model edge tested this query
-  std::vector<EdgePairs> edgePairs;           ///< per model edge (rotations)
-  std::vector<std::uint32_t> vertexChecked;   ///< model vertex tested this query
-  std::vector<Pluecker> polygonEdgeLines;     ///< per edge of the current polygon (polygonEdges)
+  std::uint32_t generation = 0;            ///< of the caches (EdgePairs)
+  FeatureMarks polygonChecked;             ///< polygon tested this query
+  FeatureMarks polygonMet;                 ///< polygon counted as met (QueryStats builds only)
+  FeatureMarks brushChecked;               ///< brush tested this query
+  FeatureMarks edgeChecked;                ///< model edge tested this query
+  std::vector<EdgePairs> edgePairs;        ///< per model edge (rotations)
+  FeatureMarks vertexChecked;              ///< model vertex tested this query
+  std::vector<Pluecker> polygonEdgeLines;  ///< per edge of the current polygon (polygonEdges)
   // Translation: the current polygon's edges in groups of kEdgeGroup, bit i
   // of a group's mask standing for edge kEdgeGroup * group + i.
   /// Bit i of vertexEdgeSides[group * kMaxTrmVertices + v]: the path of
@@ -132,20 +168,9 @@ struct QueryScratch {
 
   // (The marks are grown to the model by begin(): an index past them is a
   // number of the model out of range, which create() refuses.)
-  bool isChecked(const std::vector<std::uint32_t>& marks, std::size_t i) const {
-    CMKIT_ASSERT(i < marks.size());
-    return marks[i] == generation;
-  }
-  void mark(std::vector<std::uint32_t>& marks, std::size_t i) {
-    CMKIT_ASSERT(i < marks.size());
-    marks[i] = generation;
-  }
-  bool testAndMark(std::vector<std::uint32_t>& marks, std::size_t i) {
-    CMKIT_ASSERT(i < marks.size());
-    if (marks[i] == generation) return true;
-    marks[i] = generation;
-    return false;
-  }
+  bool isChecked(const FeatureMarks& marks, std::size_t i) const { return marks.isSet(i); }
+  void mark(FeatureMarks& marks, std::size_t i) { marks.testAndSet(i); }
+  bool testAndMark(FeatureMarks& marks, std::size_t i) { return marks.testAndSet(i); }
   /// The rotation's tested pairs of an edge for this query (zeroed on first use).
   std::uint32_t& testedPairs(EdgePairs& f) {
     if (f.pairsGen != generation) {
@@ -174,7 +199,7 @@ inline void count(QueryScratch& s, std::uint64_t QueryStats::*counter, std::uint
 /// calls test(item), which returns true when the query is over (stuck or
 /// stopped); returns whether one did.
 template <class Test>
-bool forEachNewItem(QueryScratch& s, std::vector<std::uint32_t>& marks, std::uint64_t QueryStats::*met,
+bool forEachNewItem(QueryScratch& s, FeatureMarks& marks, std::uint64_t QueryStats::*met,
                     std::span<const std::int32_t> items, Test test) {
   for (const std::int32_t item : items) {
     if (s.testAndMark(marks, std::size_t(item))) continue;

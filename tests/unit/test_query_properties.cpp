@@ -14,6 +14,7 @@
 #include "model/model_access.h"
 #include "model/query_data.h"
 #include "model_fixtures.h"
+#include "query/trace_work.h"
 #include "test_support.h"
 
 using namespace cmkit;
@@ -99,6 +100,83 @@ CollisionModel generatedScene() {
 }  // namespace
 
 TEST(QueryProperties, GeneratedSceneFreeMovesEndFree) { checkFreeMovesEndFree(generatedScene(), 1, 3000); }
+
+// A query's marks (which polygons, edges, vertices and brushes it has met)
+// are cleared by the next query on the same QueryWork (QueryScratch::begin,
+// FeatureMarks). One QueryWork reused for 1020 translations answers each
+// with the same bits as a fresh QueryWork: 255 moves over and over, each
+// meeting the same features as its own earlier runs (a mark left set would
+// skip a test). On lt4's world the translations walk the polygons'
+// hierarchy and mark edges and vertices. Then position tests, which mark
+// brushes and polygons, on the same QueryWork after the translations.
+TEST(QueryProperties, ReusedQueryWorkAnswersAsFreshOnes) {
+  const auto models = test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map");
+  ASSERT_FALSE(models.empty());
+  const CollisionModel& m = *models[0];
+  std::mt19937 rng(7);
+  const auto trms = shapes();
+  struct Move {
+    const TraceModel* trm;
+    Mat3 axis;
+    Vec3 start, end;
+  };
+  std::vector<Move> moves;  // from free starts (a start in solid stops at its first polygon)
+  QueryWork work;
+  for (int i = 0; moves.size() < 255; ++i) {
+    ASSERT_LT(i, 100000) << "too few free starts";
+    Mat3 axis;
+    if (i % 3 == 0) axis = Mat3::fromAngles(float(i % 90), float(i * 7 % 360), float(i * 13 % 360));
+    const TraceModel& trm = trms[moves.size() % trms.size()];
+    const Vec3 start = randomIn(rng, m.bounds()), end = randomIn(rng, m.bounds());
+    if (contentsTest(m, {&trm, axis, start, contents::kMaskSolid, {}}, work).contents == 0)
+      moves.push_back({&trm, axis, start, end});
+  }
+  QueryWork reused;
+  int hits = 0;
+  for (int i = 0; i < 1020; ++i) {
+    const Move& mv = moves[std::size_t(i) % moves.size()];
+    const TranslationQuery q{mv.trm, mv.axis, mv.start, mv.end, contents::kMaskSolid, {}, false};
+    const TraceResult a = translate(m, q, reused);
+    QueryWork fresh;
+    const TraceResult b = translate(m, q, fresh);
+    ASSERT_EQ(a.fraction, b.fraction) << i;
+    ASSERT_EQ(a.endPos, b.endPos) << i;
+    ASSERT_EQ(a.contact.normal, b.contact.normal) << i;
+    ASSERT_EQ(a.contact.type, b.contact.type) << i;
+    ASSERT_EQ(a.contact.modelFeature, b.contact.modelFeature) << i;
+    ASSERT_EQ(a.contact.trmFeature, b.contact.trmFeature) << i;
+    hits += a.fraction < 1;
+  }
+  for (int i = 0; i < 600; ++i) {
+    const Move& mv = moves[std::size_t(i) % moves.size()];
+    const ContentsQuery c{mv.trm, mv.axis, mv.end, contents::kMaskSolid, {}};
+    QueryWork fresh;
+    ASSERT_EQ(contentsTest(m, c, reused).contents, contentsTest(m, c, fresh).contents) << i;
+  }
+  EXPECT_GT(hits, 500);  // most moves through lt4 are stopped: the tests were made
+}
+
+// The marks' 16-bit stamps run out every 65 535 queries; every mark is then
+// cleared (a stale stamp would read as set by the query that reuses its
+// value): a mark set once reads unset after each of 200 000 clears.
+TEST(QueryProperties, FeatureMarksClearAcrossTheStampsRunningOut) {
+  detail::FeatureMarks marks;
+  marks.grow(4);
+  EXPECT_FALSE(marks.testAndSet(2));
+  EXPECT_TRUE(marks.isSet(2));
+  EXPECT_TRUE(marks.testAndSet(2));
+  for (int q = 0; q < 200000; ++q) {
+    marks.clear();
+    ASSERT_FALSE(marks.isSet(2)) << "after clear " << q + 1;
+    ASSERT_FALSE(marks.isSet(0));
+    if (q % 1000 == 0) {  // a mark of this query only, then cleared again
+      EXPECT_FALSE(marks.testAndSet(3));
+      ASSERT_TRUE(marks.isSet(3));
+      marks.clear();
+      ASSERT_FALSE(marks.isSet(3));
+    }
+  }
+}
 
 TEST(QueryProperties, SharedMapsFreeMovesEndFree) {
   // Not altar.map: it is mostly patches, one-sided surfaces with no volume
