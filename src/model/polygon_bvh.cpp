@@ -119,12 +119,14 @@ struct Summary {
 
 class Builder {
  public:
-  Builder(const ModelArrays& m, PolygonBvh& out) : out_(out) {
+  Builder(const ModelArrays& m, PolygonBvh& out) : m_(m), out_(out) {
     // (A leaf holds a polygon's edge count in 16 bits: a model with a longer
-    // polygon, which no map or mesh has, gets no hierarchy.)
-    fits_ = std::all_of(m.polygons.begin(), m.polygons.end(), [](const CmPolygon& p) {
-      return p.numEdges <= std::numeric_limits<std::uint16_t>::max();
-    });
+    // polygon, which no map or mesh has, gets no hierarchy; nor one with a
+    // polygon whose edges do not close a loop: the corners need it.)
+    fits_ = m.edges.size() < (std::size_t(1) << 30) &&  // (PolygonCorner's 2 * entry)
+            std::all_of(m.polygons.begin(), m.polygons.end(), [&](const CmPolygon& p) {
+              return p.numEdges <= std::numeric_limits<std::uint16_t>::max() && closedLoop(m, p);
+            });
     if (!fits_) return;
     // A polygon and its reversed twin of the same bounds are one item (the
     // lower number's), the twin held beside it in the leaf.
@@ -360,8 +362,12 @@ class Builder {
       if (i + kFetchAhead < order.size())
         __builtin_prefetch(uses.data() + polygonUses_[std::size_t(order[i + kFetchAhead])].firstEdge);
       const PolygonUses& e = polygonUses_[std::size_t(order[i])];
-      std::copy_n(uses.begin() + std::ptrdiff_t(e.firstEdge), e.numEdges,
-                  out_.uses.begin() + std::ptrdiff_t(at));
+      for (std::size_t k = 0; k < e.numEdges; ++k) {
+        const EdgeUse& u = uses[e.firstEdge + k];
+        PolygonCorner& c = out_.uses[at + k];
+        c.entry = PolygonCorner::encode(u.edgeNum, u.internal != 0);
+        c.p = m_.vertices[std::size_t(u.vertex[u.edgeNum < 0 ? 1 : 0])];
+      }
       at += BvhLeaf::usesStride(e.numEdges);
     }
     CMKIT_ASSERT(at == total && total <= std::numeric_limits<std::uint32_t>::max());
@@ -419,6 +425,22 @@ class Builder {
     return number;
   }
 
+  /// Whether each of a polygon's edges starts, in the polygon's order,
+  /// where the one before it ends (the corners hold one vertex an edge).
+  static bool closedLoop(const ModelArrays& m, const CmPolygon& p) {
+    const auto start = [&](std::int32_t e, bool end) {
+      const CmEdge& edge = m.edges[std::size_t(std::abs(e))];
+      return edge.vertex[(e < 0) != end ? 1 : 0];
+    };
+    for (std::uint32_t i = 0; i < std::uint32_t(p.numEdges); ++i) {
+      const std::int32_t e = m.polygonEdges[p.firstEdge + i];
+      const std::int32_t next =
+          m.polygonEdges[p.firstEdge + (i + 1 == std::uint32_t(p.numEdges) ? 0 : i + 1)];
+      if (start(e, true) != start(next, false)) return false;
+    }
+    return true;
+  }
+
   /// Whether two bounds have the same bits (a twin's lane shares its culls).
   static bool sameBounds(const Bounds& a, const Bounds& b) {
     for (int k = 0; k < 3; ++k)
@@ -428,6 +450,7 @@ class Builder {
     return true;
   }
 
+  const ModelArrays& m_;
   PolygonBvh& out_;
   std::vector<Item> items_;
   std::vector<std::int32_t> twin_;  ///< per polygon: its reversed twin of the same bounds, or -1

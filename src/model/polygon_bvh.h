@@ -64,7 +64,7 @@ struct alignas(64) BvhLeaf : CullBlock {
   /// to whole cache lines (a triangle's 48 bytes are one line, not two
   /// lines three times in four).
   static std::size_t usesStride(std::size_t n) { return (n + kUsesPerLine - 1) & ~(kUsesPerLine - 1); }
-  static constexpr std::size_t kUsesPerLine = 64 / sizeof(EdgeUse);
+  static constexpr std::size_t kUsesPerLine = 64 / sizeof(PolygonCorner);
   /// Where lane j's polygon's edge uses start.
   std::size_t usesOf(std::size_t j) const {
     std::size_t at = firstUse;
@@ -95,13 +95,16 @@ struct PolygonBvh {
   /// Leaf b's polygons' culls (bounds, contents, normal); an unused lane
   /// has contents 0 and inverted bounds.
   std::vector<BvhLeaf> leaves;
-  /// The leaves' polygons' edge uses (query_blocks.h), leaf by leaf in the
-  /// leaves' order (BvhLeaf::firstUse): a leaf's in one run of memory, the
-  /// leaves near one another in space near one another here, each polygon's
-  /// from the start of a cache line (the entries up to the next line's
-  /// unused). (A copy of the model's edge uses in another order, for the
-  /// translations' tests.)
-  std::vector<EdgeUse, AlignedAllocator<EdgeUse, 64>> uses;
+  /// The leaves' polygons' edge entries as corners (query_blocks.h,
+  /// PolygonCorner: the entry, its internal flag and where the edge starts),
+  /// leaf by leaf in the leaves' order (BvhLeaf::firstUse): a leaf's in one
+  /// run of memory, the leaves near one another in space near one another
+  /// here, each polygon's from the start of a cache line (the entries up to
+  /// the next line's unused). (The model's edge uses in another order, with
+  /// the position of a vertex in place of the edge's two vertex numbers, for
+  /// the translations' tests: a model whose polygon's edges do not close a
+  /// loop, which no map or mesh makes, gets no hierarchy.)
+  std::vector<PolygonCorner, AlignedAllocator<PolygonCorner, 64>> uses;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
   std::size_t depth = 0;

@@ -65,6 +65,25 @@ struct EdgeUse {
 };
 static_assert(sizeof(EdgeUse) == 16);
 
+/// A polygon's edge entry as the polygons' hierarchy keeps it
+/// (PolygonBvh::uses): the entry (the edge's number, negative when used
+/// reversed) and the edge's internal flag, as 2 * entry + flag (so the
+/// entry is one shift away and its sign is the value's), and the position
+/// of the polygon's vertex where the edge starts in the polygon's order, so
+/// edge i runs from corner i to corner i + 1 (the last to the first). 16
+/// bytes, as an EdgeUse, but what a translation's test reads of the
+/// vertices is in it, not read at random from the model's vertices.
+struct PolygonCorner {
+  std::int32_t entry = 0;  ///< 2 * polygonEdges entry + internal flag
+  Vec3 p;
+  std::int32_t edgeNum() const { return entry >> 1; }  // (arithmetic: -5 >> 1 == -3)
+  bool internal() const { return (entry & 1) != 0; }
+  static std::int32_t encode(std::int32_t edgeNum, bool internal) {
+    return std::int32_t(std::uint32_t(edgeNum) * 2u) | std::int32_t(internal);
+  }
+};
+static_assert(sizeof(PolygonCorner) == 16 || sizeof(Real) != sizeof(float));
+
 /// The EdgeUse of polygonEdges entry `edgeNum`.
 inline EdgeUse edgeUse(const ModelArrays& m, std::int32_t edgeNum) {
   const CmEdge& edge = m.edges[std::size_t(std::abs(edgeNum))];

@@ -1,5 +1,6 @@
 // Internal: a polygon's edges as a query's polygon tests read them (the
-// query data's edge uses with their lines made in the scratch), and the walk
+// query data's edge uses, or the polygons' hierarchy's corners, with their
+// lines made in the scratch), and the walk
 // over the model vertices of a polygon's edges that a query meets first.
 // Translations, rotations and position tests (translate.cpp, rotate.cpp,
 // position_test.cpp; made in tree_walk.cpp).
@@ -17,13 +18,26 @@
 namespace cmkit::detail {
 
 /// A polygon's edges as its tests read them: edge i's entry, vertices and
-/// internal flag at uses[i] (model/query_data.h), its line (in the edge's
-/// stored direction) at lines[i].
+/// internal flag at uses[i] (model/query_data.h) or corners[i] (and where
+/// it ends: corners[i + 1]; model/query_blocks.h), its line (in the edge's
+/// stored direction) at lines[i]. (A branch per read on which: the same one
+/// for every read of a query.)
 struct PolygonEdges {
-  const EdgeUse* uses;
+  const EdgeUse* uses;  ///< the model's uses, or null (corners)
   const Pluecker* lines;
   std::size_t size;
-  const EdgeUse& operator[](std::size_t i) const { return uses[i]; }
+  const PolygonCorner* corners = nullptr;  ///< the hierarchy's corners, or null (uses)
+  const Vec3* vertices = nullptr;          ///< the model's (read with uses)
+  std::int32_t edgeNum(std::size_t i) const { return corners ? corners[i].edgeNum() : uses[i].edgeNum; }
+  bool internal(std::size_t i) const { return corners ? corners[i].internal() : uses[i].internal != 0; }
+  /// Where edge i starts and ends in the polygon's order.
+  const Vec3& from(std::size_t i) const {
+    return corners ? corners[i].p : vertices[uses[i].vertex[uses[i].edgeNum < 0 ? 1 : 0]];
+  }
+  const Vec3& to(std::size_t i) const {
+    return corners ? corners[i + 1 == size ? 0 : i + 1].p
+                   : vertices[uses[i].vertex[uses[i].edgeNum < 0 ? 0 : 1]];
+  }
   const Pluecker& line(std::size_t i) const { return lines[i]; }
 };
 /// The uses of a polygon's edges made in the scratch (edgeUses), for a
@@ -43,7 +57,23 @@ inline PolygonEdges polygonEdges(TraceWork& tw, const EdgeUse* uses, std::size_t
   Pluecker* out = lines.data();
   for (std::size_t i = 0; i < numEdges; ++i)
     out[i] = Pluecker::fromLine(vertices[uses[i].vertex[0]], vertices[uses[i].vertex[1]]);
-  return {uses, out, numEdges};
+  return {uses, out, numEdges, nullptr, vertices};
+}
+/// The same from a polygon's corners (the polygons' hierarchy's): edge i's
+/// line from corner i to corner i + 1, or back when the edge is used
+/// reversed (its stored direction: the same bits).
+inline PolygonEdges polygonEdges(TraceWork& tw, const PolygonCorner* corners, std::size_t numEdges) {
+  std::vector<Pluecker>& lines = tw.scratch.polygonEdgeLines;
+  if (lines.size() < numEdges) [[unlikely]]
+    sizePolygonEdgeLines(tw, numEdges);
+  Pluecker* out = lines.data();
+  for (std::size_t i = 0; i < numEdges; ++i) {
+    const Vec3& a = corners[i].p;
+    const Vec3& b = corners[i + 1 == numEdges ? 0 : i + 1].p;
+    out[i] =
+        corners[i].entry < 0 ? Pluecker::fromLine(b, a) : Pluecker::fromLine(a, b);  // (entry < 0: reversed)
+  }
+  return {nullptr, out, numEdges, corners, nullptr};
 }
 /// A polygon's edges: the model's uses (query data), or made in the scratch
 /// (edgeUses) for a model without them; their lines as above.
@@ -88,12 +118,67 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
       },
       f);
 }
-/// The same over a polygon's edge uses.
+/// A model vertex met through a polygon's edges: the edge's entry and which
+/// of its ends in the polygon's order (0: where it starts). Its number,
+/// which only a hit needs, from the edge's record (modelVertexNumber).
+struct ModelVertexRef {
+  std::int32_t edgeNum;
+  int end;
+};
+inline std::size_t modelVertexNumber(const CollisionModel& m, ModelVertexRef v) {
+  const CmEdge& edge = m.edges()[std::size_t(std::abs(v.edgeNum))];
+  return std::size_t(edge.vertex[v.end ^ int(v.edgeNum < 0)]);
+}
+/// The same over a polygon's edges, f(ModelVertexRef, position). With
+/// corners (the hierarchy's), a translation does not mark a vertex (its
+/// number is not at hand): one met again in a later polygon is tested again,
+/// which changes nothing: the same products give the same fraction, not
+/// nearer than the nearest hit so far, which it already is or beats (a
+/// fraction below 0 ends the translation at 0 after the polygon where it was
+/// found). Collecting contacts, where each contact starts the nearest hit
+/// over (addContact), a vertex met again would be listed again: there each
+/// is marked by its number, from its edge's record. Within a polygon each
+/// corner is met once, so that the order of the vertices' first tests,
+/// which decides between equally near ones, is the marks'.
 template <class F>
-void forEachNewModelVertex(TraceWork& tw, const PolygonEdges& uses, F f) {
-  forEachNewModelVertex(
-      tw, uses.size,
-      [&](std::size_t i) { return std::pair<std::int32_t, const EdgeUse&>(uses[i].edgeNum, uses[i]); }, f);
+void forEachNewModelVertex(TraceWork& tw, const PolygonEdges& edges, F f) {
+  QueryScratch& s = tw.scratch;
+  if (!edges.corners) {  // (forEachNewModelVertex's order, with the edges' vertex numbers)
+    for (std::size_t i = 0; i < edges.size; ++i) {
+      const EdgeUse& use = edges.uses[i];
+      if (s.testAndMark(s.edgeChecked, std::size_t(std::abs(use.edgeNum)))) continue;
+      if (use.internal) continue;
+      for (int k = 0; k < 2; ++k) {
+        const std::size_t vn = std::size_t(use.vertex[k ^ int(use.edgeNum < 0)]);
+        if (s.testAndMark(s.vertexChecked, vn)) continue;
+        const Vec3& p = edges.vertices[vn];
+        if (insideBox(tw.bounds, p)) f(ModelVertexRef{use.edgeNum, k}, p);
+      }
+    }
+    return;
+  }
+  // Corner i is where edge i starts and edge i - 1 ends: met once, by the
+  // first of the two the query meets (as the marks would have it).
+  bool lastMet = false, firstMet = false;  // (the edge before; edge 0)
+  const bool marked = tw.gettingContacts();
+  for (std::size_t i = 0; i < edges.size; ++i) {
+    const std::int32_t edgeNum = edges.edgeNum(i);
+    if (s.testAndMark(s.edgeChecked, std::size_t(std::abs(edgeNum))) || edges.internal(i)) {
+      lastMet = false;
+      continue;
+    }
+    if (!lastMet && !(marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, {edgeNum, 0})))) {
+      const Vec3& a = edges.from(i);
+      if (insideBox(tw.bounds, a)) f(ModelVertexRef{edgeNum, 0}, a);
+    }
+    if (!(i + 1 == edges.size && firstMet) &&
+        !(marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, {edgeNum, 1})))) {
+      const Vec3& b = edges.to(i);
+      if (insideBox(tw.bounds, b)) f(ModelVertexRef{edgeNum, 1}, b);
+    }
+    lastMet = true;
+    firstMet |= i == 0;
+  }
 }
 
 /// Fills scratch.polygonEdgeLines with the lines of a polygon's edges, one

@@ -345,11 +345,11 @@ bool translateTrmThroughNode(TraceWork& tw, const CmNode& node);
 bool translatePointThroughPolygons(TraceWork& tw, std::span<const std::int32_t> polygons);
 /// The tests of one polygon past a translation's culls (translate.cpp): the
 /// plane test, then the trace-model vertices, edges and the model vertices
-/// against it; true when the trace model is blocked completely. `uses`: the
-/// polygon's edge uses (poly.numEdges of them; the polygons' hierarchy's
-/// copy, poly.firstEdge then not read), or null for the model's.
+/// against it; true when the trace model is blocked completely. `corners`:
+/// the polygon's corners (poly.numEdges of them; the polygons' hierarchy's;
+/// poly.firstEdge then not read), or null for the model's edge uses.
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
-                                const EdgeUse* uses = nullptr);
+                                const PolygonCorner* corners = nullptr);
 /// A point trace (no edges, no polygons) through a polygon. The edge sides
 /// are not cached: a point meets few polygons, and computing a side costs
 /// less than reading a cache entry of a large model.

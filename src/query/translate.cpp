@@ -162,7 +162,6 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
     std::uint64_t rows[kMaxTrmVertices / 8];
     rows[0] = rows[1] = rows[2] = rows[3] = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      const EdgeUse& use = edges[first + i];
       const Pluecker& l = edges.line(first + i);
       const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
       const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
@@ -178,7 +177,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
         bits |= simd::bits(p) << (4 * k);
       }
       // Outside edge i: the side is not the one its use asks.
-      outside |= bits ^ (std::uint32_t(0) - std::uint32_t(use.edgeNum < 0));
+      outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(first + i) < 0));
       for (int r = 0; r < vertexRows; ++r)
         rows[r] |= std::uint64_t((bits >> (8 * r)) & 0xFFu) << (8 * (i % 8));
       // After every eighth edge and the last: the rows transposed into the
@@ -230,7 +229,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
     const std::size_t first = g * kEdgeGroup;
     const std::size_t count = std::min(kEdgeGroup, edges.size - first);
     std::uint64_t reversed = 0;
-    for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges[first + i].edgeNum < 0) << i;
+    for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges.edgeNum(first + i) < 0) << i;
     std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
       const int v = std::countr_zero(moving);
@@ -337,15 +336,14 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   QueryScratch& s = tw.scratch;
   count(s, &QueryStats::edgePairs);
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
-  const EdgeUse& use = edges[i];
-  const std::int32_t edgeNum = use.edgeNum;
+  const std::int32_t edgeNum = edges.edgeNum(i);
   // The polygon edge's two vertices must pass the trm edge on different sides.
-  const std::size_t v1 = std::size_t(use.vertex[edgeNum < 0 ? 1 : 0]);
-  const std::size_t v2 = std::size_t(use.vertex[edgeNum < 0 ? 0 : 1]);
-  if (modelVertexSide(te, m.vertices()[v1], tw.dir) == modelVertexSide(te, m.vertices()[v2], tw.dir)) return;
+  const Vec3& v1 = edges.from(i);
+  const Vec3& v2 = edges.to(i);
+  if (modelVertexSide(te, v1, tw.dir) == modelVertexSide(te, v2, tw.dir)) return;
 
-  const Vec3& start = m.vertices()[std::size_t(use.vertex[0])];
-  const Vec3& end = m.vertices()[std::size_t(use.vertex[1])];
+  const Vec3& start = edgeNum < 0 ? v2 : v1;  // (the edge's stored direction)
+  const Vec3& end = edgeNum < 0 ? v1 : v2;
   Real f1;
   if (!translateEdgeThroughEdge(te.cross, te.pl, edges.line(i), f1)) return;
   if (f1 < 0) return;  // moving away from the edge
@@ -395,8 +393,9 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
 // Model vertex vertexNum (at p, moving to endp relative to the trace model)
 // reaches trace-model polygon trmPolyNum at fraction f: the nearest hit so far.
 [[gnu::cold, gnu::noinline]] void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
-                                                   std::size_t vertexNum, const Vec3& p, const Vec3& endp,
+                                                   ModelVertexRef vertex, const Vec3& p, const Vec3& endp,
                                                    Real f) {
+  const std::size_t vertexNum = modelVertexNumber(tw.model, vertex);
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
   tw.fraction = f < 0 ? Real(0) : f;
   tw.c.normal = -tp.plane.normal;
@@ -411,7 +410,7 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
 // (The vertex's path line only for a trace-model polygon it reaches in time:
 // most reach none.)
 void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
-                                      std::size_t vertexNum, const Vec3& p, const Vec3& endp) {
+                                      ModelVertexRef vertex, const Vec3& p, const Vec3& endp) {
   QueryScratch& s = tw.scratch;
   count(s, &QueryStats::vertexTests);
   const WorkPolygon& tp = tw.polys[std::size_t(trmPolyNum)];
@@ -423,7 +422,7 @@ void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int 
     const WorkEdge& te = tw.edges[std::size_t(std::abs(edgeNum))];
     if (unsigned(edgeNum < 0) ^ modelVertexSide(te, pl)) return;
   }
-  hitByModelVertex(tw, poly, trmPolyNum, vertexNum, p, endp, f);
+  hitByModelVertex(tw, poly, trmPolyNum, vertex, p, endp, f);
 }
 
 }  // namespace
@@ -481,14 +480,14 @@ void placeTranslationFeatures(TraceWork& tw) {
 }  // namespace
 
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
-                                const EdgeUse* uses) {
+                                const PolygonCorner* corners) {
   QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
   count(s, &QueryStats::polygonsTested);
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
-  const PolygonEdges edges = uses ? polygonEdges(tw, uses, poly.numEdges) : polygonEdges(tw, poly);
+  const PolygonEdges edges = corners ? polygonEdges(tw, corners, poly.numEdges) : polygonEdges(tw, poly);
   const std::uint32_t inside = sidesOfPolygonEdges(tw, edges);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
@@ -498,9 +497,9 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
     for (std::size_t first = 0; first < edges.size; first += kEdgeGroup) {
       std::uint64_t toTest = 0;
       for (std::size_t i = first; i < std::min(first + kEdgeGroup, edges.size); ++i) {
-        const std::size_t e = std::size_t(std::abs(edges[i].edgeNum));
+        const std::size_t e = std::size_t(std::abs(edges.edgeNum(i)));
         // (& not &&: whether an edge was met before is unpredictable.)
-        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edgeChecked, e)) & unsigned(!edges[i].internal))
+        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edgeChecked, e)) & unsigned(!edges.internal(i)))
                   << (i - first);
       }
       s.edgesToTest[first / kEdgeGroup] = toTest;
@@ -522,7 +521,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   // made the heart planes already; the guard keeps this cull from ever
   // reading planes not made.)
   if (!tw.heartPlanesMade) makeTranslationHeartPlanes(tw);
-  forEachNewModelVertex(tw, edges, [&](std::size_t vn, const Vec3& p) {
+  forEachNewModelVertex(tw, edges, [&](ModelVertexRef vn, const Vec3& p) {
     // (| not ||: which vertices are left out is unpredictable.)
     if (int(std::fabs(tw.heartPlane1.distance(p)) > tw.maxDistFromHeartPlane1) |
         int(std::fabs(tw.heartPlane2.distance(p)) > tw.maxDistFromHeartPlane2))

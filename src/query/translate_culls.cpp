@@ -168,9 +168,9 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
     poly.material = twin ? b.twinMaterial[lane] : b.material[lane];
     poly.numEdges = b.numEdges[lane];
     const std::int32_t polyNum = twin ? b.twin[lane] : b.polygonAt(lane);
-    const EdgeUse* uses = bvh.uses.data() + (twin ? b.twinUsesOf(lane) : b.usesOf(lane));
+    const PolygonCorner* corners = bvh.uses.data() + (twin ? b.twinUsesOf(lane) : b.usesOf(lane));
     const Real before = tw.fraction;
-    if (translateTrmThroughPolygon(tw, polyNum, poly, uses)) return false;
+    if (translateTrmThroughPolygon(tw, polyNum, poly, corners)) return false;
     if (tw.fraction != before && (front | back)) {
       const BoundsLanes bounds(tw);
       const unsigned left = bounds.pass(b) & leafPlanesCrossed(tw, b);

@@ -69,12 +69,16 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
         ASSERT_LE(at + q.numEdges, bvh.uses.size());
         const detail::QueryData* d = detail::queryDataOf(m);
         for (std::size_t i = 0; i < q.numEdges; ++i) {
+          // Corner i: edge i's entry and internal flag, and the position of
+          // the vertex where it starts in the polygon's order, which is where
+          // the edge before it ends.
           const detail::EdgeUse& want = d->edgeUses[q.firstEdge + i];
-          const detail::EdgeUse& got = bvh.uses[at + i];
-          EXPECT_EQ(got.edgeNum, want.edgeNum);
-          EXPECT_EQ(got.vertex[0], want.vertex[0]);
-          EXPECT_EQ(got.vertex[1], want.vertex[1]);
-          EXPECT_EQ(got.internal, want.internal);
+          const detail::PolygonCorner& got = bvh.uses[at + i];
+          EXPECT_EQ(got.edgeNum(), want.edgeNum);
+          EXPECT_EQ(got.internal(), want.internal != 0);
+          EXPECT_EQ(got.p, m.vertices()[std::size_t(want.vertex[want.edgeNum < 0 ? 1 : 0])]);
+          const detail::EdgeUse& before = d->edgeUses[q.firstEdge + (i == 0 ? q.numEdges : i) - 1];
+          EXPECT_EQ(got.p, m.vertices()[std::size_t(before.vertex[before.edgeNum < 0 ? 0 : 1])]);
         }
       };
       EXPECT_EQ(b.numEdges[j], p.numEdges);
