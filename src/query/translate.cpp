@@ -390,8 +390,9 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
   }
 }
 
-// Model vertex vertexNum (at p, moving to endp relative to the trace model)
-// reaches trace-model polygon trmPolyNum at fraction f: the nearest hit so far.
+// A model vertex (at p, moving to endp relative to the trace model; its
+// number, the contact's feature, from its edge's record) reaches trace-model
+// polygon trmPolyNum at fraction f: the nearest hit so far.
 [[gnu::cold, gnu::noinline]] void hitByModelVertex(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
                                                    ModelVertexRef vertex, const Vec3& p, const Vec3& endp,
                                                    Real f) {
