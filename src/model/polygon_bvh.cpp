@@ -121,11 +121,13 @@ class Builder {
  public:
   Builder(const ModelArrays& m, PolygonBvh& out) : m_(m), out_(out) {
     // (A leaf holds a polygon's edge count in 16 bits: a model with a longer
-    // polygon, which no map or mesh has, gets no hierarchy; nor one with a
-    // polygon whose edges do not close a loop: the corners need it.)
+    // polygon, which no map or mesh has, gets no hierarchy. The corners need
+    // each polygon's edges to close a loop, which every sealed model's do:
+    // CollisionModel::create refuses others, structureViolations.)
     fits_ = m.edges.size() < (std::size_t(1) << 30) &&  // (PolygonCorner's 2 * entry)
             std::all_of(m.polygons.begin(), m.polygons.end(), [&](const CmPolygon& p) {
-              return p.numEdges <= std::numeric_limits<std::uint16_t>::max() && closedLoop(m, p);
+              CMKIT_ASSERT(m.brokenEdgeLoopAt(p) < 0);
+              return p.numEdges <= std::numeric_limits<std::uint16_t>::max();
             });
     if (!fits_) return;
     // A polygon and its reversed twin of the same bounds are one item (the
@@ -425,22 +427,6 @@ class Builder {
     return number;
   }
 
-  /// Whether each of a polygon's edges starts, in the polygon's order,
-  /// where the one before it ends (the corners hold one vertex an edge).
-  static bool closedLoop(const ModelArrays& m, const CmPolygon& p) {
-    const auto start = [&](std::int32_t e, bool end) {
-      const CmEdge& edge = m.edges[std::size_t(std::abs(e))];
-      return edge.vertex[(e < 0) != end ? 1 : 0];
-    };
-    for (std::uint32_t i = 0; i < std::uint32_t(p.numEdges); ++i) {
-      const std::int32_t e = m.polygonEdges[p.firstEdge + i];
-      const std::int32_t next =
-          m.polygonEdges[p.firstEdge + (i + 1 == std::uint32_t(p.numEdges) ? 0 : i + 1)];
-      if (start(e, true) != start(next, false)) return false;
-    }
-    return true;
-  }
-
   /// Whether two bounds have the same bits (a twin's lane shares its culls).
   static bool sameBounds(const Bounds& a, const Bounds& b) {
     for (int k = 0; k < 3; ++k)
@@ -454,7 +440,7 @@ class Builder {
   PolygonBvh& out_;
   std::vector<Item> items_;
   std::vector<std::int32_t> twin_;  ///< per polygon: its reversed twin of the same bounds, or -1
-  bool fits_ = true;                ///< every polygon's edge count fits a leaf's 16 bits
+  bool fits_ = true;                ///< every polygon's edge count fits a leaf's 16 bits (and more)
   /// The polygons' planes, by number (the leaves read them in the items'
   /// order, at random: a compact array instead of the model's polygons).
   std::vector<Plane> planes_;

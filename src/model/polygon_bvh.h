@@ -102,8 +102,7 @@ struct PolygonBvh {
   /// here, each polygon's from the start of a cache line (the entries up to
   /// the next line's unused). (The model's edge uses in another order, with
   /// the position of a vertex in place of the edge's two vertex numbers, for
-  /// the translations' tests: a model whose polygon's edges do not close a
-  /// loop, which no map or mesh makes, gets no hierarchy.)
+  /// the translations' tests: a sealed model's polygons' edges close a loop.)
   std::vector<PolygonCorner, AlignedAllocator<PolygonCorner, 64>> uses;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
@@ -125,7 +124,7 @@ inline constexpr std::size_t kBvhMinPolygons = 256;
 /// The hierarchy of the model's polygons (the arrays' numbers in range);
 /// empty for a model with kBvhMinPolygons or fewer, or with a polygon of
 /// more than 65 535 edges (BvhLeaf::numEdges). `uses`: the model's edge
-/// uses (QueryData::edgeUses), copied into the leaves' order.
+/// uses (QueryData::edgeUses), copied into the leaves' order as corners.
 /// Made top-down, splitting each set of polygons in two at the cheapest of
 /// a few planes along its widest axis by the surface-area cost (binned), into
 /// up to kLanes children per node; sets of up to kLanes polygons are leaves.
