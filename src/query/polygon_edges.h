@@ -83,11 +83,23 @@ inline PolygonEdges polygonEdges(TraceWork& tw, const CmPolygon& poly) {
   return polygonEdges(tw, uses, poly.numEdges);
 }
 
-/// Calls f(vertex number, position) for the vertices of a polygon's edges
-/// that the query meets for the first time and that lie in the trace bounds:
-/// every model edge and vertex once per query (marked as met), internal
-/// edges skipped. The box test makes all six comparisons (which vertices lie
-/// in the bounds is unpredictable: insideBox).
+/// A model vertex met through a polygon's edges: the edge's entry and which
+/// of its ends in the polygon's order (0: where it starts). Its number,
+/// which only a hit needs, from the edge's record (modelVertexNumber).
+struct ModelVertexRef {
+  std::int32_t edgeNum;
+  int end;
+};
+inline std::size_t modelVertexNumber(const CollisionModel& m, ModelVertexRef v) {
+  const CmEdge& edge = m.edges()[std::size_t(std::abs(v.edgeNum))];
+  return std::size_t(edge.vertex[v.end ^ int(v.edgeNum < 0)]);
+}
+
+/// Calls f(vertex, vertex number, position) for the vertices of a polygon's
+/// edges that the query meets for the first time and that lie in the trace
+/// bounds: every model edge and vertex once per query (marked as met),
+/// internal edges skipped. The box test makes all six comparisons (which
+/// vertices lie in the bounds is unpredictable: insideBox).
 /// (edgeAt(i), i < count, gives edge i's number, vertices and internal flag:
 /// an EdgeUse or a CmEdge.)
 template <class EdgeAt, class F>
@@ -103,11 +115,12 @@ void forEachNewModelVertex(TraceWork& tw, std::size_t count, EdgeAt edgeAt, F f)
       const std::size_t vn = std::size_t(edge.vertex[k ^ int(edgeNum < 0)]);
       if (s.testAndMark(s.vertexChecked, vn)) continue;
       const Vec3& p = m.vertices()[vn];
-      if (insideBox(tw.bounds, p)) f(vn, p);
+      if (insideBox(tw.bounds, p)) f(ModelVertexRef{edgeNum, k}, vn, p);
     }
   }
 }
-/// The same over a polygon's edge list (reading each edge's record).
+/// The same over a polygon's edge list (reading each edge's record),
+/// f(vertex number, position).
 template <class F>
 void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F f) {
   const CollisionModel& m = tw.model;
@@ -116,18 +129,7 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
       [&](std::size_t i) {
         return std::pair<std::int32_t, const CmEdge&>(edges[i], m.edges()[std::size_t(std::abs(edges[i]))]);
       },
-      f);
-}
-/// A model vertex met through a polygon's edges: the edge's entry and which
-/// of its ends in the polygon's order (0: where it starts). Its number,
-/// which only a hit needs, from the edge's record (modelVertexNumber).
-struct ModelVertexRef {
-  std::int32_t edgeNum;
-  int end;
-};
-inline std::size_t modelVertexNumber(const CollisionModel& m, ModelVertexRef v) {
-  const CmEdge& edge = m.edges()[std::size_t(std::abs(v.edgeNum))];
-  return std::size_t(edge.vertex[v.end ^ int(v.edgeNum < 0)]);
+      [&](ModelVertexRef, std::size_t vn, const Vec3& p) { f(vn, p); });
 }
 /// The same over a polygon's edges, f(ModelVertexRef, position). With
 /// corners (the hierarchy's), a translation does not mark a vertex (its
@@ -143,18 +145,13 @@ inline std::size_t modelVertexNumber(const CollisionModel& m, ModelVertexRef v) 
 template <class F>
 void forEachNewModelVertex(TraceWork& tw, const PolygonEdges& edges, F f) {
   QueryScratch& s = tw.scratch;
-  if (!edges.corners) {  // (forEachNewModelVertex's order, with the edges' vertex numbers)
-    for (std::size_t i = 0; i < edges.size; ++i) {
-      const EdgeUse& use = edges.uses[i];
-      if (s.testAndMark(s.edgeChecked, std::size_t(std::abs(use.edgeNum)))) continue;
-      if (use.internal) continue;
-      for (int k = 0; k < 2; ++k) {
-        const std::size_t vn = std::size_t(use.vertex[k ^ int(use.edgeNum < 0)]);
-        if (s.testAndMark(s.vertexChecked, vn)) continue;
-        const Vec3& p = edges.vertices[vn];
-        if (insideBox(tw.bounds, p)) f(ModelVertexRef{use.edgeNum, k}, p);
-      }
-    }
+  if (!edges.corners) {
+    forEachNewModelVertex(
+        tw, edges.size,
+        [&](std::size_t i) {
+          return std::pair<std::int32_t, const EdgeUse&>(edges.uses[i].edgeNum, edges.uses[i]);
+        },
+        [&](ModelVertexRef v, std::size_t, const Vec3& p) { f(v, p); });
     return;
   }
   // Corner i is where edge i starts and edge i - 1 ends: met once, by the
