@@ -140,29 +140,43 @@ class PacketPlanes {
   }
   /// Of the rays in `lanes`, those passing inside every edge of lane k's
   /// polygon (with `twin`: of its twin, outside every edge of the lane's
-  /// rows): insideEdges for eight rays at once (the same products in the
-  /// same order, so the same signs). Float lanes only (kFloatLanes).
+  /// polygon): insideEdges for eight rays at once. The products are
+  /// cornerLine's (the same in every lane, so no pick of the edge's first
+  /// vertex), whose sign bits say "outside" whether or not the polygon uses
+  /// the edge reversed, except where one is zero: then edgeLine's, the
+  /// model's line, as insideEdges computes it. Float lanes only
+  /// (kFloatLanes).
   std::uint32_t insideEdges(const RayLayout::LeafHead& h, std::uint32_t k, bool twin,
                             std::uint32_t lanes) const {
-    const RayLayout::EdgeRow* rows = edgeRows(h);
-    for (std::uint32_t j = 0; j < h.numEdgeRows && lanes; ++j) {
-      const RayLayout::EdgeRow& row = rows[j];
-      const auto term = [&](int e, int r) {
-        return _mm256_mul_ps(_mm256_set1_ps(float(row.p[e][k])), line_[r]);
-      };
-      __m256 product = _mm256_add_ps(term(0, 4), term(1, 5));
-      product = _mm256_add_ps(product, term(2, 3));
-      product = _mm256_add_ps(product, term(4, 0));
-      product = _mm256_add_ps(product, term(5, 1));
-      product = _mm256_add_ps(product, term(3, 2));
-      const auto negative = std::uint32_t(_mm256_movemask_ps(product));
-      // Inside: the sign the edge's use asks (a twin uses it reversed).
-      lanes &= (row.reversed[k] != std::uint32_t(twin)) ? negative : ~negative;
+    const RayLayout::CornerRow* rows = cornerRows(h);
+    for (std::uint32_t j = 0; j < h.numEdges && lanes; ++j) {
+      Real edge[6];
+      cornerLine(rows, j, k, edge);
+      __m256 product = productWith(edge);
+      std::uint32_t outside = std::uint32_t(_mm256_movemask_ps(product));
+      if (std::uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(product, _mm256_setzero_ps(), _CMP_EQ_OQ))) & lanes)
+          [[unlikely]] {
+        edgeLine(rows, j, k, edge);
+        product = productWith(edge);
+        outside = std::uint32_t(_mm256_movemask_ps(product)) ^ (std::uint32_t(0) - edgeReversed(rows, j, k));
+      }
+      // Inside a twin: outside the lane's polygon.
+      lanes &= twin ? outside : ~outside;
     }
     return lanes;
   }
 
  private:
+  /// edge . line_ for the eight rays, in edgeProduct's order.
+  __m256 productWith(const Real* edge) const {
+    const auto term = [&](int e, int r) { return _mm256_mul_ps(_mm256_set1_ps(float(edge[e])), line_[r]); };
+    __m256 product = _mm256_add_ps(term(0, 4), term(1, 5));
+    product = _mm256_add_ps(product, term(2, 3));
+    product = _mm256_add_ps(product, term(4, 0));
+    product = _mm256_add_ps(product, term(5, 1));
+    return _mm256_add_ps(product, term(3, 2));
+  }
+
   __m256 start_[3], end_[3], dir_[3];
   __m256 line_[6];  ///< the rays' Pluecker coordinates (Ray::line)
 };

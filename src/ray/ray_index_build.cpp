@@ -17,6 +17,7 @@
 #include "model/twins.h"
 #include "ray/ray_index_data.h"
 #include "ray/ray_index_kernel.h"  // kMaxDepth: the walk's stack bounds the depth
+#include "util/assert.h"
 
 namespace cmkit::detail {
 
@@ -37,10 +38,10 @@ static_assert(kSahDepthLimit + 32 <= detail::kMaxDepth, "the walk's stack is siz
 /// The surface-area heuristic's cost of visiting a node (the unit of leafCost).
 constexpr Real kNodeCost = 1;
 /// The surface-area heuristic's cost of testing `n` polygons in leaves: each
-/// leaf of up to kMaxLeafPolygons costs 1 (its head and edge rows are read
+/// leaf of up to kMaxLeafPolygons costs 1 (its head and corner rows are read
 /// and tested for all lanes at once, and take the same memory however many
 /// lanes are used), and each polygon beyond a leaf's first 0.5 (its share of
-/// the crossings and edge rows that pass). Costing every polygon 1 (before
+/// the crossings and edges that pass). Costing every polygon 1 (before
 /// 2026-11-29) made leaves of one or two polygons, half their memory unused;
 /// costing each leaf 1 whatever it holds filled them but slowed the casts
 /// through lt4's triangles. This middle: lt4.map's world index 5.4 MB ->
@@ -237,25 +238,25 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
     return {p.plane.normal, p.plane.dist, boxes[k], p.contents, std::int32_t(usable[k]), p.material};
   };
 
-  // Each leaf: its head and edge rows in whole chunks, its polygons'
+  // Each leaf: its head and corner rows in whole chunks, its polygons'
   // details in leaf order.
   d.details.reserve(usable.size());
   const auto addLeaf = [&](const BinaryNode& leaf) {
     using Head = Index::LeafHead;
-    using Row = Index::EdgeRow;
-    std::uint32_t rows = 0;
+    using Row = Index::CornerRow;
+    std::uint32_t edges = 0;
     for (std::uint32_t lane = 0; lane < leaf.count; ++lane)
-      rows = std::max(
-          rows, std::uint32_t(model.polygons()[usable[items[binary.order()[leaf.first + lane]]]].numEdges));
+      edges = std::max(
+          edges, std::uint32_t(model.polygons()[usable[items[binary.order()[leaf.first + lane]]]].numEdges));
     const std::size_t chunk = d.leafChunks.size();
     if (chunk >= (Index::kLeaf >> Index::kLeafCountBits))  // (over 500 million leaves)
       throw std::length_error("RayIndex: too many polygons");
-    const std::size_t bytes = sizeof(Head) + rows * sizeof(Row);
+    const std::size_t bytes = sizeof(Head) + (edges + 1) * sizeof(Row);
     d.leafChunks.resize(chunk + (bytes + sizeof(Index::LeafChunk) - 1) / sizeof(Index::LeafChunk));
     auto* head = new (d.leafChunks.data() + chunk) Head{};
-    auto* row = new (head + 1) Row[rows]{};
+    auto* row = new (head + 1) Row[edges + 1]{};
     head->firstDetail = std::uint32_t(d.details.size());
-    head->numEdgeRows = rows;
+    head->numEdges = edges;
     for (std::uint32_t lane = 0; lane < leaf.count; ++lane) {
       const std::uint32_t k = items[binary.order()[leaf.first + lane]];
       const CmPolygon& p = model.polygons()[usable[k]];
@@ -264,18 +265,15 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
       head->z[lane] = p.plane.normal.z;
       head->dist[lane] = p.plane.dist;
       head->contents[lane] = p.contents;
-      std::uint32_t j = 0;
-      for (const std::int32_t e : model.edgesOf(p)) {
-        const CmEdge& edge = model.edges()[std::size_t(std::abs(e))];
-        const Pluecker line = Pluecker::fromLine(model.vertices()[std::size_t(edge.vertex[0])],
-                                                 model.vertices()[std::size_t(edge.vertex[1])]);
-        for (int c = 0; c < 6; ++c) row[j].p[c][lane] = line[c];
-        row[j].reversed[lane] = e < 0;
-        ++j;
-      }
-      for (; j < rows; ++j) {  // a polygon of fewer edges repeats its first
-        for (int c = 0; c < 6; ++c) row[j].p[c][lane] = row[0].p[c][lane];
-        row[j].reversed[lane] = row[0].reversed[lane];
+      // Corner j: where edge j mod n starts (a sealed model's polygon's
+      // edges close a loop, so it is where edge j - 1 ends).
+      CMKIT_ASSERT(model.arrays().brokenEdgeLoopAt(p) < 0);
+      const auto list = model.edgesOf(p);
+      for (std::uint32_t j = 0; j <= edges; ++j) {
+        const std::int32_t e = list[j % list.size()];
+        const Vec3& corner = model.vertices()[std::size_t(model.arrays().edgeStart(e))];
+        for (int c = 0; c < 3; ++c) row[j].v[c][lane] = corner[c];
+        if (j < edges) row[j].reversed |= std::uint32_t(e < 0) << lane;
       }
       d.details.push_back(detailOf(k));
       if (twin[k] >= 0) head->twins |= 1u << lane;

@@ -14,7 +14,7 @@ namespace cmkit::detail {
 /// What a RayIndex holds (built once, then shared by its copies).
 struct RayIndexData : RayLayout {
   std::vector<Node> nodes;
-  std::vector<LeafChunk> leafChunks;   ///< the leaves, each a LeafHead and its EdgeRows
+  std::vector<LeafChunk> leafChunks;   ///< the leaves, each a LeafHead and its CornerRows
   std::vector<PolygonDetail> details;  ///< the polygons indexed, in leaf order
   bool avx2 = false;
 };

@@ -20,6 +20,10 @@
 
 #include "ray/ray_index_layout.h"
 
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
+#include <emmintrin.h>
+#endif
+
 namespace cmkit::detail {
 
 // FLOAT ON PURPOSE: the node test works on float lanes (RayLayout::Node's
@@ -111,40 +115,122 @@ static inline bool signBit(double x) {
   return (bits >> 63) != 0;
 }
 
-/// The leaf of a child reference: its head (its edge rows follow it) and
+/// The leaf of a child reference: its head (its corner rows follow it) and
 /// how many of its lanes hold a polygon.
 static inline const RayLayout::LeafHead& leafHead(const Arrays& index, std::uint32_t ref) {
   const std::uint32_t chunk = (ref & ~RayLayout::kLeaf) >> RayLayout::kLeafCountBits;
   return *reinterpret_cast<const RayLayout::LeafHead*>(index.leafChunks + chunk);
 }
 static inline std::uint32_t leafCount(std::uint32_t ref) { return (ref & (RayLayout::kLeafLanes - 1)) + 1; }
-static inline const RayLayout::EdgeRow* edgeRows(const RayLayout::LeafHead& head) {
-  return reinterpret_cast<const RayLayout::EdgeRow*>(&head + 1);
+static inline const RayLayout::CornerRow* cornerRows(const RayLayout::LeafHead& head) {
+  return reinterpret_cast<const RayLayout::CornerRow*>(&head + 1);
 }
 
-/// The product of edge row `row`'s line in `lane` with a ray's line (the
-/// order of Pluecker::permutedInnerProduct): its sign says on which side of
-/// the edge the ray passes.
-static inline Real edgeProduct(const RayLayout::EdgeRow& row, std::uint32_t lane, const Real* ray) {
-  return row.p[0][lane] * ray[4] + row.p[1][lane] * ray[5] + row.p[2][lane] * ray[3] +
-         row.p[4][lane] * ray[0] + row.p[5][lane] * ray[1] + row.p[3][lane] * ray[2];
+/// Whether lane k's polygon uses edge j reversed (0 or 1).
+static inline std::uint32_t edgeReversed(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k) {
+  return (rows[j].reversed >> k) & 1u;
 }
 
-/// 1 when the ray of Pluecker coordinates `line` passes outside the edge of
-/// row `row` in `lane` (the sign of the product is not the one the
-/// polygon's use of the edge asks), else 0.
-static inline std::uint32_t outsideEdge(const RayLayout::EdgeRow& row, std::uint32_t lane, const Real* line) {
-  return row.reversed[lane] ^ std::uint32_t(signBit(edgeProduct(row, lane, line)));
+/// The line from lane k's corner in row `s` to its corner in row `e`, by
+/// Pluecker::fromLine's arithmetic.
+static inline void lineOfCorners(const RayLayout::CornerRow& s, const RayLayout::CornerRow& e,
+                                 std::uint32_t k, Real* l) {
+  const Real sx = s.v[0][k], sy = s.v[1][k], sz = s.v[2][k];
+  const Real ex = e.v[0][k], ey = e.v[1][k], ez = e.v[2][k];
+  l[0] = sx * ey - ex * sy;
+  l[1] = sx * ez - ex * sz;
+  l[2] = sx - ex;
+  l[3] = sy * ez - ey * sz;
+  l[4] = sz - ez;
+  l[5] = ey - sy;
 }
+
+/// The line of edge j of lane k's polygon (Pluecker coordinates), made from
+/// corners j and j + 1 from the edge's first vertex to its second: the
+/// model's line of the edge, bit for bit.
+static inline void edgeLine(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k, Real* l) {
+  const bool reversed = edgeReversed(rows, j, k) != 0;
+  lineOfCorners(rows[reversed ? j + 1 : j], rows[reversed ? j : j + 1], k, l);
+}
+
+/// The line from corner j to corner j + 1 of lane k's polygon: edgeLine's,
+/// or where the polygon uses the edge reversed, its every coordinate
+/// negated exactly (x - y is -(y - x) in IEEE arithmetic) up to the sign
+/// of a zero. So its product with a ray's line (edgeProduct) is the
+/// model's negated exactly, rounding to nearest being symmetric, unless it
+/// is zero: its sign bit is the "outside" answer of outsideEdge wherever it
+/// is not zero.
+static inline void cornerLine(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k, Real* l) {
+  lineOfCorners(rows[j], rows[j + 1], k, l);
+}
+
+/// The product of an edge's line with a ray's line (the order of
+/// Pluecker::permutedInnerProduct): its sign says on which side of the
+/// edge the ray passes.
+static inline Real edgeProduct(const Real* edge, const Real* ray) {
+  return edge[0] * ray[4] + edge[1] * ray[5] + edge[2] * ray[3] + edge[4] * ray[0] + edge[5] * ray[1] +
+         edge[3] * ray[2];
+}
+
+/// 1 when the ray of Pluecker coordinates `line` passes outside edge j of
+/// lane k's polygon (the sign of the product is not the one the polygon's
+/// use of the edge asks), else 0.
+static inline std::uint32_t outsideEdge(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k,
+                                        const Real* line) {
+  Real edge[6];
+  edgeLine(rows, j, k, edge);
+  return edgeReversed(rows, j, k) ^ std::uint32_t(signBit(edgeProduct(edge, line)));
+}
+
+/// outsideEdge for the four lanes at once (bit k: lane k).
+static inline std::uint32_t outsideEdgesLaneByLane(const RayLayout::CornerRow* rows, std::uint32_t j,
+                                                   const Real* line) {
+  std::uint32_t outside = 0;
+  for (std::uint32_t k = 0; k < RayLayout::kLeafLanes; ++k) outside |= outsideEdge(rows, j, k, line) << k;
+  return outside;
+}
+#if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
+/// The same with SSE2 float lanes, without picking each lane's first
+/// vertex: every lane's line is cornerLine's, whose product's sign bit is
+/// outsideEdge's answer in every lane, reversed or not, where no product
+/// is zero; where one is (the ray meets an edge's line), the lanes are
+/// tested one by one, as the model's lines would be.
+/// (Only the lanes of `live` count: an empty lane's product is zero.)
+static inline std::uint32_t outsideEdges(const RayLayout::CornerRow* rows, std::uint32_t j, const Real* line,
+                                         std::uint32_t live) {
+  static_assert(RayLayout::kLeafLanes == 4);
+  const RayLayout::CornerRow& a = rows[j];
+  const RayLayout::CornerRow& b = rows[j + 1];
+  const __m128 sx = _mm_loadu_ps(a.v[0]), sy = _mm_loadu_ps(a.v[1]), sz = _mm_loadu_ps(a.v[2]);
+  const __m128 ex = _mm_loadu_ps(b.v[0]), ey = _mm_loadu_ps(b.v[1]), ez = _mm_loadu_ps(b.v[2]);
+  const auto mul = _mm_mul_ps;
+  const auto sub = _mm_sub_ps;
+  // lineOfCorners' arithmetic, and edgeProduct's.
+  const auto term = [&](__m128 l, int r) { return mul(l, _mm_set1_ps(line[r])); };
+  __m128 p = _mm_add_ps(term(sub(mul(sx, ey), mul(ex, sy)), 4), term(sub(mul(sx, ez), mul(ex, sz)), 5));
+  p = _mm_add_ps(p, term(sub(sx, ex), 3));
+  p = _mm_add_ps(p, term(sub(sz, ez), 0));
+  p = _mm_add_ps(p, term(sub(ey, sy), 1));
+  p = _mm_add_ps(p, term(sub(mul(sy, ez), mul(ey, sz)), 2));
+  if (std::uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(p, _mm_setzero_ps()))) & live) [[unlikely]]
+    return outsideEdgesLaneByLane(rows, j, line);
+  return std::uint32_t(_mm_movemask_ps(p));
+}
+#else
+static inline std::uint32_t outsideEdges(const RayLayout::CornerRow* rows, std::uint32_t j, const Real* line,
+                                         std::uint32_t) {
+  return outsideEdgesLaneByLane(rows, j, line);
+}
+#endif
 
 /// Whether a packet's ray passes inside every edge of the polygon in `lane`
 /// of the leaf (the sign of each edge line's product with the ray's line),
 /// or with `twin` inside every edge of the lane's twin (outside every edge
-/// of the lane's rows: RayLayout::LeafHead::twins).
+/// of the lane's polygon: RayLayout::LeafHead::twins).
 static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r, bool twin) {
-  const RayLayout::EdgeRow* rows = edgeRows(head);
-  for (std::uint32_t j = 0; j < head.numEdgeRows; ++j)
-    if (outsideEdge(rows[j], lane, r.line) != std::uint32_t(twin)) return false;
+  const RayLayout::CornerRow* rows = cornerRows(head);
+  for (std::uint32_t j = 0; j < head.numEdges; ++j)
+    if (outsideEdge(rows, j, lane, r.line) != std::uint32_t(twin)) return false;
   return true;
 }
 
@@ -196,7 +282,7 @@ static inline void crossesPlanes(const RayLayout::LeafHead& h, std::uint32_t k, 
 /// crossing; equal crossings go to the lower model polygon index
 /// (`bestIndex`). Every step on all lanes alike, as plain lane loops
 /// without branches (the compiler may make them SIMD): the planes and
-/// contents, then, while some lane is left, the edge rows. A lane's answer
+/// contents, then, while some lane is left, the edges. A lane's answer
 /// is that of testing its polygon alone (the same operations in the same
 /// order; for its twin the same values with their signs reversed), and the
 /// best kept is the first crossing, lowest index on ties, whatever the
@@ -222,10 +308,9 @@ static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r
                                             : twinDetail(h, ref, std::uint32_t(__builtin_ctz(twinLanes)))));
   Real line[6];
   rayLine(r.start, r.dir, line);
-  const RayLayout::EdgeRow* rows = edgeRows(h);
-  for (std::uint32_t j = 0; j < h.numEdgeRows && (lanes | twinLanes); ++j) {
-    std::uint32_t outside = 0;
-    for (std::uint32_t k = 0; k < kLanes; ++k) outside |= outsideEdge(rows[j], k, line) << k;
+  const RayLayout::CornerRow* rows = cornerRows(h);
+  for (std::uint32_t j = 0; j < h.numEdges && (lanes | twinLanes); ++j) {
+    const std::uint32_t outside = outsideEdges(rows, j, line, lanes | twinLanes);
     lanes &= ~outside;
     twinLanes &= outside;  // a twin is inside where the lane's polygon is outside
   }

@@ -34,7 +34,7 @@ struct RayLayout {
   static constexpr std::uint32_t kLeafLanes = 4;
   /// A child reference to a leaf is kLeaf | chunk << kLeafCountBits |
   /// (count - 1): the leaf is stored from leafChunks[chunk] on (a LeafHead,
-  /// then its EdgeRows), its polygons are lanes 0 .. count - 1.
+  /// then its CornerRows), its polygons are lanes 0 .. count - 1.
   static constexpr int kLeafCountBits = 2;
   static_assert(1u << kLeafCountBits == kLeafLanes);
   /// The unit leaves are stored in (a cache line).
@@ -42,37 +42,46 @@ struct RayLayout {
     unsigned char bytes[64];
   };
   /// A leaf's polygons side by side, lane k one polygon: their planes,
-  /// contents, where their details start and how many edge rows follow.
-  /// The walk tests every lane at once (no branch per polygon) from one
-  /// run of memory that holds all it reads of a leaf (float builds: the
-  /// head in two cache lines, each edge row in under two), in place of a
-  /// polygon record and edge lines elsewhere. Unused lanes have a zero
-  /// normal (it faces no ray) and contents 0.
+  /// contents, where their details start and how many edges their corner
+  /// rows make. The walk tests every lane at once (no branch per polygon)
+  /// from one run of memory that holds all it reads of a leaf (float
+  /// builds: the head and a triangle leaf's corners in five cache lines),
+  /// in place of a polygon record and edge lines elsewhere. Unused lanes
+  /// have a zero normal (it faces no ray) and contents 0.
   ///
   /// A lane may also hold its polygon's reversed twin (bit k of `twins`):
   /// a polygon of the same contents whose plane is the lane's negated
   /// exactly and whose edges are the lane's used the other way round, as
   /// the two sides of a two-sided surface are. Its plane test is the
   /// lane's with every sign reversed and the same t, its edge test
-  /// "outside every edge" of the lane's rows, so one lane tests both
+  /// "outside every edge" of the lane's edges, so one lane tests both
   /// (a ray crosses at most one of them) in half the memory of two.
-  struct alignas(64) LeafHead {
+  struct LeafHead {
     Real x[kLeafLanes], y[kLeafLanes], z[kLeafLanes], dist[kLeafLanes];
     std::uint32_t contents[kLeafLanes];
     std::uint32_t firstDetail;  ///< details[] index of lane 0 (lane k: + k)
-    std::uint32_t numEdgeRows;  ///< the most edges of a lane's polygon
+    std::uint32_t numEdges;     ///< the most edges of a lane's polygon; numEdges + 1 CornerRows follow
     /// Lanes holding a twin (bit k: lane k). The twins' details follow the
     /// lanes', in lane order (twinDetail in ray_index_kernel.h).
     std::uint32_t twins;
   };
-  /// Edge j of each lane's polygon: its line (Pluecker coordinates, in the
-  /// model's stored direction; p[c][k] coordinate c of lane k) and whether
-  /// the polygon uses it reversed. A polygon with fewer edges repeats its
-  /// first edge (the same test again, so no other answer).
-  struct alignas(16) EdgeRow {
-    Real p[6][kLeafLanes];
-    std::uint32_t reversed[kLeafLanes];
+  /// Corner j of each lane's polygon (v[c][k]: coordinate c of lane k),
+  /// where its edge j starts in the polygon's order; edge j runs to corner
+  /// j + 1. The walk makes an edge's line from its two corners as the
+  /// model's line of the edge is made (Pluecker::fromLine, from the edge's
+  /// first vertex to its second: `reversed` says which corner that is), so
+  /// the same line, bit for bit, in a third of the bytes of the line and
+  /// no more than its two corners. A polygon of n edges with fewer than
+  /// the leaf's numEdges goes round again (corner j is its corner j mod n:
+  /// the same tests again, so no other answer); the last row closes the
+  /// loop.
+  struct CornerRow {
+    Real v[3][kLeafLanes];
+    /// Bit k: lane k's polygon uses edge j reversed (its second vertex is
+    /// corner j). Unused in the last row.
+    std::uint32_t reversed;
   };
+  static_assert(sizeof(LeafHead) % alignof(CornerRow) == 0, "the corner rows follow the head");
   /// What is read of a polygon that accepts a crossing (and for the answer).
   struct PolygonDetail {
     Vec3 normal;

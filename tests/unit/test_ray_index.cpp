@@ -439,6 +439,65 @@ TEST(RayIndex, TwoSidedSurfacesSameAsTestingEveryPolygon) {
   }
 }
 
+TEST(RayIndex, RaysAlongEdgeLinesSameAsTestingEveryPolygon) {
+  // Rays whose lines meet the boxes' edge lines exactly: the product of the
+  // two lines is zero, and its sign bit (the original's answer) depends on
+  // the exact terms. The index makes each edge's line from the polygon's
+  // corners, and where a product is zero from the edge's stored direction:
+  // single casts, castMany's packets (both node tests) and testing every
+  // polygon must agree on every ray. Boxes on a grid of 16 units, rays
+  // between grid points (vertical ones along the boxes' vertical edges and
+  // through their top edges, and slanted ones), in packets of one start.
+  test::ModelMaker maker;
+  for (int x = 0; x < 4; ++x)
+    for (int y = 0; y < 4; ++y)
+      if ((x + y) % 2 == 0)
+        maker.addBox(
+            {{Real(32 * x), Real(32 * y), 0}, {Real(32 * x + 16), Real(32 * y + 16), Real(16 + 8 * x)}});
+  const CollisionModel m = maker.build();
+  std::vector<Vec3> starts, ends;
+  for (int x = -1; x <= 16; ++x)
+    for (int y = -1; y <= 16; ++y) {
+      const Vec3 top{Real(8 * x), Real(8 * y), 64};
+      starts.push_back(top);
+      ends.push_back({top.x, top.y, -16});  // straight down
+      starts.push_back(top);
+      ends.push_back({top.x + 16, top.y, -16});  // slanted, between grid points
+      starts.push_back({top.x, top.y, 8});
+      ends.push_back({top.x + 64, top.y, 8});  // level, along the boxes' sides
+    }
+  int zeroProducts = 0;  // rays meeting some edge's line of a polygon they may cross
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const Pluecker ray = Pluecker::fromRay(starts[i], ends[i] - starts[i]);
+    bool meets = false;
+    for (const CmPolygon& p : m.polygons())
+      for (std::int32_t e : m.edgesOf(p)) {
+        const CmEdge& edge = m.edges()[std::size_t(std::abs(e))];
+        meets |= Pluecker::fromLine(m.vertices()[std::size_t(edge.vertex[0])],
+                                    m.vertices()[std::size_t(edge.vertex[1])])
+                     .permutedInnerProduct(ray) == 0;
+      }
+    zeroProducts += meets;
+  }
+  EXPECT_GT(zeroProducts, int(starts.size()) / 2);
+  int hits = 0;
+  for (const RayIndex::NodeTest test : {RayIndex::NodeTest::Auto, RayIndex::NodeTest::Baseline}) {
+    const RayIndex index(m, test);
+    std::vector<RayHit> many(starts.size());
+    index.castMany({{{}, {}, contents::kMaskSolid, {}}, starts, ends}, many);
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      const RayHit one = index.cast({starts[i], ends[i], contents::kMaskSolid});
+      expectSameHit(many[i], one, i);
+      if (::testing::Test::HasFatalFailure()) return;
+      const BruteHit slow = castEveryPolygon(m, starts[i], ends[i], contents::kMaskSolid);
+      ASSERT_EQ(one.polygon, slow.polygon) << "ray " << i;
+      EXPECT_EQ(std::memcmp(&one.fraction, &slow.fraction, sizeof(Real)), 0) << "ray " << i;
+      hits += one.hit();
+    }
+  }
+  EXPECT_GT(hits, int(starts.size()) / 4);
+}
+
 TEST(RayIndex, CastManyLeavesMismatchedSpansAlone) {
   const RayIndex index(floorBox());
   const std::vector<Vec3> two{{0, 0, 8}, {1, 0, 8}}, three{{0, 0, -8}, {1, 0, -8}, {2, 0, -8}};
