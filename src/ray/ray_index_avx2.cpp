@@ -148,17 +148,17 @@ class PacketPlanes {
   /// (kFloatLanes).
   std::uint32_t insideEdges(const RayLayout::LeafHead& h, std::uint32_t k, bool twin,
                             std::uint32_t lanes) const {
-    const RayLayout::CornerRow* rows = cornerRows(h);
     for (std::uint32_t j = 0; j < h.numEdges && lanes; ++j) {
+      const EdgeCorners corners = edgeCorners(h, j);
       Real edge[6];
-      cornerLine(rows, j, k, edge);
+      cornerLine(corners, k, edge);
       __m256 product = productWith(edge);
       std::uint32_t outside = std::uint32_t(_mm256_movemask_ps(product));
       if (std::uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(product, _mm256_setzero_ps(), _CMP_EQ_OQ))) & lanes)
           [[unlikely]] {
-        edgeLine(rows, j, k, edge);
+        edgeLine(corners, k, edge);
         product = productWith(edge);
-        outside = std::uint32_t(_mm256_movemask_ps(product)) ^ (std::uint32_t(0) - edgeReversed(rows, j, k));
+        outside = std::uint32_t(_mm256_movemask_ps(product)) ^ (std::uint32_t(0) - edgeReversed(corners, k));
       }
       // Inside a twin: outside the lane's polygon.
       lanes &= twin ? outside : ~outside;

@@ -244,19 +244,25 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
   const auto addLeaf = [&](const BinaryNode& leaf) {
     using Head = Index::LeafHead;
     using Row = Index::CornerRow;
+    const auto edgesOfLane = [&](std::uint32_t lane) {
+      return std::uint32_t(model.polygons()[usable[items[binary.order()[leaf.first + lane]]]].numEdges);
+    };
     std::uint32_t edges = 0;
-    for (std::uint32_t lane = 0; lane < leaf.count; ++lane)
-      edges = std::max(
-          edges, std::uint32_t(model.polygons()[usable[items[binary.order()[leaf.first + lane]]]].numEdges));
+    for (std::uint32_t lane = 0; lane < leaf.count; ++lane) edges = std::max(edges, edgesOfLane(lane));
+    // A closing row only where some lane's loop would not close at row 0.
+    bool closing = false;
+    for (std::uint32_t lane = 0; lane < leaf.count; ++lane) closing |= edges % edgesOfLane(lane) != 0;
+    const std::uint32_t rows = edges + std::uint32_t(closing);
     const std::size_t chunk = d.leafChunks.size();
     if (chunk >= (Index::kLeaf >> Index::kLeafCountBits))  // (over 500 million leaves)
       throw std::length_error("RayIndex: too many polygons");
-    const std::size_t bytes = sizeof(Head) + (edges + 1) * sizeof(Row);
+    const std::size_t bytes = sizeof(Head) + rows * sizeof(Row);
     d.leafChunks.resize(chunk + (bytes + sizeof(Index::LeafChunk) - 1) / sizeof(Index::LeafChunk));
     auto* head = new (d.leafChunks.data() + chunk) Head{};
-    auto* row = new (head + 1) Row[edges + 1]{};
+    auto* row = new (head + 1) Row[rows]{};
     head->firstDetail = std::uint32_t(d.details.size());
     head->numEdges = edges;
+    head->closingRow = closing ? edges : 0;
     for (std::uint32_t lane = 0; lane < leaf.count; ++lane) {
       const std::uint32_t k = items[binary.order()[leaf.first + lane]];
       const CmPolygon& p = model.polygons()[usable[k]];
@@ -269,7 +275,7 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
       // edges close a loop, so it is where edge j - 1 ends).
       CMKIT_ASSERT(model.arrays().brokenEdgeLoopAt(p) < 0);
       const auto list = model.edgesOf(p);
-      for (std::uint32_t j = 0; j <= edges; ++j) {
+      for (std::uint32_t j = 0; j < rows; ++j) {
         const std::int32_t e = list[j % list.size()];
         const Vec3& corner = model.vertices()[std::size_t(model.arrays().edgeStart(e))];
         for (int c = 0; c < 3; ++c) row[j].v[c][lane] = corner[c];

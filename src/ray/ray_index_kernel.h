@@ -126,9 +126,20 @@ static inline const RayLayout::CornerRow* cornerRows(const RayLayout::LeafHead& 
   return reinterpret_cast<const RayLayout::CornerRow*>(&head + 1);
 }
 
-/// Whether lane k's polygon uses edge j reversed (0 or 1).
-static inline std::uint32_t edgeReversed(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k) {
-  return (rows[j].reversed >> k) & 1u;
+/// Edge j of a leaf's lanes: the corner rows it runs from and to (the last
+/// edge to the leaf's closing row).
+struct EdgeCorners {
+  const RayLayout::CornerRow* from;
+  const RayLayout::CornerRow* to;
+};
+static inline EdgeCorners edgeCorners(const RayLayout::LeafHead& head, std::uint32_t j) {
+  const RayLayout::CornerRow* rows = cornerRows(head);
+  return {rows + j, rows + (j + 1 == head.numEdges ? head.closingRow : j + 1)};
+}
+
+/// Whether lane k's polygon uses the edge reversed (0 or 1).
+static inline std::uint32_t edgeReversed(const EdgeCorners& e, std::uint32_t k) {
+  return (e.from->reversed >> k) & 1u;
 }
 
 /// The line from lane k's corner in row `s` to its corner in row `e`, by
@@ -145,23 +156,25 @@ static inline void lineOfCorners(const RayLayout::CornerRow& s, const RayLayout:
   l[5] = ey - sy;
 }
 
-/// The line of edge j of lane k's polygon (Pluecker coordinates), made from
-/// corners j and j + 1 from the edge's first vertex to its second: the
-/// model's line of the edge, bit for bit.
-static inline void edgeLine(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k, Real* l) {
-  const bool reversed = edgeReversed(rows, j, k) != 0;
-  lineOfCorners(rows[reversed ? j + 1 : j], rows[reversed ? j : j + 1], k, l);
+/// The line of lane k's edge (Pluecker coordinates), made from its two
+/// corners from the edge's first vertex to its second: the model's line of
+/// the edge, bit for bit.
+static inline void edgeLine(const EdgeCorners& e, std::uint32_t k, Real* l) {
+  if (edgeReversed(e, k))
+    lineOfCorners(*e.to, *e.from, k, l);
+  else
+    lineOfCorners(*e.from, *e.to, k, l);
 }
 
-/// The line from corner j to corner j + 1 of lane k's polygon: edgeLine's,
-/// or where the polygon uses the edge reversed, its every coordinate
-/// negated exactly (x - y is -(y - x) in IEEE arithmetic) up to the sign
-/// of a zero. So its product with a ray's line (edgeProduct) is the
-/// model's negated exactly, rounding to nearest being symmetric, unless it
-/// is zero: its sign bit is the "outside" answer of outsideEdge wherever it
-/// is not zero.
-static inline void cornerLine(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k, Real* l) {
-  lineOfCorners(rows[j], rows[j + 1], k, l);
+/// The line from lane k's corner the edge runs from to the one it runs to:
+/// edgeLine's, or where the polygon uses the edge reversed, its every
+/// coordinate negated exactly (x - y is -(y - x) in IEEE arithmetic) up to
+/// the sign of a zero. So its product with a ray's line (edgeProduct) is
+/// the model's negated exactly, rounding to nearest being symmetric, unless
+/// it is zero: its sign bit is the "outside" answer of outsideEdge wherever
+/// it is not zero.
+static inline void cornerLine(const EdgeCorners& e, std::uint32_t k, Real* l) {
+  lineOfCorners(*e.from, *e.to, k, l);
 }
 
 /// The product of an edge's line with a ray's line (the order of
@@ -172,21 +185,19 @@ static inline Real edgeProduct(const Real* edge, const Real* ray) {
          edge[3] * ray[2];
 }
 
-/// 1 when the ray of Pluecker coordinates `line` passes outside edge j of
-/// lane k's polygon (the sign of the product is not the one the polygon's
-/// use of the edge asks), else 0.
-static inline std::uint32_t outsideEdge(const RayLayout::CornerRow* rows, std::uint32_t j, std::uint32_t k,
-                                        const Real* line) {
+/// 1 when the ray of Pluecker coordinates `line` passes outside lane k's
+/// edge (the sign of the product is not the one the polygon's use of the
+/// edge asks), else 0.
+static inline std::uint32_t outsideEdge(const EdgeCorners& e, std::uint32_t k, const Real* line) {
   Real edge[6];
-  edgeLine(rows, j, k, edge);
-  return edgeReversed(rows, j, k) ^ std::uint32_t(signBit(edgeProduct(edge, line)));
+  edgeLine(e, k, edge);
+  return edgeReversed(e, k) ^ std::uint32_t(signBit(edgeProduct(edge, line)));
 }
 
 /// outsideEdge for the four lanes at once (bit k: lane k).
-static inline std::uint32_t outsideEdgesLaneByLane(const RayLayout::CornerRow* rows, std::uint32_t j,
-                                                   const Real* line) {
+static inline std::uint32_t outsideEdgesLaneByLane(const EdgeCorners& e, const Real* line) {
   std::uint32_t outside = 0;
-  for (std::uint32_t k = 0; k < RayLayout::kLeafLanes; ++k) outside |= outsideEdge(rows, j, k, line) << k;
+  for (std::uint32_t k = 0; k < RayLayout::kLeafLanes; ++k) outside |= outsideEdge(e, k, line) << k;
   return outside;
 }
 #if defined(__SSE2__) && !defined(CMKIT_NO_SIMD) && !CMKIT_DOUBLE
@@ -196,11 +207,10 @@ static inline std::uint32_t outsideEdgesLaneByLane(const RayLayout::CornerRow* r
 /// is zero; where one is (the ray meets an edge's line), the lanes are
 /// tested one by one, as the model's lines would be.
 /// (Only the lanes of `live` count: an empty lane's product is zero.)
-static inline std::uint32_t outsideEdges(const RayLayout::CornerRow* rows, std::uint32_t j, const Real* line,
-                                         std::uint32_t live) {
+static inline std::uint32_t outsideEdges(const EdgeCorners& e, const Real* line, std::uint32_t live) {
   static_assert(RayLayout::kLeafLanes == 4);
-  const RayLayout::CornerRow& a = rows[j];
-  const RayLayout::CornerRow& b = rows[j + 1];
+  const RayLayout::CornerRow& a = *e.from;
+  const RayLayout::CornerRow& b = *e.to;
   const __m128 sx = _mm_loadu_ps(a.v[0]), sy = _mm_loadu_ps(a.v[1]), sz = _mm_loadu_ps(a.v[2]);
   const __m128 ex = _mm_loadu_ps(b.v[0]), ey = _mm_loadu_ps(b.v[1]), ez = _mm_loadu_ps(b.v[2]);
   const auto mul = _mm_mul_ps;
@@ -213,13 +223,12 @@ static inline std::uint32_t outsideEdges(const RayLayout::CornerRow* rows, std::
   p = _mm_add_ps(p, term(sub(ey, sy), 1));
   p = _mm_add_ps(p, term(sub(mul(sy, ez), mul(ey, sz)), 2));
   if (std::uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(p, _mm_setzero_ps()))) & live) [[unlikely]]
-    return outsideEdgesLaneByLane(rows, j, line);
+    return outsideEdgesLaneByLane(e, line);
   return std::uint32_t(_mm_movemask_ps(p));
 }
 #else
-static inline std::uint32_t outsideEdges(const RayLayout::CornerRow* rows, std::uint32_t j, const Real* line,
-                                         std::uint32_t) {
-  return outsideEdgesLaneByLane(rows, j, line);
+static inline std::uint32_t outsideEdges(const EdgeCorners& e, const Real* line, std::uint32_t) {
+  return outsideEdgesLaneByLane(e, line);
 }
 #endif
 
@@ -228,9 +237,8 @@ static inline std::uint32_t outsideEdges(const RayLayout::CornerRow* rows, std::
 /// or with `twin` inside every edge of the lane's twin (outside every edge
 /// of the lane's polygon: RayLayout::LeafHead::twins).
 static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t lane, const Ray& r, bool twin) {
-  const RayLayout::CornerRow* rows = cornerRows(head);
   for (std::uint32_t j = 0; j < head.numEdges; ++j)
-    if (outsideEdge(rows, j, lane, r.line) != std::uint32_t(twin)) return false;
+    if (outsideEdge(edgeCorners(head, j), lane, r.line) != std::uint32_t(twin)) return false;
   return true;
 }
 
@@ -308,9 +316,8 @@ static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r
                                             : twinDetail(h, ref, std::uint32_t(__builtin_ctz(twinLanes)))));
   Real line[6];
   rayLine(r.start, r.dir, line);
-  const RayLayout::CornerRow* rows = cornerRows(h);
   for (std::uint32_t j = 0; j < h.numEdges && (lanes | twinLanes); ++j) {
-    const std::uint32_t outside = outsideEdges(rows, j, line, lanes | twinLanes);
+    const std::uint32_t outside = outsideEdges(edgeCorners(h, j), line, lanes | twinLanes);
     lanes &= ~outside;
     twinLanes &= outside;  // a twin is inside where the lane's polygon is outside
   }

@@ -45,7 +45,7 @@ struct RayLayout {
   /// contents, where their details start and how many edges their corner
   /// rows make. The walk tests every lane at once (no branch per polygon)
   /// from one run of memory that holds all it reads of a leaf (float
-  /// builds: the head and a triangle leaf's corners in five cache lines),
+  /// builds: the head and a triangle leaf's corners in four cache lines),
   /// in place of a polygon record and edge lines elsewhere. Unused lanes
   /// have a zero normal (it faces no ray) and contents 0.
   ///
@@ -60,21 +60,28 @@ struct RayLayout {
     Real x[kLeafLanes], y[kLeafLanes], z[kLeafLanes], dist[kLeafLanes];
     std::uint32_t contents[kLeafLanes];
     std::uint32_t firstDetail;  ///< details[] index of lane 0 (lane k: + k)
-    std::uint32_t numEdges;     ///< the most edges of a lane's polygon; numEdges + 1 CornerRows follow
+    std::uint32_t numEdges;     ///< the most edges of a lane's polygon: numEdges CornerRows follow, or
+                                ///< numEdges + 1 with a closing row
+    /// The row the last edge runs to: row numEdges (the closing row, a
+    /// repeat of each lane's next corner), or row 0 when every lane's
+    /// polygon's edge count divides numEdges (a leaf of triangles, say),
+    /// so that going on from the last row to the first closes each lane's
+    /// loop.
+    std::uint32_t closingRow;
     /// Lanes holding a twin (bit k: lane k). The twins' details follow the
     /// lanes', in lane order (twinDetail in ray_index_kernel.h).
     std::uint32_t twins;
   };
   /// Corner j of each lane's polygon (v[c][k]: coordinate c of lane k),
   /// where its edge j starts in the polygon's order; edge j runs to corner
-  /// j + 1. The walk makes an edge's line from its two corners as the
-  /// model's line of the edge is made (Pluecker::fromLine, from the edge's
-  /// first vertex to its second: `reversed` says which corner that is), so
-  /// the same line, bit for bit, in a third of the bytes of the line and
-  /// no more than its two corners. A polygon of n edges with fewer than
-  /// the leaf's numEdges goes round again (corner j is its corner j mod n:
-  /// the same tests again, so no other answer); the last row closes the
-  /// loop.
+  /// j + 1 (the last edge to LeafHead::closingRow). The walk makes an
+  /// edge's line from its two corners as the model's line of the edge is
+  /// made (Pluecker::fromLine, from the edge's first vertex to its second:
+  /// `reversed` says which corner that is), so the same line, bit for bit,
+  /// in the bytes of one corner instead of a line's six coordinates. A
+  /// polygon of n edges with fewer than the leaf's numEdges goes round
+  /// again (corner j is its corner j mod n: the same tests again, so no
+  /// other answer).
   struct CornerRow {
     Real v[3][kLeafLanes];
     /// Bit k: lane k's polygon uses edge j reversed (its second vertex is
