@@ -213,8 +213,10 @@ static inline std::uint32_t outsideEdges(const EdgeCorners& e, const Real* line,
   const RayLayout::CornerRow& b = *e.to;
   const __m128 sx = _mm_loadu_ps(a.v[0]), sy = _mm_loadu_ps(a.v[1]), sz = _mm_loadu_ps(a.v[2]);
   const __m128 ex = _mm_loadu_ps(b.v[0]), ey = _mm_loadu_ps(b.v[1]), ez = _mm_loadu_ps(b.v[2]);
-  const auto mul = _mm_mul_ps;
-  const auto sub = _mm_sub_ps;
+  // (Lambdas, not the intrinsics' addresses: they have no out-of-line
+  // definition to point to, which an unoptimised build asks for.)
+  const auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
+  const auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
   // lineOfCorners' arithmetic, and edgeProduct's.
   const auto term = [&](__m128 l, int r) { return mul(l, _mm_set1_ps(line[r])); };
   __m128 p = _mm_add_ps(term(sub(mul(sx, ey), mul(ex, sy)), 4), term(sub(mul(sx, ez), mul(ex, sz)), 5));
