@@ -85,7 +85,7 @@ struct RayLayout {
   struct CornerRow {
     Real v[3][kLeafLanes];
     /// Bit k: lane k's polygon uses edge j reversed (its second vertex is
-    /// corner j). Unused in the last row.
+    /// corner j). Unused in a closing row.
     std::uint32_t reversed;
   };
   static_assert(sizeof(LeafHead) % alignof(CornerRow) == 0, "the corner rows follow the head");
