@@ -447,7 +447,8 @@ TEST(RayIndex, RaysAlongEdgeLinesSameAsTestingEveryPolygon) {
   // single casts, castMany's packets (both node tests) and testing every
   // polygon must agree on every ray. Boxes on a grid of 16 units, rays
   // between grid points (vertical ones along the boxes' vertical edges and
-  // through their top edges, and slanted ones), in packets of one start.
+  // through their top edges, slanted and level ones), castMany sorting
+  // them into packets.
   test::ModelMaker maker;
   for (int x = 0; x < 4; ++x)
     for (int y = 0; y < 4; ++y)
@@ -466,7 +467,7 @@ TEST(RayIndex, RaysAlongEdgeLinesSameAsTestingEveryPolygon) {
       starts.push_back({top.x, top.y, 8});
       ends.push_back({top.x + 64, top.y, 8});  // level, along the boxes' sides
     }
-  int zeroProducts = 0;  // rays meeting some edge's line of a polygon they may cross
+  int zeroProducts = 0;  // rays meeting some edge's line of the model exactly
   for (std::size_t i = 0; i < starts.size(); ++i) {
     const Pluecker ray = Pluecker::fromRay(starts[i], ends[i] - starts[i]);
     bool meets = false;
