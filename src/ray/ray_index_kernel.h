@@ -42,13 +42,15 @@ struct Arrays {
 /// A ray in the model's space with its per-ray constants. The near face of
 /// each axis is the min or the max depending on the direction's sign:
 /// nearRow / farRow are the byte offsets of those rows in a Node. The
-/// reciprocals are finite, so no slab product is NaN.
+/// reciprocals are finite, so no slab product is NaN. (Each vector has a
+/// fourth element, unused, so that a cast's set-up writes it with one
+/// 16-byte store.)
 struct Ray {
-  Real start[3];
-  Real end[3];
-  Real dir[3];                        ///< end - start
+  alignas(16) Real start[4];
+  alignas(16) Real end[4];
+  alignas(16) Real dir[4];            ///< end - start
+  alignas(16) float inv[4];           ///< 1 / dir, finite
   Real line[6];                       ///< Pluecker coordinates of the ray (rayLine); set for packets only
-  float inv[3];                       ///< 1 / dir, finite
   std::size_t nearRow[3], farRow[3];  ///< single casts only
   std::uint32_t mask;
 };

@@ -257,6 +257,42 @@ TEST(RayIndex, PlacedModelsTransformRaysAndResults) {
   EXPECT_EQ(t.contact.dist, h.dist);
 }
 
+TEST(RayIndex, EveryElementOfThePlacementsAxisCounts) {
+  // An axis that differs from the identity in one element rotates the rays:
+  // each cast answers as a cast of its ray put in the model's space by hand
+  // (axis * (p - origin), the same float operations), the normal turned
+  // back into the world. Three rays, through the box's faces x = 64, y = 64
+  // and z = -16, so that every element moves some crossing (checked:
+  // a cast that ignored the element would answer otherwise). A -0 where the
+  // identity has 0 is the identity.
+  const CollisionModel m = floorBox();
+  const RayIndex index(m);
+  const Vec3 origin{3, -5, 2};
+  const Vec3 rays[3][2] = {
+      {{100, 5, -8}, {0, -3, -6}}, {{4, 100, -7}, {-2, 0, -9}}, {{6, 3, -60}, {-5, 2, -8}}};
+  for (int element = 0; element < 9; ++element) {
+    for (const Real value : {Real(0.0625), Real(-0.0)}) {
+      Placement placed;
+      placed.origin = origin;
+      const bool diagonal = element / 3 == element % 3;
+      placed.axis.rows[element / 3][element % 3] = diagonal ? Real(1) - value : value;
+      SCOPED_TRACE(testing::Message() << "element " << element << " value " << value);
+      bool moved = false;
+      for (const auto& [from, to] : rays) {
+        const RayHit h = index.cast({from, to, contents::kMaskSolid, placed});
+        const RayHit local = index.cast({placed.axis * (from - origin), placed.axis * (to - origin)});
+        const RayHit unturned = index.cast({from - origin, to - origin});
+        ASSERT_TRUE(local.hit());
+        EXPECT_EQ(h.fraction, local.fraction);
+        EXPECT_EQ(h.polygon, local.polygon);
+        EXPECT_EQ(h.normal, local.normal * placed.axis);
+        moved |= h.fraction != unturned.fraction;
+      }
+      EXPECT_EQ(moved, value != 0) << "no ray's crossing moved with the element";
+    }
+  }
+}
+
 TEST(RayIndex, BadInputMisses) {
   const RayIndex index(floorBox());
   const Real nan = std::numeric_limits<Real>::quiet_NaN(), inf = std::numeric_limits<Real>::infinity();
