@@ -229,6 +229,7 @@ inline bool rotates(const Mat3& axis) {
   _mm_store_ps(ray.end, end);
   _mm_store_ps(ray.dir, dir);
   _mm_store_ps(ray.inv, inv);
+  _mm_store_ps(ray.startTimesInv, _mm_mul_ps(start, inv));
   finishRay(ray, mask, unsigned(_mm_movemask_ps(dir)) & kXyz, use);
   return true;
 }
@@ -255,6 +256,7 @@ bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask
     ray.dir[k] = dir[k];
     ray.inv[k] =
         std::fabs(dir[k]) > 1e-30f ? 1.0f / float(dir[k]) : std::copysign(kHugeInverse, float(dir[k]));
+    ray.startTimesInv[k] = float(start[k]) * ray.inv[k];
     signs |= unsigned(std::signbit(dir[k])) << k;
   }
   finishRay(ray, mask, signs, use);

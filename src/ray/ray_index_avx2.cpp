@@ -17,16 +17,17 @@ namespace cmkit::detail {
 #if defined(CMKIT_AVX2_KERNEL) && !defined(CMKIT_NO_SIMD)
 namespace {
 
-/// As enteredChildren in ray_index.cpp, the same arithmetic on all eight
-/// children at once.
+/// As enteredChildren in ray_index.cpp on all eight children at once, where
+/// the ray meets a plane x = row by one fused multiply-add, row * inv -
+/// start * inv (PacketRays below says why the answers are the same).
 int enteredChildrenAvx2(const RayLayout::Node& n, const Ray& r, float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
   const auto row = [base](std::size_t offset) {
     return _mm256_load_ps(reinterpret_cast<const float*>(base + offset));
   };
   const auto along = [&](int axis, const std::size_t* rows) {
-    return _mm256_mul_ps(_mm256_sub_ps(row(rows[axis]), _mm256_set1_ps(r.start[axis])),
-                         _mm256_set1_ps(r.inv[axis]));
+    return _mm256_fmsub_ps(row(rows[axis]), _mm256_set1_ps(r.inv[axis]),
+                           _mm256_set1_ps(r.startTimesInv[axis]));
   };
   const __m256 tNear = _mm256_max_ps(_mm256_max_ps(along(1, r.nearRow), along(0, r.nearRow)),
                                      _mm256_max_ps(along(2, r.nearRow), _mm256_setzero_ps()));
@@ -62,12 +63,13 @@ struct PacketPending {
 
 /// The packet's rays for the slab test of a child box: where a ray meets
 /// the plane x = row is row * inv - start * inv (one fused multiply-add per
-/// plane), the near face the smaller of the two slab distances. This
-/// rounds differently from enteredChildrenAvx2's (row - start) * inv, so a
-/// packet may enter a box a single cast skips or the reverse, only within
-/// the rounding of the slab test, which the node boxes' padding covers
-/// (tol::kRayNodePadding): every box still contains every crossing its
-/// polygons accept, so each ray's answer is the same.
+/// plane, as in enteredChildrenAvx2), the near face the smaller of the two
+/// slab distances. This rounds differently from the baseline node test's
+/// (row - start) * inv (enteredChildren in ray_index.cpp), so one may enter
+/// a box the other skips, only within the rounding of the slab test, which
+/// the node boxes' padding covers (tol::kRayNodePadding): every box still
+/// contains every crossing its polygons accept, so each ray's answer is the
+/// same.
 struct PacketRays {
   __m256 startTimesInv[3];
   __m256 inv[3];
