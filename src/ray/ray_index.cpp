@@ -49,7 +49,7 @@ static_assert(offsetof(Node, max) % 32 == 0 && offsetof(Node, contents) % 32 == 
 /// Which children of a node the ray enters before `best` and that hold
 /// contents of the mask (bit k for child k), and where it enters each box
 /// (`entry`, clipped to [0, best]).
-int enteredChildren(const Node& n, const detail::Ray& r, float best, float* entry) {
+inline int enteredChildren(const Node& n, const detail::Ray& r, float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
 #ifdef CMKIT_SIMD_SSE2
   // Two halves of four children.
@@ -125,7 +125,12 @@ std::size_t RayIndex::memoryBytes() const {
 }
 
 namespace detail {
-Crossing castBaseline(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildren); }
+Crossing castBaseline(const Arrays& index, const Ray& ray) {
+  // (A lambda, not the function's address: the walk inlines the node test.)
+  return walk(index, ray, [](const Node& n, const Ray& r, float best, float* entry) {
+    return enteredChildren(n, r, best, entry);
+  });
+}
 }  // namespace detail
 
 namespace {

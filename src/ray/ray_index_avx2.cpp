@@ -20,7 +20,8 @@ namespace {
 /// As enteredChildren in ray_index.cpp on all eight children at once, where
 /// the ray meets a plane x = row by one fused multiply-add, row * inv -
 /// start * inv (PacketRays below says why the answers are the same).
-int enteredChildrenAvx2(const RayLayout::Node& n, const Ray& r, float best, float* entry) {
+__attribute__((always_inline)) inline int enteredChildrenAvx2(const RayLayout::Node& n, const Ray& r,
+                                                              float best, float* entry) {
   const auto* base = reinterpret_cast<const char*>(&n);
   const auto row = [base](std::size_t offset) {
     return _mm256_load_ps(reinterpret_cast<const float*>(base + offset));
@@ -185,7 +186,12 @@ class PacketPlanes {
 
 }  // namespace
 
-Crossing castAvx2(const Arrays& index, const Ray& ray) { return walk(index, ray, enteredChildrenAvx2); }
+Crossing castAvx2(const Arrays& index, const Ray& ray) {
+  // (A lambda, not the function's address: the walk inlines the node test.)
+  return walk(index, ray, [](const RayLayout::Node& n, const Ray& r, float best, float* entry) {
+    return enteredChildrenAvx2(n, r, best, entry);
+  });
+}
 
 void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossing* out) {
   constexpr int kWidth = RayLayout::kWidth;
