@@ -86,8 +86,11 @@ struct PointLeaves {
   }
 };
 
-/// Starts loading a child of the hierarchy (both cache lines of a node, the
-/// two of a leaf's first culls): the walk is otherwise bound by their loads.
+/// Starts loading a child of the hierarchy (both cache lines of a node; the
+/// three a leaf's culls read: bounds and contents, normals, plane distances):
+/// the walk is otherwise bound by their loads. (A node's third line is the
+/// next node's first, often a sibling's. The leaf's fourth line, read only
+/// for the polygons that pass the culls, prefetched too: slower.)
 inline void prefetchChild(const PolygonBvh& bvh, std::int32_t child) {
   // (The address chosen by arithmetic: a branch on whether a child is a
   // leaf is mispredicted often.)
@@ -101,6 +104,7 @@ inline void prefetchChild(const PolygonBvh& bvh, std::int32_t child) {
   const char* p = reinterpret_cast<const char*>((nodeAt & ~leafMask) | (leafAt & leafMask));
   prefetch(p);
   prefetch(p + 64);
+  prefetch(p + 128);
 }
 
 template <class Leaves>
