@@ -201,8 +201,7 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
   PacketRays pr;
   for (int a = 0; a < 3; ++a) {
     pr.inv[a] = packetLanes(rays, count, [a](const Ray& r) { return r.inv[a]; });
-    pr.startTimesInv[a] =
-        _mm256_mul_ps(packetLanes(rays, count, [a](const Ray& r) { return r.start[a]; }), pr.inv[a]);
+    pr.startTimesInv[a] = packetLanes(rays, count, [a](const Ray& r) { return r.startTimesInv[a]; });
   }
   Crossing best[kPacket];
   std::int32_t bestIndex[kPacket];

@@ -50,7 +50,7 @@ struct Ray {
   alignas(16) Real end[4];
   alignas(16) Real dir[4];             ///< end - start
   alignas(16) float inv[4];            ///< 1 / dir, finite
-  alignas(16) float startTimesInv[4];  ///< float(start) * inv (the AVX2 node test's); single casts only
+  alignas(16) float startTimesInv[4];  ///< float(start) * inv (the AVX2 node tests')
   Real line[6];                        ///< Pluecker coordinates of the ray (rayLine); set for packets only
   std::size_t nearRow[3], farRow[3];   ///< single casts only
   std::uint32_t mask;
