@@ -368,7 +368,7 @@ class Builder {
         const EdgeUse& u = uses[e.firstEdge + k];
         PolygonCorner& c = out_.uses[at + k];
         c.entry = PolygonCorner::encode(u.edgeNum, u.internal != 0);
-        c.p = m_.vertices[std::size_t(u.vertex[u.edgeNum < 0 ? 1 : 0])];
+        c.p = m_.vertices[std::size_t(u.start())];
       }
       at += BvhLeaf::usesStride(e.numEdges);
     }

@@ -62,6 +62,10 @@ struct EdgeUse {
   std::int32_t edgeNum = 0;         ///< the entry: the edge's number, negative when used reversed
   std::int32_t vertex[2] = {0, 0};  ///< the edge's vertices (CmEdge::vertex)
   std::uint32_t internal = 0;       ///< CmEdge::internal
+  /// The vertex where the edge starts in the polygon's order.
+  std::int32_t start() const { return vertex[edgeNum < 0 ? 1 : 0]; }
+  /// The vertex where it ends.
+  std::int32_t end() const { return vertex[edgeNum < 0 ? 0 : 1]; }
 };
 static_assert(sizeof(EdgeUse) == 16);
 

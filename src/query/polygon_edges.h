@@ -31,12 +31,9 @@ struct PolygonEdges {
   std::int32_t edgeNum(std::size_t i) const { return corners ? corners[i].edgeNum() : uses[i].edgeNum; }
   bool internal(std::size_t i) const { return corners ? corners[i].internal() : uses[i].internal != 0; }
   /// Where edge i starts and ends in the polygon's order.
-  const Vec3& from(std::size_t i) const {
-    return corners ? corners[i].p : vertices[uses[i].vertex[uses[i].edgeNum < 0 ? 1 : 0]];
-  }
+  const Vec3& from(std::size_t i) const { return corners ? corners[i].p : vertices[uses[i].start()]; }
   const Vec3& to(std::size_t i) const {
-    return corners ? corners[i + 1 == size ? 0 : i + 1].p
-                   : vertices[uses[i].vertex[uses[i].edgeNum < 0 ? 0 : 1]];
+    return corners ? corners[i + 1 == size ? 0 : i + 1].p : vertices[uses[i].end()];
   }
   const Pluecker& line(std::size_t i) const { return lines[i]; }
 };

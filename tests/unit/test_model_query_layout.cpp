@@ -76,9 +76,9 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
           const detail::PolygonCorner& got = bvh.uses[at + i];
           EXPECT_EQ(got.edgeNum(), want.edgeNum);
           EXPECT_EQ(got.internal(), want.internal != 0);
-          EXPECT_EQ(got.p, m.vertices()[std::size_t(want.vertex[want.edgeNum < 0 ? 1 : 0])]);
+          EXPECT_EQ(got.p, m.vertices()[std::size_t(want.start())]);
           const detail::EdgeUse& before = d->edgeUses[q.firstEdge + (i == 0 ? q.numEdges : i) - 1];
-          EXPECT_EQ(got.p, m.vertices()[std::size_t(before.vertex[before.edgeNum < 0 ? 0 : 1])]);
+          EXPECT_EQ(got.p, m.vertices()[std::size_t(before.end())]);
         }
       };
       EXPECT_EQ(b.numEdges[j], p.numEdges);
