@@ -20,9 +20,11 @@ namespace cmkit::detail {
 
 /// A trace-model vertex during a query (model space).
 struct WorkVertex {
-  Vec3 p;       ///< position at the start
-  Vec3 endp;    ///< position at the end of the full move
-  Pluecker pl;  ///< the line of its movement
+  Vec3 p;     ///< position at the start
+  Vec3 endp;  ///< position at the end of the full move
+  /// The line of its movement: a point trace's; a trace model's only in
+  /// portable builds (else TrmFeatures::vertexLines holds them).
+  Pluecker pl;
   bool used = false;
 };
 

@@ -202,20 +202,79 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
   return moving & ~outside;
 }
 
-/// Lane v % kLanes of TrmFeatures::vertexLines[v / kLanes]: vertex v's path.
-inline void setVertexLine(TraceWork& tw, int v, const Pluecker& l) {
-  LineBlock& b = tw.scratch.trm.vertexLines[std::size_t(v) / kLanes];
-  for (std::size_t k = 0; k < 6; ++k) b.c[k][std::size_t(v) % kLanes] = l[k];
+// The common case, a trace model of at most eight vertices (a box) and a
+// polygon of at most eight edges, without the transposition: the sides as
+// one word, byte i for polygon edge i, its bit v for vertex v, which the edge
+// pairs read as they are (SmallSides). The same products as above, so the
+// same bits.
+struct SmallSides {
+  std::uint64_t bytes;   ///< byte i, bit v: vertex v's side of edge i's line
+  std::uint32_t inside;  ///< the moving vertices inside every edge
+};
+/// Whether a polygon of `numEdges` edges takes the small path: no moving
+/// vertex past the eighth, at most eight edges.
+inline bool smallSides(const TraceWork& tw, std::size_t numEdges) {
+  return numEdges <= 8 && tw.movingVertices < (1u << 8);
+}
+SmallSides sidesOfSmallPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
+  using simd::F4;
+  const std::uint32_t moving = tw.movingVertices;
+  const LineBlock* vertexLines = tw.scratch.trm.vertexLines.data();
+  const bool twoBlocks = moving >= (1u << 4);
+  std::uint64_t bytes = 0;
+  std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
+  for (std::size_t i = 0; i < edges.size; ++i) {
+    const Pluecker& l = edges.line(i);
+    const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
+    const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
+    const auto side = [&](const LineBlock& r) {
+      F4 p = c0 * F4::load(r.c[4]);
+      p = p + c1 * F4::load(r.c[5]);
+      p = p + c2 * F4::load(r.c[3]);
+      p = p + c4 * F4::load(r.c[0]);
+      p = p + c5 * F4::load(r.c[1]);
+      p = p + c3 * F4::load(r.c[2]);
+      return std::uint32_t(simd::bits(p));
+    };
+    std::uint32_t bits = side(vertexLines[0]);
+    if (twoBlocks) bits |= side(vertexLines[1]) << 4;
+    outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(i) < 0));
+    bytes |= std::uint64_t(bits) << (8 * i);
+  }
+  return {bytes, moving & ~outside};
 }
 
-/// Zeroes the lanes of TrmFeatures::vertexLines that the moving vertices'
-/// paths (set with them) leave, up to the last moving vertex's block.
-void clearStillVertexLines(TraceWork& tw) {
+/// TrmFeatures::vertexLines up to the last moving vertex's block: lane
+/// v % kLanes of block v / kLanes the path of vertex v, made four vertices
+/// at a time (Pluecker::fromRay's arithmetic in each lane, so the same
+/// bits as one vertex at a time); 0 in the lanes of vertices that do not
+/// move.
+void placeVertexLines(TraceWork& tw) {
+  using simd::F4;
+  using simd::U4;
   const std::uint32_t moving = tw.movingVertices;
   const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
-  const std::uint32_t blockLanes = numVerts >= 32 ? ~0u : (1u << ((numVerts + 3) & ~3)) - 1;
-  for (std::uint32_t still = blockLanes & ~moving; still; still &= still - 1)
-    setVertexLine(tw, std::countr_zero(still), Pluecker{});
+  const F4 dx = F4::all(tw.dir.x), dy = F4::all(tw.dir.y), dz = F4::all(tw.dir.z);
+  alignas(16) static constexpr std::uint32_t kLaneBits[kLanes] = {1, 2, 4, 8};
+  const U4 laneBits = U4::load(kLaneBits);
+  for (int k = 0; 4 * k < numVerts; ++k) {
+    // Four vertices' positions as rows x, y, z (the fourth row, the next
+    // field's, unused); the entries past the trace model's vertices are
+    // stale, their lanes cleared below with the other still ones.
+    F4 x = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k)].p.x);
+    F4 y = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 1)].p.x);
+    F4 z = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 2)].p.x);
+    F4 w = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 3)].p.x);
+    simd::transpose(x, y, z, w);
+    const F4 still = simd::noCommonBits(U4::all(moving >> (4 * k)), laneBits);
+    LineBlock& b = tw.scratch.trm.vertexLines[std::size_t(k)];
+    simd::andNot(still, x * dy - y * dx).store(b.c[0]);
+    simd::andNot(still, x * dz - z * dx).store(b.c[1]);
+    simd::andNot(still, simd::negate(dx)).store(b.c[2]);
+    simd::andNot(still, y * dz - z * dy).store(b.c[3]);
+    simd::andNot(still, simd::negate(dz)).store(b.c[4]);
+    simd::andNot(still, dy).store(b.c[5]);
+  }
 }
 
 #else  // one vertex at a time, edge by edge
@@ -328,20 +387,15 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
   if (tw.gettingContacts()) tw.addContact();
 }
 
-// Trace-model edge trmEdgeNum against edge i of the polygon, whose line
-// its two vertices pass on different sides.
-void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges,
-                                 int trmEdgeNum, std::size_t i) {
+// Trace-model edge trmEdgeNum against edge i of the polygon (from v1 to v2
+// in the polygon's order), whose line both pairs of vertices pass on
+// different sides: where they meet.
+[[gnu::noinline]] void translateTrmEdgeThroughCrossedEdge(TraceWork& tw, const CmPolygon& poly,
+                                                          const PolygonEdges& edges, int trmEdgeNum,
+                                                          std::size_t i, const Vec3& v1, const Vec3& v2) {
   const CollisionModel& m = tw.model;
-  QueryScratch& s = tw.scratch;
-  count(s, &QueryStats::edgePairs);
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::int32_t edgeNum = edges.edgeNum(i);
-  // The polygon edge's two vertices must pass the trm edge on different sides.
-  const Vec3& v1 = edges.from(i);
-  const Vec3& v2 = edges.to(i);
-  if (modelVertexSide(te, v1, tw.dir) == modelVertexSide(te, v2, tw.dir)) return;
-
   const Vec3& start = edgeNum < 0 ? v2 : v1;  // (the edge's stored direction)
   const Vec3& end = edgeNum < 0 ? v1 : v2;
   Real f1;
@@ -358,6 +412,20 @@ void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const Pol
   if (!(f2 < tw.fraction)) return;
 
   hitByEdge(tw, poly, edgeNum, trmEdgeNum, f2);
+}
+
+// Trace-model edge trmEdgeNum against edge i of the polygon, whose line
+// its two vertices pass on different sides. (The polygon edge's side test
+// inline: about half the pairs end there.)
+inline void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges,
+                                        int trmEdgeNum, std::size_t i) {
+  count(tw.scratch, &QueryStats::edgePairs);
+  const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
+  // The polygon edge's two vertices must pass the trm edge on different sides.
+  const Vec3& v1 = edges.from(i);
+  const Vec3& v2 = edges.to(i);
+  if (modelVertexSide(te, v1, tw.dir) == modelVertexSide(te, v2, tw.dir)) return;
+  translateTrmEdgeThroughCrossedEdge(tw, poly, edges, trmEdgeNum, i, v1, v2);
 }
 
 // The moving trace-model edges against the polygon edges to test, trace-model
@@ -408,6 +476,31 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
   if (tw.gettingContacts()) tw.addContact();
 }
 
+#ifdef CMKIT_SIDES_SSE2
+// translateTrmEdgesThroughPolygon for the small path: a trace-model edge
+// crosses polygon edge i's line when its vertices' bits in byte i differ
+// (shifted down by a vertex number, byte i's bit lands at bit 8i, the bytes
+// above landing above it); `toTest` has bit 8i for each edge to test. The
+// same pairs in the same order.
+void translateTrmEdgesThroughSmallPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges,
+                                          std::uint64_t bytes, std::uint64_t toTest) {
+  std::uint64_t crossing[kMaxTrmEdges + 1];
+  std::uint8_t crossingEdge[kMaxTrmEdges + 1];
+  std::size_t n = 0;
+  for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
+    const int e = std::countr_zero(moving);
+    const WorkEdge& te = tw.edges[std::size_t(e)];
+    const std::uint64_t c = ((bytes >> te.vertexNum[0]) ^ (bytes >> te.vertexNum[1])) & toTest;
+    crossing[n] = c;
+    crossingEdge[n] = std::uint8_t(e);
+    n += c != 0;
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::uint64_t c = crossing[k]; c; c &= c - 1)
+      translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k], std::size_t(std::countr_zero(c)) / 8);
+}
+#endif
+
 // (The vertex's path line only for a trace-model polygon it reaches in time:
 // most reach none.)
 void translateVertexThroughTrmPolygon(TraceWork& tw, const CmPolygon& poly, int trmPolyNum,
@@ -446,16 +539,13 @@ namespace {
 void placeTranslationFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
+#ifdef CMKIT_SIDES_SSE2
+  placeVertexLines(tw);  // (WorkVertex::pl unused: the edge sides read the lanes)
+#else
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-    const int i = std::countr_zero(moving);
-    WorkVertex& v = tw.vertices[std::size_t(i)];
+    WorkVertex& v = tw.vertices[std::size_t(std::countr_zero(moving))];
     v.pl = Pluecker::fromRay(v.p, tw.dir);
-#ifdef CMKIT_SIDES_SSE2
-    setVertexLine(tw, i, v.pl);
-#endif
   }
-#ifdef CMKIT_SIDES_SSE2
-  clearStillVertexLines(tw);
 #endif
   const TraceModel& trm = *tw.placedTrm;
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
@@ -480,6 +570,10 @@ void placeTranslationFeatures(TraceWork& tw) {
 
 }  // namespace
 
+namespace {
+bool testModelVerticesThroughTrm(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges);
+}  // namespace
+
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
                                 const PolygonCorner* corners) {
   QueryScratch& s = tw.scratch;
@@ -489,6 +583,21 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const PolygonEdges edges = corners ? polygonEdges(tw, corners, poly.numEdges) : polygonEdges(tw, poly);
+#ifdef CMKIT_SIDES_SSE2
+  if (smallSides(tw, edges.size)) {
+    const SmallSides sides = sidesOfSmallPolygonEdges(tw, edges);
+    std::uint64_t toTest = 0;  // bit 8i: edge i (as the groups' masks below)
+    if (tw.numEdges > 0)
+      for (std::size_t i = 0; i < edges.size; ++i) {
+        const std::size_t e = std::size_t(std::abs(edges.edgeNum(i)));
+        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edgeChecked, e)) & unsigned(!edges.internal(i)))
+                  << (8 * i);
+      }
+    translateTrmVerticesThroughPolygon(tw, polyNum, poly, sides.inside);
+    if (toTest) translateTrmEdgesThroughSmallPolygon(tw, poly, edges, sides.bytes, toTest);
+    return testModelVerticesThroughTrm(tw, poly, edges);
+  }
+#endif
   const std::uint32_t inside = sidesOfPolygonEdges(tw, edges);
   // The polygon edges the trace-model edges are tested against: not
   // internal, not tested with an earlier polygon (the marks are set below,
@@ -510,6 +619,15 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
 
   translateTrmVerticesThroughPolygon(tw, polyNum, poly, inside);
   if (anyToTest) translateTrmEdgesThroughPolygon(tw, poly, edges);
+  return testModelVerticesThroughTrm(tw, poly, edges);
+}
+
+namespace {
+
+// The last of a polygon's tests: the model vertices through the trace
+// model's front polygons; then the bounds shrink to a nearer hit. True when
+// the polygon blocks completely.
+bool testModelVerticesThroughTrm(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges) {
   // Model vertices through the trace model's front polygons. A vertex
   // farther from a heart plane than its limit is left out: its path (along
   // the move, so parallel to both planes) stays at that distance, and every
@@ -535,5 +653,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   shrinkTraceBounds(tw);
   return tw.fraction == 0;
 }
+
+}  // namespace
 
 }  // namespace cmkit::detail
