@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cmkit/tolerances.h"
+#include "util/simd.h"
 
 namespace cmkit {
 
@@ -53,6 +54,33 @@ QueryStatus checkPoint(const Vec3& p) {
   return p.isFinite() ? QueryStatus::OutOfRange : QueryStatus::NonFinite;
 }
 
+/// Whether an axis is orthonormal within tol::kAxisDriftEpsilon:
+/// Mat3::orthonormalityError() <= the epsilon, false for NaN and infinity
+/// (whose products are not within it). With float lanes the six products
+/// four at a time: each row's length squared and the rows' dot products,
+/// with Vec3::dot's products and sums in its order, so the same values and
+/// the same answer (a turned trace model's sweep asks it every query).
+bool withinDrift(const Mat3& m) {
+#ifdef CMKIT_FLOAT_LANES
+  using simd::F4;
+  const Vec3 &a = m.rows[0], &b = m.rows[1], &c = m.rows[2];
+  const F4 ra = F4::lanes(a.x, a.y, a.z, 0), rb = F4::lanes(b.x, b.y, b.z, 0),
+           rc = F4::lanes(c.x, c.y, c.z, 0);
+  // Lanes: a.a, b.b, c.c, a.b, then a.c, b.c (and two zeros).
+  F4 x = ra * ra, y = rb * rb, z = rc * rc, unused = ra * rb;
+  simd::transpose(x, y, z, unused);  // x: the x products of the four, y, z
+  const F4 squares = x + y + z;
+  F4 x2 = ra * rc, y2 = rb * rc, z2 = F4::zero(), unused2 = F4::zero();
+  simd::transpose(x2, y2, z2, unused2);
+  const F4 dots = x2 + y2 + z2;
+  const F4 epsilon = F4::all(Real(tol::kAxisDriftEpsilon));
+  const F4 within = (simd::abs(squares - F4::lanes(1, 1, 1, 0)) <= epsilon) & (simd::abs(dots) <= epsilon);
+  return simd::bits(within) == 0xFu;
+#else
+  return m.isFinite() && m.orthonormalityError() <= tol::kAxisDriftEpsilon;
+#endif
+}
+
 /// Checks an orientation in place: identity passes at once; otherwise
 /// validateAxis (finite, right-handed, orthonormal within
 /// tol::kAxisRejectTolerance; re-orthonormalised beyond
@@ -60,9 +88,9 @@ QueryStatus checkPoint(const Vec3& p) {
 bool checkAxis(Mat3& axis) {
   if (axis.isIdentity()) return true;
   // The usual input, a rotation within the drift epsilon, passes unchanged
-  // (validateAxis's own first checks, without building its Result).
-  if (axis.isFinite() && axis.orthonormalityError() <= tol::kAxisDriftEpsilon && axis.determinant() > 0)
-    return true;
+  // (validateAxis's own first checks, without building its Result; a
+  // non-finite axis fails withinDrift and is refused there).
+  if (withinDrift(axis) && axis.determinant() > 0) return true;
   Result<Mat3> checked = validateAxis(axis);
   if (!checked) return false;
   axis = *checked;

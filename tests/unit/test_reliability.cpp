@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -411,6 +412,52 @@ TEST_F(QueryGuards, SlightlyDriftedAxisIsReorthonormalised) {
   EXPECT_EQ(b.status, QueryStatus::Ok);
   EXPECT_NEAR(b.fraction, a.fraction, 1e-6f);
   EXPECT_NEAR(b.contact.normal.length(), 1, 1e-6f);
+}
+
+// The guard passes a turned axis on unchanged when it is orthonormal within
+// tol::kAxisDriftEpsilon and right-handed (a quick check in float lanes),
+// else re-orthonormalised by validateAxis: the quick check decides as
+// Mat3::orthonormalityError does. Rotations drifted by scaling a row or
+// shearing it toward the next, from a fifth of the epsilon to three times
+// it, end with the axis as given exactly when their error is within the
+// epsilon, else as validateAxis makes it.
+TEST_F(QueryGuards, AnAxisPassesUnchangedExactlyWhenItsDriftIsWithinTheEpsilon) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(-1, 1), angle(-3.1f, 3.1f), drift(0.2f, 3.0f);
+  int unchanged = 0, normalised = 0;
+  for (int i = 0; i < 2000; ++i) {
+    Vec3 dir{unit(rng), unit(rng), unit(rng)};
+    const Real length = std::sqrt(dir.lengthSquared());
+    if (length < Real(0.1)) continue;
+    Mat3 m = Mat3::fromAxisAngle(dir * (1 / length), angle(rng));
+    const Real e = tol::kAxisDriftEpsilon * drift(rng);
+    const std::size_t r = std::size_t(i % 3);
+    if (i % 2)
+      m.rows[r] = m.rows[r] * (1 + e / 2);  // length squared off by about e
+    else
+      m.rows[r] = m.rows[r] + m.rows[(r + 1) % 3] * e;  // a dot product off by about e
+    const TraceResult got = drop(m, {0, 0, 64}, {0, 0, -64});
+    ASSERT_EQ(got.status, QueryStatus::Ok) << i;
+    const bool within = m.orthonormalityError() <= tol::kAxisDriftEpsilon && m.determinant() > 0;
+    Mat3 expected = m;
+    if (!within) {
+      const Result<Mat3> fixed = validateAxis(m);
+      ASSERT_TRUE(fixed) << i;
+      expected = *fixed;
+    }
+    EXPECT_EQ(std::memcmp(&got.endAxis, &expected, sizeof(Mat3)), 0)
+        << i
+        << (within ? ": within the epsilon, not passed unchanged" : ": beyond it, not re-orthonormalised");
+    ++(within ? unchanged : normalised);
+  }
+  EXPECT_GT(unchanged, 300);
+  EXPECT_GT(normalised, 300);
+  // An infinite element, or one whose square overflows, is refused.
+  const Vec3 start{0, 0, 64}, end{0, 0, -64};
+  const Real inf = std::numeric_limits<Real>::infinity();
+  expectRefused(drop(Mat3{{inf, 0, 0}, {0, 1, 0}, {0, 0, 1}}, start, end), QueryStatus::BadTrmAxis, start);
+  expectRefused(drop(Mat3{{0, 1, 0}, {Real(1e30), 0, 0}, {0, 0, 1}}, start, end), QueryStatus::BadTrmAxis,
+                start);
 }
 
 TEST_F(QueryGuards, ModelAxisMustBeARotation) {
