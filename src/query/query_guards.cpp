@@ -47,11 +47,18 @@ const char* toString(ContactType type) {
 namespace cmkit::detail {
 namespace {
 
-/// Ok when every coordinate is within tol::kMaxQueryCoordinate; else
-/// NonFinite or OutOfRange (valid input pays only withinQueryRange).
-QueryStatus checkPoint(const Vec3& p) {
-  if (withinQueryRange(p)) return QueryStatus::Ok;
+/// Why a point is out of range: NonFinite or OutOfRange.
+[[gnu::noinline]] QueryStatus pointOutOfRange(const Vec3& p) {
   return p.isFinite() ? QueryStatus::OutOfRange : QueryStatus::NonFinite;
+}
+
+/// Ok when every coordinate is within tol::kMaxQueryCoordinate; else
+/// NonFinite or OutOfRange (valid input pays only withinQueryRange, inline:
+/// a call of its own was about half a point's check).
+inline QueryStatus checkPoint(const Vec3& p) {
+  if (withinQueryRange(p)) [[likely]]
+    return QueryStatus::Ok;
+  return pointOutOfRange(p);
 }
 
 /// Whether an axis is orthonormal within tol::kAxisDriftEpsilon:
@@ -81,12 +88,8 @@ bool withinDrift(const Mat3& m) {
 #endif
 }
 
-/// Checks an orientation in place: identity passes at once; otherwise
-/// validateAxis (finite, right-handed, orthonormal within
-/// tol::kAxisRejectTolerance; re-orthonormalised beyond
-/// tol::kAxisDriftEpsilon).
-bool checkAxis(Mat3& axis) {
-  if (axis.isIdentity()) return true;
+/// checkAxis for an axis that is not the identity.
+[[gnu::noinline]] bool checkTurnedAxis(Mat3& axis) {
   // The usual input, a rotation within the drift epsilon, passes unchanged
   // (validateAxis's own first checks, without building its Result; a
   // non-finite axis fails withinDrift and is refused there).
@@ -96,6 +99,12 @@ bool checkAxis(Mat3& axis) {
   axis = *checked;
   return true;
 }
+
+/// Checks an orientation in place: identity passes at once (inline: most
+/// placements and trace models are not turned); otherwise validateAxis
+/// (finite, right-handed, orthonormal within tol::kAxisRejectTolerance;
+/// re-orthonormalised beyond tol::kAxisDriftEpsilon).
+inline bool checkAxis(Mat3& axis) { return axis.isIdentity() || checkTurnedAxis(axis); }
 
 bool hasShape(const TraceModel* trm) { return trm && !trm->isPoint(); }
 
