@@ -19,6 +19,26 @@ namespace cmkit::detail {
 using simd::F4;
 using simd::U4;
 
+/// The start positions of trace-model vertices 4k .. 4k + 3 as rows: x, y, z
+/// (lane j vertex 4k + j). Entries past the trace model's vertices are
+/// stale (the caller masks their lanes); k < kMaxTrmVertices / 4.
+inline void trmVertexRows(const TraceWork& tw, int k, F4& x, F4& y, F4& z) {
+  // (Each load reads p and the first float of endp: a vertex's record is
+  // longer than 16 bytes, so none reads past the array.)
+  x = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k)].p.x);
+  y = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 1)].p.x);
+  z = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 2)].p.x);
+  F4 w = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 3)].p.x);
+  simd::transpose(x, y, z, w);
+}
+
+/// The lanes of block k of the trace model's vertices (lane j vertex 4k + j)
+/// whose bit is not set in `vertices`: all bits set there.
+inline F4 trmVertexLanesOutside(std::uint32_t vertices, int k) {
+  alignas(16) static constexpr std::uint32_t kLaneBits[kLanes] = {1, 2, 4, 8};
+  return simd::noCommonBits(U4::all(vertices >> (4 * k)), U4::load(kLaneBits));
+}
+
 /// The centres and half sizes of a cull block's four boxes (boxPlaneSpan's).
 inline void blockBoxes(const CullBlock& b, F4 centre[3], F4 reach[3]) {
   const F4 half = F4::all(Real(0.5));

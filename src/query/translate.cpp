@@ -16,6 +16,7 @@
 // lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
 #include "model/query_data.h"  // CMKIT_QUERY_LANES: SSE2, float lanes
 #ifdef CMKIT_QUERY_LANES
+#include "query/cull_lanes.h"
 #include "util/simd.h"
 #define CMKIT_SIDES_SSE2 1
 #endif
@@ -250,23 +251,13 @@ SmallSides sidesOfSmallPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
 /// bits as one vertex at a time); 0 in the lanes of vertices that do not
 /// move.
 void placeVertexLines(TraceWork& tw) {
-  using simd::F4;
-  using simd::U4;
   const std::uint32_t moving = tw.movingVertices;
   const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
   const F4 dx = F4::all(tw.dir.x), dy = F4::all(tw.dir.y), dz = F4::all(tw.dir.z);
-  alignas(16) static constexpr std::uint32_t kLaneBits[kLanes] = {1, 2, 4, 8};
-  const U4 laneBits = U4::load(kLaneBits);
   for (int k = 0; 4 * k < numVerts; ++k) {
-    // Four vertices' positions as rows x, y, z (the fourth row, the next
-    // field's, unused); the entries past the trace model's vertices are
-    // stale, their lanes cleared below with the other still ones.
-    F4 x = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k)].p.x);
-    F4 y = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 1)].p.x);
-    F4 z = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 2)].p.x);
-    F4 w = F4::loadUnaligned(&tw.vertices[std::size_t(4 * k + 3)].p.x);
-    simd::transpose(x, y, z, w);
-    const F4 still = simd::noCommonBits(U4::all(moving >> (4 * k)), laneBits);
+    F4 x, y, z;
+    trmVertexRows(tw, k, x, y, z);
+    const F4 still = trmVertexLanesOutside(moving, k);  // (and the stale entries past the last)
     LineBlock& b = tw.scratch.trm.vertexLines[std::size_t(k)];
     simd::andNot(still, x * dy - y * dx).store(b.c[0]);
     simd::andNot(still, x * dz - z * dx).store(b.c[1]);
