@@ -203,26 +203,32 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
   return moving & ~outside;
 }
 
-// The common case, a trace model of at most eight vertices (a box) and a
-// polygon of at most eight edges, without the transposition: the sides as
-// one word, byte i for polygon edge i, its bit v for vertex v, which the edge
-// pairs read as they are (SmallSides). The same products as above, so the
-// same bits.
+// The common cases, a trace model of at most eight vertices (a box) and a
+// polygon of at most eight edges, or at most sixteen vertices (an 8-sided
+// cylinder) and four edges, without the transposition: the sides as one
+// word, slot i (8 or 16 bits from bit i << shift) for polygon edge i, its bit
+// v for vertex v, which the edge pairs read as they are (SmallSides). The
+// same products as above, so the same bits.
 struct SmallSides {
-  std::uint64_t bytes;   ///< byte i, bit v: vertex v's side of edge i's line
+  std::uint64_t slots;   ///< slot i, bit v: vertex v's side of edge i's line
   std::uint32_t inside;  ///< the moving vertices inside every edge
 };
-/// Whether a polygon of `numEdges` edges takes the small path: no moving
-/// vertex past the eighth, at most eight edges.
-inline bool smallSides(const TraceWork& tw, std::size_t numEdges) {
-  return numEdges <= 8 && tw.movingVertices < (1u << 8);
+/// The slots' width as a shift (3: 8 bits, 4: 16 bits) for a polygon of
+/// `numEdges` edges, or 0 when it takes the general path.
+inline unsigned smallSidesShift(const TraceWork& tw, std::size_t numEdges) {
+  if (numEdges <= 8 && tw.movingVertices < (1u << 8)) return 3;
+  if (numEdges <= 4 && tw.movingVertices < (1u << 16)) return 4;
+  return 0;
 }
+template <unsigned kShift>
 SmallSides sidesOfSmallPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
-  using simd::F4;
+  static_assert(kShift == 3 || kShift == 4);
   const std::uint32_t moving = tw.movingVertices;
   const LineBlock* vertexLines = tw.scratch.trm.vertexLines.data();
-  const bool twoBlocks = moving >= (1u << 4);
-  std::uint64_t bytes = 0;
+  // The vertex blocks up to the last moving vertex's (one or two; up to four
+  // with 16-bit slots).
+  const int blocks = kShift == 3 ? 1 + int(moving >= (1u << 4)) : (35 - std::countl_zero(moving | 1u)) / 4;
+  std::uint64_t slots = 0;
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
   for (std::size_t i = 0; i < edges.size; ++i) {
     const Pluecker& l = edges.line(i);
@@ -238,11 +244,15 @@ SmallSides sidesOfSmallPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
       return std::uint32_t(simd::bits(p));
     };
     std::uint32_t bits = side(vertexLines[0]);
-    if (twoBlocks) bits |= side(vertexLines[1]) << 4;
+    if constexpr (kShift == 3) {
+      if (blocks == 2) bits |= side(vertexLines[1]) << 4;
+    } else {
+      for (int k = 1; k < blocks; ++k) bits |= side(vertexLines[k]) << (4 * k);
+    }
     outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(i) < 0));
-    bytes |= std::uint64_t(bits) << (8 * i);
+    slots |= std::uint64_t(bits) << (i << kShift);
   }
-  return {bytes, moving & ~outside};
+  return {slots, moving & ~outside};
 }
 
 /// TrmFeatures::vertexLines up to the last moving vertex's block: lane
@@ -467,28 +477,52 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
   if (tw.gettingContacts()) tw.addContact();
 }
 
+// The last of a polygon's tests (below).
+bool testModelVerticesThroughTrm(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges);
+
 #ifdef CMKIT_SIDES_SSE2
 // translateTrmEdgesThroughPolygon for the small path: a trace-model edge
-// crosses polygon edge i's line when its vertices' bits in byte i differ
-// (shifted down by a vertex number, byte i's bit lands at bit 8i, the bytes
-// above landing above it); `toTest` has bit 8i for each edge to test. The
-// same pairs in the same order.
+// crosses polygon edge i's line when its vertices' bits in slot i differ
+// (shifted down by a vertex number, slot i's bit lands at its first bit, the
+// slots above landing above it); `toTest` has slot i's first bit for each
+// edge to test. The same pairs in the same order.
+template <unsigned kShift>
 void translateTrmEdgesThroughSmallPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges,
-                                          std::uint64_t bytes, std::uint64_t toTest) {
+                                          const SmallSides& sides, std::uint64_t toTest) {
   std::uint64_t crossing[kMaxTrmEdges + 1];
   std::uint8_t crossingEdge[kMaxTrmEdges + 1];
   std::size_t n = 0;
   for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
     const int e = std::countr_zero(moving);
     const WorkEdge& te = tw.edges[std::size_t(e)];
-    const std::uint64_t c = ((bytes >> te.vertexNum[0]) ^ (bytes >> te.vertexNum[1])) & toTest;
+    const std::uint64_t c = ((sides.slots >> te.vertexNum[0]) ^ (sides.slots >> te.vertexNum[1])) & toTest;
     crossing[n] = c;
     crossingEdge[n] = std::uint8_t(e);
     n += c != 0;
   }
   for (std::size_t k = 0; k < n; ++k)
     for (std::uint64_t c = crossing[k]; c; c &= c - 1)
-      translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k], std::size_t(std::countr_zero(c)) / 8);
+      translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k],
+                                  std::size_t(std::countr_zero(c)) >> kShift);
+}
+
+/// The polygon's tests on the small path (slots of 1 << kShift bits); true
+/// when it blocks completely.
+template <unsigned kShift>
+bool translateTrmThroughSmallPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
+                                     const PolygonEdges& edges) {
+  const QueryScratch& s = tw.scratch;
+  const SmallSides sides = sidesOfSmallPolygonEdges<kShift>(tw, edges);
+  std::uint64_t toTest = 0;  // slot i's first bit: edge i (as the general path's masks)
+  if (tw.numEdges > 0)
+    for (std::size_t i = 0; i < edges.size; ++i) {
+      const std::size_t e = std::size_t(std::abs(edges.edgeNum(i)));
+      toTest |= std::uint64_t(unsigned(!s.isChecked(s.edgeChecked, e)) & unsigned(!edges.internal(i)))
+                << (i << kShift);
+    }
+  translateTrmVerticesThroughPolygon(tw, polyNum, poly, sides.inside);
+  if (toTest) translateTrmEdgesThroughSmallPolygon<kShift>(tw, poly, edges, sides, toTest);
+  return testModelVerticesThroughTrm(tw, poly, edges);
 }
 #endif
 
@@ -561,10 +595,6 @@ void placeTranslationFeatures(TraceWork& tw) {
 
 }  // namespace
 
-namespace {
-bool testModelVerticesThroughTrm(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges);
-}  // namespace
-
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
                                 const PolygonCorner* corners) {
   QueryScratch& s = tw.scratch;
@@ -575,18 +605,13 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const PolygonEdges edges = corners ? polygonEdges(tw, corners, poly.numEdges) : polygonEdges(tw, poly);
 #ifdef CMKIT_SIDES_SSE2
-  if (smallSides(tw, edges.size)) {
-    const SmallSides sides = sidesOfSmallPolygonEdges(tw, edges);
-    std::uint64_t toTest = 0;  // bit 8i: edge i (as the groups' masks below)
-    if (tw.numEdges > 0)
-      for (std::size_t i = 0; i < edges.size; ++i) {
-        const std::size_t e = std::size_t(std::abs(edges.edgeNum(i)));
-        toTest |= std::uint64_t(unsigned(!s.isChecked(s.edgeChecked, e)) & unsigned(!edges.internal(i)))
-                  << (8 * i);
-      }
-    translateTrmVerticesThroughPolygon(tw, polyNum, poly, sides.inside);
-    if (toTest) translateTrmEdgesThroughSmallPolygon(tw, poly, edges, sides.bytes, toTest);
-    return testModelVerticesThroughTrm(tw, poly, edges);
+  switch (smallSidesShift(tw, edges.size)) {
+    case 3:
+      return translateTrmThroughSmallPolygon<3>(tw, polyNum, poly, edges);
+    case 4:
+      return translateTrmThroughSmallPolygon<4>(tw, polyNum, poly, edges);
+    default:
+      break;
   }
 #endif
   const std::uint32_t inside = sidesOfPolygonEdges(tw, edges);
