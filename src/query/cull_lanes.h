@@ -19,6 +19,88 @@ namespace cmkit::detail {
 using simd::F4;
 using simd::U4;
 
+/// Rows x, y, z of four vectors (lane j vector j).
+inline void vectorRows(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, F4& x, F4& y, F4& z) {
+  x = F4::lanes(a.x, b.x, c.x, d.x);
+  y = F4::lanes(a.y, b.y, c.y, d.y);
+  z = F4::lanes(a.z, b.z, c.z, d.z);
+}
+/// Row vectors times m (Vec3 * Mat3's arithmetic in each lane).
+inline void timesMat3(const Mat3& m, F4& x, F4& y, F4& z) {
+  const Vec3 &r0 = m.rows[0], &r1 = m.rows[1], &r2 = m.rows[2];
+  const F4 ox = F4::all(r0.x) * x + F4::all(r1.x) * y + F4::all(r2.x) * z;
+  const F4 oy = F4::all(r0.y) * x + F4::all(r1.y) * y + F4::all(r2.y) * z;
+  const F4 oz = F4::all(r0.z) * x + F4::all(r1.z) * y + F4::all(r2.z) * z;
+  x = ox, y = oy, z = oz;
+}
+/// m times column vectors (Mat3 * Vec3's arithmetic in each lane).
+inline void mat3Times(const Mat3& m, F4& x, F4& y, F4& z) {
+  const Vec3 &r0 = m.rows[0], &r1 = m.rows[1], &r2 = m.rows[2];
+  const F4 ox = F4::all(r0.x) * x + F4::all(r0.y) * y + F4::all(r0.z) * z;
+  const F4 oy = F4::all(r1.x) * x + F4::all(r1.y) * y + F4::all(r1.z) * z;
+  const F4 oz = F4::all(r2.x) * x + F4::all(r2.y) * y + F4::all(r2.z) * z;
+  x = ox, y = oy, z = oz;
+}
+
+/// Trace-model vertices 0 .. numVerts - 1 in the model's frame, the trace
+/// model at `relative` (as placedTrmVertex), four at a time with its
+/// arithmetic in each lane (the same bits), into x, y, z (arrays of
+/// kMaxTrmVertices; the entries up to the next multiple of four written too).
+inline void placedTrmVerticesInLanes(const TraceModel& trm, const Orientation& o, const Vec3& relative,
+                                     int numVerts, float* px, float* py, float* pz) {
+  static_assert(kMaxTrmVertices % 4 == 0);
+  for (int k = 0; 4 * k < numVerts; ++k) {
+    F4 x, y, z;
+    vectorRows(trm.vertex(4 * k), trm.vertex(4 * k + 1), trm.vertex(4 * k + 2), trm.vertex(4 * k + 3), x, y,
+               z);
+    if (o.trmRotated) timesMat3(*o.trmAxis, x, y, z);
+    x = x + F4::all(relative.x);
+    y = y + F4::all(relative.y);
+    z = z + F4::all(relative.z);
+    if (o.modelRotated) mat3Times(o.placement->axis, x, y, z);
+    x.store(px + 4 * k);
+    y.store(py + 4 * k);
+    z.store(pz + 4 * k);
+  }
+}
+
+/// Trace-model polygons 0 .. numPolys - 1's normals in the model's frame for
+/// a turned trace model or placement (planeAxis: trmPlaneAxis's), as
+/// placeTrmPolygon turns them, four at a time with its arithmetic in each
+/// lane (the same bits), into x, y, z (arrays of kMaxTrmPolygons; the
+/// entries up to the next multiple of four written too, from the unused
+/// zero normals).
+inline void turnedTrmNormalsInLanes(const TraceModel& trm, const Orientation& o, const Mat3& planeAxis,
+                                    int numPolys, float* nx, float* ny, float* nz) {
+  static_assert(kMaxTrmPolygons % 4 == 0);
+  for (int k = 0; 4 * k < numPolys; ++k) {
+    F4 x, y, z;
+    vectorRows(trm.polygonNormal(4 * k), trm.polygonNormal(4 * k + 1), trm.polygonNormal(4 * k + 2),
+               trm.polygonNormal(4 * k + 3), x, y, z);
+    if (o.trmRotated)
+      timesMat3(planeAxis, x, y, z);
+    else
+      mat3Times(o.placement->axis, x, y, z);
+    x.store(nx + 4 * k);
+    y.store(ny + 4 * k);
+    z.store(nz + 4 * k);
+  }
+}
+
+/// placeTrmPolygon for every polygon of a turned trace model or placement,
+/// the normals four at a time (turnedTrmNormalsInLanes, also left in nx, ny,
+/// nz).
+inline void placeTurnedTrmPolygons(TraceWork& tw, const TraceModel& trm, const Orientation& o,
+                                   const Mat3& planeAxis, float* nx, float* ny, float* nz) {
+  turnedTrmNormalsInLanes(trm, o, planeAxis, tw.numPolys, nx, ny, nz);
+  for (int i = 0; i < tw.numPolys; ++i) {
+    WorkPolygon& wp = tw.polys[std::size_t(i)];
+    wp.source = &trm.polygon(i);
+    wp.planeVertex = trm.polygonPlaneVertex(i);
+    wp.plane.normal = {nx[i], ny[i], nz[i]};
+  }
+}
+
 /// The start positions of trace-model vertices 4k .. 4k + 3 as rows: x, y, z
 /// (lane j vertex 4k + j). Entries past the trace model's vertices are
 /// stale (the caller masks their lanes); k < kMaxTrmVertices / 4.

@@ -3,6 +3,7 @@
 // contact back to the world.
 #include <bit>
 
+#include "query/cull_lanes.h"
 #include "query/trace_work.h"
 
 namespace cmkit::detail {
@@ -10,6 +11,17 @@ namespace cmkit::detail {
 void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
                       std::uint32_t vertices) {
   const Vec3 relative = position - o.placement->origin;
+#ifdef CMKIT_QUERY_LANES
+  if ((o.trmRotated || o.modelRotated) && vertices) {  // turned: four at a time
+    alignas(16) float x[kMaxTrmVertices], y[kMaxTrmVertices], z[kMaxTrmVertices];
+    placedTrmVerticesInLanes(trm, o, relative, 32 - std::countl_zero(vertices), x, y, z);
+    for (; vertices; vertices &= vertices - 1) {
+      const std::size_t i = std::size_t(std::countr_zero(vertices));
+      tw.vertices[i].p = {x[i], y[i], z[i]};
+    }
+    return;
+  }
+#endif
   for (; vertices; vertices &= vertices - 1) {
     const int i = std::countr_zero(vertices);
     tw.vertices[std::size_t(i)].p = placedTrmVertex(trm, o, i, relative);
@@ -31,6 +43,13 @@ void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o
   }
   Mat3 both;
   const Mat3& planeAxis = trmPlaneAxis(o, both);
+#ifdef CMKIT_QUERY_LANES
+  if (o.trmRotated || o.modelRotated) {  // turned: the normals four at a time
+    alignas(16) float x[kMaxTrmPolygons], y[kMaxTrmPolygons], z[kMaxTrmPolygons];
+    placeTurnedTrmPolygons(tw, trm, o, planeAxis, x, y, z);
+    return;
+  }
+#endif
   for (int i = 0; i < tw.numPolys; ++i) placeTrmPolygon(tw.polys[std::size_t(i)], trm, i, o, planeAxis);
 }
 

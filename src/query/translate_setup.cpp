@@ -87,31 +87,6 @@ void setupPointTrace(TraceWork& tw) {
   tw.pointTrace = true;
 }
 
-#ifdef CMKIT_QUERY_LANES
-/// Rows x, y, z of four vectors (lane j vector j).
-inline void vectorRows(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, F4& x, F4& y, F4& z) {
-  x = F4::lanes(a.x, b.x, c.x, d.x);
-  y = F4::lanes(a.y, b.y, c.y, d.y);
-  z = F4::lanes(a.z, b.z, c.z, d.z);
-}
-/// Row vectors times m (Vec3 * Mat3's arithmetic in each lane).
-inline void timesMat3(const Mat3& m, F4& x, F4& y, F4& z) {
-  const Vec3 &r0 = m.rows[0], &r1 = m.rows[1], &r2 = m.rows[2];
-  const F4 ox = F4::all(r0.x) * x + F4::all(r1.x) * y + F4::all(r2.x) * z;
-  const F4 oy = F4::all(r0.y) * x + F4::all(r1.y) * y + F4::all(r2.y) * z;
-  const F4 oz = F4::all(r0.z) * x + F4::all(r1.z) * y + F4::all(r2.z) * z;
-  x = ox, y = oy, z = oz;
-}
-/// m times column vectors (Mat3 * Vec3's arithmetic in each lane).
-inline void mat3Times(const Mat3& m, F4& x, F4& y, F4& z) {
-  const Vec3 &r0 = m.rows[0], &r1 = m.rows[1], &r2 = m.rows[2];
-  const F4 ox = F4::all(r0.x) * x + F4::all(r0.y) * y + F4::all(r0.z) * z;
-  const F4 oy = F4::all(r1.x) * x + F4::all(r1.y) * y + F4::all(r1.z) * z;
-  const F4 oz = F4::all(r2.x) * x + F4::all(r2.y) * y + F4::all(r2.z) * z;
-  x = ox, y = oy, z = oz;
-}
-#endif
-
 // Trace-model translation set-up: the trace model at the start, only the
 // features facing the movement used (as masks; only their vertices placed;
 // the edges' vertex numbers when a polygon first needs them,
@@ -135,35 +110,18 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   [[maybe_unused]] const bool turned = o.trmRotated || o.modelRotated;
 #ifdef CMKIT_QUERY_LANES
   if (turned) {
-    // A turned trace model's (or placement's) normals four at a time
-    // (placeTrmPolygon's arithmetic in each lane) and which face the move
-    // (the normal . dir of the loop below, in each lane).
-    static_assert(kMaxTrmPolygons % 4 == 0);
+    // A turned trace model's (or placement's) polygons, their normals four
+    // at a time, and which face the move (normal . dir as in the loop below,
+    // in each lane).
     alignas(16) float nx[kMaxTrmPolygons], ny[kMaxTrmPolygons], nz[kMaxTrmPolygons];
     const F4 dx = F4::all(dir.x), dy = F4::all(dir.y), dz = F4::all(dir.z);
     std::uint32_t facing = 0;
+    placeTurnedTrmPolygons(tw, trm, o, planeAxis, nx, ny, nz);
     for (int k = 0; 4 * k < tw.numPolys; ++k) {
-      F4 x, y, z;
-      // (Entries past the trace model's polygons are unused zeros.)
-      vectorRows(trm.polygonNormal(4 * k), trm.polygonNormal(4 * k + 1), trm.polygonNormal(4 * k + 2),
-                 trm.polygonNormal(4 * k + 3), x, y, z);
-      if (o.trmRotated)
-        timesMat3(planeAxis, x, y, z);
-      else
-        mat3Times(o.placement->axis, x, y, z);
-      x.store(nx + 4 * k);
-      y.store(ny + 4 * k);
-      z.store(nz + 4 * k);
-      const F4 d = x * dx + y * dy + z * dz;
+      const F4 d = F4::load(nx + 4 * k) * dx + F4::load(ny + 4 * k) * dy + F4::load(nz + 4 * k) * dz;
       F4 faces = d > F4::zero();
       if (flat) faces = faces | (d == F4::zero());
       facing |= std::uint32_t(simd::bits(faces)) << (4 * k);
-    }
-    for (int i = 0; i < tw.numPolys; ++i) {
-      WorkPolygon& wp = tw.polys[std::size_t(i)];
-      wp.source = &trm.polygon(i);  // (as placeTrmPolygon)
-      wp.planeVertex = trm.polygonPlaneVertex(i);
-      wp.plane.normal = {nx[i], ny[i], nz[i]};
     }
     movingPolygons = facing & std::uint32_t(allTrmVertices(tw.numPolys));  // (the first numPolys bits)
     for (std::uint32_t f = movingPolygons; f; f &= f - 1) {
@@ -193,23 +151,9 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   // A turned trace model's (or placement's) vertices four at a time up to
   // the last moving one (placedTrmVertex's arithmetic in each lane).
   alignas(16) float placedX[kMaxTrmVertices], placedY[kMaxTrmVertices], placedZ[kMaxTrmVertices];
-  if (turned) {
-    static_assert(kMaxTrmVertices % 4 == 0);
-    const int numVerts = movingVertices ? 32 - std::countl_zero(movingVertices) : 0;
-    for (int k = 0; 4 * k < numVerts; ++k) {
-      F4 x, y, z;
-      vectorRows(trm.vertex(4 * k), trm.vertex(4 * k + 1), trm.vertex(4 * k + 2), trm.vertex(4 * k + 3), x, y,
-                 z);
-      if (o.trmRotated) timesMat3(*o.trmAxis, x, y, z);
-      x = x + F4::all(relative.x);
-      y = y + F4::all(relative.y);
-      z = z + F4::all(relative.z);
-      if (o.modelRotated) mat3Times(o.placement->axis, x, y, z);
-      x.store(placedX + 4 * k);
-      y.store(placedY + 4 * k);
-      z.store(placedZ + 4 * k);
-    }
-  }
+  if (turned)
+    placedTrmVerticesInLanes(trm, o, relative, movingVertices ? 32 - std::countl_zero(movingVertices) : 0,
+                             placedX, placedY, placedZ);
 #endif
   Bounds size;
   for (std::uint32_t moving = movingVertices; moving; moving &= moving - 1) {
