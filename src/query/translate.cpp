@@ -429,33 +429,45 @@ inline void translateTrmEdgeThroughEdge(TraceWork& tw, const CmPolygon& poly, co
   translateTrmEdgeThroughCrossedEdge(tw, poly, edges, trmEdgeNum, i, v1, v2);
 }
 
+/// The pairs of one mask of polygon edges: each moving trace-model edge's
+/// crossed polygon edges (crossed(te), a mask) found first, without a branch
+/// per trace-model edge (most edges cross none of a polygon's edge lines,
+/// unpredictably), then tested trace-model edge by edge, bit b of a mask
+/// standing for polygon edge edgeOf(b).
+template <class Crossed, class EdgeOf>
+void testCrossedEdgePairs(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges, Crossed crossed,
+                          EdgeOf edgeOf) {
+  std::uint64_t crossing[kMaxTrmEdges + 1];
+  std::uint8_t crossingEdge[kMaxTrmEdges + 1];
+  std::size_t n = 0;
+  for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
+    const int e = std::countr_zero(moving);
+    const std::uint64_t c = crossed(tw.edges[std::size_t(e)]);
+    crossing[n] = c;
+    crossingEdge[n] = std::uint8_t(e);
+    n += c != 0;
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::uint64_t c = crossing[k]; c; c &= c - 1)
+      translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k], edgeOf(std::countr_zero(c)));
+}
+
 // The moving trace-model edges against the polygon edges to test, trace-model
 // edge by edge, each against the polygon edges whose line its two vertices
-// pass on different sides, in their order. The pairs are found first, without
-// a branch per trace-model edge (most edges cross none of a polygon's edge
-// lines, unpredictably), then tested.
+// pass on different sides, in their order (testCrossedEdgePairs, group by
+// group of the per-vertex masks).
 void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges) {
   const QueryScratch& s = tw.scratch;
   const std::size_t groups = edgeGroups(edges.size);
-  std::uint64_t crossing[kMaxTrmEdges + 1];
-  std::uint8_t crossingEdge[kMaxTrmEdges + 1];
   for (std::size_t g = 0; g < groups; ++g) {
     const std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
     const std::uint64_t toTest = s.edgesToTest[g];
-    std::size_t n = 0;
-    for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
-      const int e = std::countr_zero(moving);
-      const WorkEdge& te = tw.edges[std::size_t(e)];
-      const std::uint64_t c =
-          (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & toTest;
-      crossing[n] = c;
-      crossingEdge[n] = std::uint8_t(e);
-      n += c != 0;
-    }
-    for (std::size_t k = 0; k < n; ++k)
-      for (std::uint64_t c = crossing[k]; c; c &= c - 1)
-        translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k],
-                                    g * kEdgeGroup + std::size_t(std::countr_zero(c)));
+    testCrossedEdgePairs(
+        tw, poly, edges,
+        [sides, toTest](const WorkEdge& te) {
+          return (sides[std::size_t(te.vertexNum[0])] ^ sides[std::size_t(te.vertexNum[1])]) & toTest;
+        },
+        [first = g * kEdgeGroup](int b) { return first + std::size_t(b); });
   }
 }
 
@@ -489,21 +501,12 @@ bool testModelVerticesThroughTrm(TraceWork& tw, const CmPolygon& poly, const Pol
 template <unsigned kShift>
 void translateTrmEdgesThroughSmallPolygon(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges,
                                           const SmallSides& sides, std::uint64_t toTest) {
-  std::uint64_t crossing[kMaxTrmEdges + 1];
-  std::uint8_t crossingEdge[kMaxTrmEdges + 1];
-  std::size_t n = 0;
-  for (std::uint64_t moving = tw.movingEdges; moving; moving &= moving - 1) {
-    const int e = std::countr_zero(moving);
-    const WorkEdge& te = tw.edges[std::size_t(e)];
-    const std::uint64_t c = ((sides.slots >> te.vertexNum[0]) ^ (sides.slots >> te.vertexNum[1])) & toTest;
-    crossing[n] = c;
-    crossingEdge[n] = std::uint8_t(e);
-    n += c != 0;
-  }
-  for (std::size_t k = 0; k < n; ++k)
-    for (std::uint64_t c = crossing[k]; c; c &= c - 1)
-      translateTrmEdgeThroughEdge(tw, poly, edges, crossingEdge[k],
-                                  std::size_t(std::countr_zero(c)) >> kShift);
+  testCrossedEdgePairs(
+      tw, poly, edges,
+      [slots = sides.slots, toTest](const WorkEdge& te) {
+        return ((slots >> te.vertexNum[0]) ^ (slots >> te.vertexNum[1])) & toTest;
+      },
+      [](int b) { return std::size_t(b) >> kShift; });
 }
 
 /// The polygon's tests on the small path (slots of 1 << kShift bits); true
