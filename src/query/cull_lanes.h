@@ -2,8 +2,10 @@
 // at a time in SSE2 lanes, each lane doing the arithmetic of the scalar
 // culls (trace_work.h: boxesTouch, boxBeyondPlane) operation for operation,
 // so the same answers. Used by the translation and rotation walks of models
-// with query data; only where CMKIT_QUERY_LANES is defined (util/simd.h's
-// float lanes).
+// with query data. Also the trace model four vertices or polygons at a time:
+// placed when turned (placement.cpp, translate_setup.cpp) and read back as
+// rows (translate.cpp), with the scalar placement's arithmetic in each lane.
+// Only where CMKIT_QUERY_LANES is defined (util/simd.h's float lanes).
 #pragma once
 
 #include <bit>
