@@ -127,6 +127,31 @@ constexpr bool transposesEveryBit() {
 }
 static_assert(transposesEveryBit());
 
+/// A polygon edge's line broadcast to four lanes, and the sides of it that
+/// four vertices' paths (a block of TrmFeatures::vertexLines) pass: the sign
+/// bits of Pluecker::permutedInnerProduct's terms in its order in each lane
+/// (a product of two floats is the same either way round), so the same bits
+/// as one product at a time; bit j for lane j.
+struct BroadcastLine {
+  F4 c0, c1, c2, c3, c4, c5;
+  explicit BroadcastLine(const Pluecker& l)
+      : c0(F4::all(l[0])),
+        c1(F4::all(l[1])),
+        c2(F4::all(l[2])),
+        c3(F4::all(l[3])),
+        c4(F4::all(l[4])),
+        c5(F4::all(l[5])) {}
+  std::uint32_t sides(const LineBlock& r) const {
+    F4 p = c0 * F4::load(r.c[4]);
+    p = p + c1 * F4::load(r.c[5]);
+    p = p + c2 * F4::load(r.c[3]);
+    p = p + c4 * F4::load(r.c[0]);
+    p = p + c5 * F4::load(r.c[1]);
+    p = p + c3 * F4::load(r.c[2]);
+    return std::uint32_t(simd::bits(p));
+  }
+};
+
 // Edge by edge, four vertices at a time: each edge's line broadcast against
 // the blocks of vertex paths (TrmFeatures::vertexLines, made with the
 // features), one mask of vertices per edge, then transposed into the
@@ -163,20 +188,9 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
     std::uint64_t rows[kMaxTrmVertices / 8];
     rows[0] = rows[1] = rows[2] = rows[3] = 0;
     for (std::size_t i = 0; i < count; ++i) {
-      const Pluecker& l = edges.line(first + i);
-      const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
-      const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
+      const BroadcastLine line(edges.line(first + i));
       std::uint32_t bits = 0;  // bit v: vertex v's side
-      for (std::size_t k = 0; k < vertexBlocks; ++k) {
-        const LineBlock& r = vertexLines[k];
-        F4 p = c0 * F4::load(r.c[4]);
-        p = p + c1 * F4::load(r.c[5]);
-        p = p + c2 * F4::load(r.c[3]);
-        p = p + c4 * F4::load(r.c[0]);
-        p = p + c5 * F4::load(r.c[1]);
-        p = p + c3 * F4::load(r.c[2]);
-        bits |= simd::bits(p) << (4 * k);
-      }
+      for (std::size_t k = 0; k < vertexBlocks; ++k) bits |= line.sides(vertexLines[k]) << (4 * k);
       // Outside edge i: the side is not the one its use asks.
       outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(first + i) < 0));
       for (int r = 0; r < vertexRows; ++r)
@@ -231,23 +245,12 @@ SmallSides sidesOfSmallPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
   std::uint64_t slots = 0;
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
   for (std::size_t i = 0; i < edges.size; ++i) {
-    const Pluecker& l = edges.line(i);
-    const F4 c0 = F4::all(l[0]), c1 = F4::all(l[1]), c2 = F4::all(l[2]);
-    const F4 c3 = F4::all(l[3]), c4 = F4::all(l[4]), c5 = F4::all(l[5]);
-    const auto side = [&](const LineBlock& r) {
-      F4 p = c0 * F4::load(r.c[4]);
-      p = p + c1 * F4::load(r.c[5]);
-      p = p + c2 * F4::load(r.c[3]);
-      p = p + c4 * F4::load(r.c[0]);
-      p = p + c5 * F4::load(r.c[1]);
-      p = p + c3 * F4::load(r.c[2]);
-      return std::uint32_t(simd::bits(p));
-    };
-    std::uint32_t bits = side(vertexLines[0]);
+    const BroadcastLine line(edges.line(i));
+    std::uint32_t bits = line.sides(vertexLines[0]);
     if constexpr (kShift == 3) {
-      if (blocks == 2) bits |= side(vertexLines[1]) << 4;
+      if (blocks == 2) bits |= line.sides(vertexLines[1]) << 4;
     } else {
-      for (int k = 1; k < blocks; ++k) bits |= side(vertexLines[k]) << (4 * k);
+      for (int k = 1; k < blocks; ++k) bits |= line.sides(vertexLines[k]) << (4 * k);
     }
     outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(i) < 0));
     slots |= std::uint64_t(bits) << (i << kShift);
