@@ -8,18 +8,13 @@
 #include <bit>
 #include <cmath>
 
+#include "query/edge_sides.h"
 #include "query/polygon_edges.h"
 #include "query/trace_work.h"
 
-// SSE2 on x86-64 (sidesOfPolygonEdges: four polygon edges at a time); any other target, or
-// -DCMKIT_NO_SIMD, uses the portable loops, which do the same arithmetic. The
-// lanes are float: a double build (CMKIT_DOUBLE) uses the portable loops.
-#include "model/query_data.h"  // CMKIT_QUERY_LANES: SSE2, float lanes
-#ifdef CMKIT_QUERY_LANES
-#include "query/cull_lanes.h"
-#include "util/simd.h"
-#define CMKIT_SIDES_SSE2 1
-#endif
+// With float lanes (CMKIT_QUERY_LANES: SSE2, a float build) the edge sides
+// of the common small cases come as one word of slots (edge_sides.h); any
+// other build takes the general masks, which give the same pairs.
 
 namespace cmkit::detail {
 namespace {
@@ -86,233 +81,6 @@ void translatePointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmP
 }
 
 namespace {
-
-/// Room in the scratch for the masks of a polygon's `groups` edge groups.
-void sizeEdgeMasks(QueryScratch& s, std::size_t groups) {
-  if (s.vertexEdgeSides.size() < groups * kMaxTrmVertices) {
-    s.vertexEdgeSides.resize(groups * kMaxTrmVertices);
-    s.edgesToTest.resize(groups);
-  }
-}
-
-// Which side of each edge line of the current polygon the path of every
-// moving trace-model vertex passes (see the masks in QueryScratch). A side is
-// the sign bit of (edge i's line, stored direction) . (vertex v's line), the
-// product the original caches per model edge. It depends only on the edge
-// and the vertex, so computing all of a polygon's at once gives the same
-// bits as the cache, without its branches and scattered memory. Returns the
-// moving vertices whose paths pass inside every edge (on the negative side of
-// the edges used backwards, the positive of the others): those the vertex
-// test tries. (Two ways: SSE2 float lanes, else one vertex at a time.)
-#ifdef CMKIT_SIDES_SSE2
-
-/// The 8 x 8 bit matrix whose row r is byte r of x (column c its bit c),
-/// transposed: bit 8r + c of the result is bit 8c + r of x. (Three exchanges
-/// of ever larger blocks across the diagonal.)
-constexpr std::uint64_t transposeBits8x8(std::uint64_t x) {
-  std::uint64_t t = (x ^ (x >> 7)) & 0x00AA00AA00AA00AAull;
-  x ^= t ^ (t << 7);
-  t = (x ^ (x >> 14)) & 0x0000CCCC0000CCCCull;
-  x ^= t ^ (t << 14);
-  t = (x ^ (x >> 28)) & 0x00000000F0F0F0F0ull;
-  x ^= t ^ (t << 28);
-  return x;
-}
-/// The transposition is linear over XOR, so the 64 one-bit matrices prove it.
-constexpr bool transposesEveryBit() {
-  for (int r = 0; r < 8; ++r)
-    for (int c = 0; c < 8; ++c)
-      if (transposeBits8x8(std::uint64_t(1) << (8 * r + c)) != std::uint64_t(1) << (8 * c + r)) return false;
-  return true;
-}
-static_assert(transposesEveryBit());
-
-/// A polygon edge's line broadcast to four lanes, and the sides of it that
-/// four vertices' paths (a block of TrmFeatures::vertexLines) pass: the sign
-/// bits of Pluecker::permutedInnerProduct's terms in its order in each lane
-/// (a product of two floats is the same either way round), so the same bits
-/// as one product at a time; bit j for lane j.
-struct BroadcastLine {
-  F4 c0, c1, c2, c3, c4, c5;
-  explicit BroadcastLine(const Pluecker& l)
-      : c0(F4::all(l[0])),
-        c1(F4::all(l[1])),
-        c2(F4::all(l[2])),
-        c3(F4::all(l[3])),
-        c4(F4::all(l[4])),
-        c5(F4::all(l[5])) {}
-  std::uint32_t sides(const LineBlock& r) const {
-    F4 p = c0 * F4::load(r.c[4]);
-    p = p + c1 * F4::load(r.c[5]);
-    p = p + c2 * F4::load(r.c[3]);
-    p = p + c4 * F4::load(r.c[0]);
-    p = p + c5 * F4::load(r.c[1]);
-    p = p + c3 * F4::load(r.c[2]);
-    return std::uint32_t(simd::bits(p));
-  }
-};
-
-// Edge by edge, four vertices at a time: each edge's line broadcast against
-// the blocks of vertex paths (TrmFeatures::vertexLines, made with the
-// features), one mask of vertices per edge, then transposed into the
-// per-vertex masks of edges that the edge pairs read, eight by eight. Each
-// lane computes Pluecker::permutedInnerProduct's terms in its order (a
-// product of two floats is the same either way round), so the same sign
-// bits as one product at a time. For a box against a quadrilateral about a
-// third of the instructions of four edges at a time per vertex (the
-// polygon's lines, then in blocks of four, started at any lane, so its four
-// edges mostly straddled two blocks).
-std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
-  QueryScratch& s = tw.scratch;
-  const std::size_t groups = edgeGroups(edges.size);
-  sizeEdgeMasks(s, groups);
-  using simd::F4;
-  static_assert(kLanes == 4 && kMaxTrmVertices <= 32);
-  const std::uint32_t moving = tw.movingVertices;
-  // The vertex blocks up to the last moving vertex.
-  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
-  const std::size_t vertexBlocks = std::size_t(numVerts + 3) / 4;
-  const LineBlock* vertexLines = tw.scratch.trm.vertexLines.data();
-  std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
-  // The 8-vertex rows of the transposition.
-  const int vertexRows = (numVerts + 7) / 8;
-  for (std::size_t g = 0; g < groups; ++g) {
-    const std::size_t first = g * kEdgeGroup;
-    const std::size_t count = std::min(kEdgeGroup, edges.size - first);
-    std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
-    // Per row of eight vertices, the sides of up to eight edges: byte j for
-    // edge j of the eight, its bit k for vertex k of the row.
-    // (Four stores, not a loop to vertexRows: GCC made such loops calls of
-    // memset, one or two a polygon.)
-    static_assert(kMaxTrmVertices / 8 == 4);
-    std::uint64_t rows[kMaxTrmVertices / 8];
-    rows[0] = rows[1] = rows[2] = rows[3] = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      const BroadcastLine line(edges.line(first + i));
-      std::uint32_t bits = 0;  // bit v: vertex v's side
-      for (std::size_t k = 0; k < vertexBlocks; ++k) bits |= line.sides(vertexLines[k]) << (4 * k);
-      // Outside edge i: the side is not the one its use asks.
-      outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(first + i) < 0));
-      for (int r = 0; r < vertexRows; ++r)
-        rows[r] |= std::uint64_t((bits >> (8 * r)) & 0xFFu) << (8 * (i % 8));
-      // After every eighth edge and the last: the rows transposed into the
-      // vertices' masks of edges (the first eight edges written, the others
-      // added; entries past the last vertex, up to a multiple of eight, are
-      // written and never read).
-      if (i % 8 == 7 || i + 1 == count) {
-        const std::size_t e0 = i - i % 8;
-        for (int r = 0; r < vertexRows; ++r) {
-          const std::uint64_t m = transposeBits8x8(rows[r]);
-          std::uint64_t* out = sides + 8 * r;
-          if (e0 == 0) {
-            for (int k = 0; k < 8; ++k) out[k] = (m >> (8 * k)) & 0xFFu;
-          } else {
-            for (int k = 0; k < 8; ++k) out[k] |= ((m >> (8 * k)) & 0xFFu) << e0;
-          }
-        }
-        rows[0] = rows[1] = rows[2] = rows[3] = 0;
-      }
-    }
-  }
-  return moving & ~outside;
-}
-
-// The common cases, a trace model of at most eight vertices (a box) and a
-// polygon of at most eight edges, or at most sixteen vertices (an 8-sided
-// cylinder) and four edges, without the transposition: the sides as one
-// word, slot i (8 or 16 bits from bit i << shift) for polygon edge i, its bit
-// v for vertex v, which the edge pairs read as they are (SmallSides). The
-// same products as above, so the same bits.
-struct SmallSides {
-  std::uint64_t slots;   ///< slot i, bit v: vertex v's side of edge i's line
-  std::uint32_t inside;  ///< the moving vertices inside every edge
-};
-/// The slots' width as a shift (3: 8 bits, 4: 16 bits) for a polygon of
-/// `numEdges` edges, or 0 when it takes the general path.
-inline unsigned smallSidesShift(const TraceWork& tw, std::size_t numEdges) {
-  if (numEdges <= 8 && tw.movingVertices < (1u << 8)) return 3;
-  if (numEdges <= 4 && tw.movingVertices < (1u << 16)) return 4;
-  return 0;
-}
-template <unsigned kShift>
-SmallSides sidesOfSmallPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
-  static_assert(kShift == 3 || kShift == 4);
-  const std::uint32_t moving = tw.movingVertices;
-  const LineBlock* vertexLines = tw.scratch.trm.vertexLines.data();
-  // The vertex blocks up to the last moving vertex's (one or two; up to four
-  // with 16-bit slots).
-  const int blocks = kShift == 3 ? 1 + int(moving >= (1u << 4)) : (35 - std::countl_zero(moving | 1u)) / 4;
-  std::uint64_t slots = 0;
-  std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
-  for (std::size_t i = 0; i < edges.size; ++i) {
-    const BroadcastLine line(edges.line(i));
-    std::uint32_t bits = line.sides(vertexLines[0]);
-    if constexpr (kShift == 3) {
-      if (blocks == 2) bits |= line.sides(vertexLines[1]) << 4;
-    } else {
-      for (int k = 1; k < blocks; ++k) bits |= line.sides(vertexLines[k]) << (4 * k);
-    }
-    outside |= bits ^ (std::uint32_t(0) - std::uint32_t(edges.edgeNum(i) < 0));
-    slots |= std::uint64_t(bits) << (i << kShift);
-  }
-  return {slots, moving & ~outside};
-}
-
-/// TrmFeatures::vertexLines up to the last moving vertex's block: lane
-/// v % kLanes of block v / kLanes the path of vertex v, made four vertices
-/// at a time (Pluecker::fromRay's arithmetic in each lane, so the same
-/// bits as one vertex at a time); 0 in the lanes of vertices that do not
-/// move.
-void placeVertexLines(TraceWork& tw) {
-  const std::uint32_t moving = tw.movingVertices;
-  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
-  const F4 dx = F4::all(tw.dir.x), dy = F4::all(tw.dir.y), dz = F4::all(tw.dir.z);
-  for (int k = 0; 4 * k < numVerts; ++k) {
-    F4 x, y, z;
-    trmVertexRows(tw, k, x, y, z);
-    const F4 still = trmVertexLanesOutside(moving, k);  // (and the stale entries past the last)
-    LineBlock& b = tw.scratch.trm.vertexLines[std::size_t(k)];
-    simd::andNot(still, x * dy - y * dx).store(b.c[0]);
-    simd::andNot(still, x * dz - z * dx).store(b.c[1]);
-    simd::andNot(still, simd::negate(dx)).store(b.c[2]);
-    simd::andNot(still, y * dz - z * dy).store(b.c[3]);
-    simd::andNot(still, simd::negate(dz)).store(b.c[4]);
-    simd::andNot(still, dy).store(b.c[5]);
-  }
-}
-
-#else  // one vertex at a time, edge by edge
-
-std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
-  QueryScratch& s = tw.scratch;
-  const std::size_t groups = edgeGroups(edges.size);
-  sizeEdgeMasks(s, groups);
-  std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
-  for (std::size_t g = 0; g < groups; ++g) {
-    const std::size_t first = g * kEdgeGroup;
-    const std::size_t count = std::min(kEdgeGroup, edges.size - first);
-    std::uint64_t reversed = 0;
-    for (std::size_t i = 0; i < count; ++i) reversed |= std::uint64_t(edges.edgeNum(first + i) < 0) << i;
-    std::uint64_t* sides = &s.vertexEdgeSides[g * kMaxTrmVertices];
-    for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
-      const int v = std::countr_zero(moving);
-      const Pluecker& r = tw.vertices[std::size_t(v)].pl;
-      std::uint64_t bits = 0;
-      for (std::size_t i = 0; i < count; ++i) {
-        // Pluecker::permutedInnerProduct, term for term in the same order.
-        const Pluecker& c = edges.line(first + i);
-        const Real product =
-            c[0] * r[4] + c[1] * r[5] + c[2] * r[3] + c[4] * r[0] + c[5] * r[1] + c[3] * r[2];
-        bits |= std::uint64_t(signBitSet(product)) << i;
-      }
-      sides[v] = bits;
-      outside |= std::uint32_t((bits ^ reversed) != 0) << v;
-    }
-  }
-  return tw.movingVertices & ~outside;
-}
-
-#endif
 
 // A trace-model vertex reaches the polygon at fraction f: the nearest hit so
 // far. (The hits are out of line, kept off the tests' path: most tested
@@ -495,7 +263,7 @@ void translateTrmEdgesThroughPolygon(TraceWork& tw, const CmPolygon& poly, const
 // The last of a polygon's tests (below).
 bool testModelVerticesThroughTrm(TraceWork& tw, const CmPolygon& poly, const PolygonEdges& edges);
 
-#ifdef CMKIT_SIDES_SSE2
+#ifdef CMKIT_QUERY_LANES
 // translateTrmEdgesThroughPolygon for the small path: a trace-model edge
 // crosses polygon edge i's line when its vertices' bits in slot i differ
 // (shifted down by a vertex number, slot i's bit lands at its first bit, the
@@ -570,7 +338,7 @@ namespace {
 void placeTranslationFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
-#ifdef CMKIT_SIDES_SSE2
+#ifdef CMKIT_QUERY_LANES
   placeVertexLines(tw);  // (WorkVertex::pl unused: the edge sides read the lanes)
 #else
   for (std::uint32_t moving = tw.movingVertices; moving; moving &= moving - 1) {
@@ -610,7 +378,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const PolygonEdges edges = corners ? polygonEdges(tw, corners, poly.numEdges) : polygonEdges(tw, poly);
-#ifdef CMKIT_SIDES_SSE2
+#ifdef CMKIT_QUERY_LANES
   switch (smallSidesShift(tw, edges.size)) {
     case 3:
       return translateTrmThroughSmallPolygon<3>(tw, polyNum, poly, edges);
