@@ -1,7 +1,6 @@
 // Reliability (docs/reliability.md): the robust-edges compile option, the
 // out-of-plane edge that lets a corner through (the original's behaviour,
-// docs/fidelity.md), the input guards of every public query (QueryStatus),
-// points that honour the mask and pointContents as the OR of the brushes
+// docs/fidelity.md), points that honour the mask and pointContents as the OR of the brushes
 // containing the point.
 #include <gtest/gtest.h>
 
@@ -25,38 +24,12 @@ using namespace cmkit;
 
 namespace {
 
-constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
-constexpr Real kInf = std::numeric_limits<Real>::infinity();
-
-/// One axial brush side per bound, all with `material`.
-std::string axialBrush(const Bounds& b, const char* material) {
-  std::string s = "{\n brushDef3\n {\n";
-  const double planes[6][4] = {{1, 0, 0, -b.max.x}, {-1, 0, 0, b.min.x}, {0, 1, 0, -b.max.y},
-                               {0, -1, 0, b.min.y}, {0, 0, 1, -b.max.z}, {0, 0, -1, b.min.z}};
-  for (const auto& p : planes) {
-    s += "  ( " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " " +
-         std::to_string(p[3]) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
-  }
-  return s + " }\n}\n";
-}
-
-std::vector<ModelPtr> buildText(const std::string& text, bool robustEdges = false) {
-  auto map = parseMapText(text);
-  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
-  if (!map) return {};
-  BuildOptions options;
-  options.robustEdges = robustEdges;
-  auto models = buildCollisionModels(*map, MaterialTable{}, options);
-  EXPECT_TRUE(models.ok());
-  return models ? models->models : std::vector<ModelPtr>{};
-}
-
 /// The lt4 case in small: a 16x16 pillar inside a wall block, sharing the
 /// block's corner at x = 0, y = 0 (both brushes' -x and -y faces coplanar).
 std::string pillarInWallMap() {
   return "Version 2\n{\n\"classname\" \"worldspawn\"\n" +
-         axialBrush({{0, 0, 0}, {240, 56, 64}}, "textures/base_wall/lfwall27d") +
-         axialBrush({{0, 0, 8}, {16, 16, 64}}, "textures/base_wall/lfwall27d") + "}\n";
+         test::axialBrush({{0, 0, 0}, {240, 56, 64}}, "textures/base_wall/lfwall27d") +
+         test::axialBrush({{0, 0, 8}, {16, 16, 64}}, "textures/base_wall/lfwall27d") + "}\n";
 }
 
 /// Edges of the model lying on the vertical line x = 0, y = 0.
@@ -113,8 +86,8 @@ Lt4Sweep sweepLt4(bool robustEdges, const TraceModel& t, const Vec3& start, cons
 // ---- robust edges ----------------------------------------------------------
 
 TEST(RobustEdges, OverlappingCoplanarFacesNoLongerHideTheCorner) {
-  const auto original = buildText(pillarInWallMap(), false);
-  const auto robust = buildText(pillarInWallMap(), true);
+  const auto original = test::buildModelsFromText(pillarInWallMap(), false);
+  const auto robust = test::buildModelsFromText(pillarInWallMap(), true);
   ASSERT_EQ(original.size(), 1u);
   ASSERT_EQ(robust.size(), 1u);
   // The original's rule: every copy of the corner edge that a front face
@@ -315,285 +288,14 @@ TEST(LargeWorlds, VersionNamesThePrecision) {
       << out;
 }
 
-// ---- query guards ------------------------------------------------------------
-
-class QueryGuards : public ::testing::Test {
- protected:
-  void SetUp() override {
-    models_ =
-        buildText("Version 2\n{\n\"classname\" \"worldspawn\"\n" +
-                  axialBrush({{-256, -256, -16}, {256, 256, 0}}, "textures/base_wall/lfwall27d") + "}\n");
-    ASSERT_EQ(models_.size(), 1u);
-  }
-  const CollisionModel& floor() const { return *models_[0]; }
-  TraceResult drop(const Mat3& trmAxis, const Vec3& start, const Vec3& end, const Placement& placement = {}) {
-    return translate(floor(), {&box_, trmAxis, start, end, contents::kMaskSolid, placement, false}, work_);
-  }
-  std::vector<ModelPtr> models_;
-  TraceModel box_ = trm("box:-16,-16,0,16,16,72");
-  QueryWork work_;
-};
-
-void expectRefused(const TraceResult& r, QueryStatus status, const Vec3& start) {
-  EXPECT_EQ(r.status, status) << toString(r.status);
-  EXPECT_EQ(r.fraction, 0);
-  if (start.isFinite()) {
-    EXPECT_EQ(r.endPos, start);
-  }
-  EXPECT_EQ(r.contact.type, ContactType::None);
-  EXPECT_EQ(r.contact.contents, 0u);
-}
-
-TEST_F(QueryGuards, ValidInputRunsWithStatusOk) {
-  const TraceResult r = drop(Mat3::identity(), {0, 0, 64}, {0, 0, -64});
-  EXPECT_EQ(r.status, QueryStatus::Ok);
-  EXPECT_FLOAT_EQ(r.endPos.z, 0.25f);  // the clip epsilon above the floor
-  EXPECT_STREQ(toString(QueryStatus::Ok), "ok");
-}
-
-TEST_F(QueryGuards, TraceModelAxisMustBeARotation) {
-  const Vec3 start{0, 0, 64}, end{0, 0, -64};
-  const Mat3 mirrored{{1, 0, 0}, {0, -1, 0}, {0, 0, 1}};
-  expectRefused(drop(mirrored, start, end), QueryStatus::BadTrmAxis, start);
-  const Mat3 scaled{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
-  expectRefused(drop(scaled, start, end), QueryStatus::BadTrmAxis, start);
-  const Mat3 sheared{{1, 0.3f, 0}, {0, 1, 0}, {0, 0, 1}};
-  expectRefused(drop(sheared, start, end), QueryStatus::BadTrmAxis, start);
-  const Mat3 nan{{kNaN, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  expectRefused(drop(nan, start, end), QueryStatus::BadTrmAxis, start);
-  // A point ignores its axis.
-  const TraceResult point =
-      translate(floor(), {nullptr, scaled, start, end, contents::kMaskSolid, {}, false}, work_);
-  EXPECT_EQ(point.status, QueryStatus::Ok);
-}
-
-// Found by fuzz_query: a box 1.3e22 units long made the rotation's walk
-// divide inf by inf and convert the NaN to an int (UBSan). Trace models
-// beyond 1e9 units are refused by every query, like positions that far.
-TEST_F(QueryGuards, HugeTraceModelsAreRefused) {
-  const TraceModel huge = trm("box:-51,-12888888888888888888888,-25,28,282,5");
-  const Vec3 start{0, 0, 64};
-  expectRefused(
-      translate(floor(), {&huge, Mat3::identity(), start, {0, 0, -64}, contents::kMaskSolid, {}, false},
-                work_),
-      QueryStatus::OutOfRange, start);
-  RotationQuery r;
-  r.trm = &huge;
-  r.start = start;
-  r.rotation = Rotation({243, 0, 64}, {0, 0, -1}, 60.0334473f);
-  r.contentMask = contents::kMaskSolid;
-  expectRefused(rotate(floor(), r, work_), QueryStatus::OutOfRange, start);
-  EXPECT_EQ(contentsTest(floor(), {&huge, Mat3::identity(), start, contents::kMaskSolid, {}}, work_).status,
-            QueryStatus::OutOfRange);
-  ContactsQuery c;
-  c.trm = &huge;
-  c.start = start;
-  c.dir = {0, 0, -1};
-  c.depth = 128;
-  c.contentMask = contents::kMaskSolid;
-  EXPECT_EQ(contacts(floor(), c, work_).status, QueryStatus::OutOfRange);
-  // 1e8 units is within range: the query runs.
-  const TraceModel large = trm("box:-100000000,-16,0,16,16,72");
-  EXPECT_EQ(drop(Mat3::identity(), {0, 0, 64}, {0, 0, -64}).status, QueryStatus::Ok);
-  EXPECT_EQ(translate(floor(),
-                      {&large, Mat3::identity(), start, {0, 0, -64}, contents::kMaskSolid, {}, false}, work_)
-                .status,
-            QueryStatus::Ok);
-}
-
-TEST_F(QueryGuards, SlightlyDriftedAxisIsReorthonormalised) {
-  // 45 degrees about z, rows scaled by 1.001: accepted (drift 2e-3 is below
-  // tol::kAxisRejectTolerance) and used as the orthonormalised rotation.
-  const Real c = std::sqrt(Real(0.5));
-  const Mat3 exact{{c, c, 0}, {-c, c, 0}, {0, 0, 1}};
-  const Mat3 drifted{exact.rows[0] * 1.001f, exact.rows[1] * 1.001f, exact.rows[2]};
-  const TraceResult a = drop(exact, {0, 0, 64}, {0, 0, -64});
-  const TraceResult b = drop(drifted, {0, 0, 64}, {0, 0, -64});
-  EXPECT_EQ(b.status, QueryStatus::Ok);
-  EXPECT_NEAR(b.fraction, a.fraction, 1e-6f);
-  EXPECT_NEAR(b.contact.normal.length(), 1, 1e-6f);
-}
-
-// The guard passes a turned axis on unchanged when it is orthonormal within
-// tol::kAxisDriftEpsilon and right-handed (a quick check in float lanes),
-// else re-orthonormalised by validateAxis: the quick check decides as
-// Mat3::orthonormalityError does. Rotations drifted by scaling a row or
-// shearing it toward the next, from a fifth of the epsilon to three times
-// it, end with the axis as given exactly when their error is within the
-// epsilon, else as validateAxis makes it.
-TEST_F(QueryGuards, AnAxisPassesUnchangedExactlyWhenItsDriftIsWithinTheEpsilon) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> unit(-1, 1), angle(-3.1f, 3.1f), drift(0.2f, 3.0f);
-  int unchanged = 0, normalised = 0;
-  for (int i = 0; i < 2000; ++i) {
-    Vec3 dir{unit(rng), unit(rng), unit(rng)};
-    const Real length = std::sqrt(dir.lengthSquared());
-    if (length < Real(0.1)) continue;
-    Mat3 m = Mat3::fromAxisAngle(dir * (1 / length), angle(rng));
-    const Real e = tol::kAxisDriftEpsilon * drift(rng);
-    const std::size_t r = std::size_t(i % 3);
-    if (i % 2)
-      m.rows[r] = m.rows[r] * (1 + e / 2);  // length squared off by about e
-    else
-      m.rows[r] = m.rows[r] + m.rows[(r + 1) % 3] * e;  // a dot product off by about e
-    const TraceResult got = drop(m, {0, 0, 64}, {0, 0, -64});
-    ASSERT_EQ(got.status, QueryStatus::Ok) << i;
-    const bool within = m.orthonormalityError() <= tol::kAxisDriftEpsilon && m.determinant() > 0;
-    Mat3 expected = m;
-    if (!within) {
-      const Result<Mat3> fixed = validateAxis(m);
-      ASSERT_TRUE(fixed) << i;
-      expected = *fixed;
-    }
-    EXPECT_EQ(std::memcmp(&got.endAxis, &expected, sizeof(Mat3)), 0)
-        << i
-        << (within ? ": within the epsilon, not passed unchanged" : ": beyond it, not re-orthonormalised");
-    ++(within ? unchanged : normalised);
-  }
-  EXPECT_GT(unchanged, 300);
-  EXPECT_GT(normalised, 300);
-  // An infinite element, or one whose square overflows, is refused.
-  const Vec3 start{0, 0, 64}, end{0, 0, -64};
-  const Real inf = std::numeric_limits<Real>::infinity();
-  expectRefused(drop(Mat3{{inf, 0, 0}, {0, 1, 0}, {0, 0, 1}}, start, end), QueryStatus::BadTrmAxis, start);
-  expectRefused(drop(Mat3{{0, 1, 0}, {Real(1e30), 0, 0}, {0, 0, 1}}, start, end), QueryStatus::BadTrmAxis,
-                start);
-}
-
-TEST_F(QueryGuards, ModelAxisMustBeARotation) {
-  const Vec3 start{0, 0, 64}, end{0, 0, -64};
-  Placement scaled;
-  scaled.axis = Mat3{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
-  expectRefused(drop(Mat3::identity(), start, end, scaled), QueryStatus::BadModelAxis, start);
-  Placement nan;
-  nan.axis = Mat3{{1, 0, 0}, {0, kNaN, 0}, {0, 0, 1}};
-  expectRefused(drop(Mat3::identity(), start, end, nan), QueryStatus::BadModelAxis, start);
-  Placement nanOrigin;
-  nanOrigin.origin = {kNaN, 0, 0};
-  expectRefused(drop(Mat3::identity(), start, end, nanOrigin), QueryStatus::NonFinite, start);
-  const PointContentsResult badAxis = pointContents(floor(), {{0, 0, -8}, nan}, work_);
-  EXPECT_EQ(badAxis.status, QueryStatus::BadModelAxis);
-  EXPECT_EQ(badAxis.contents, 0u);
-  const PointContentsResult scaledAxis = pointContents(floor(), {{0, 0, -8}, scaled}, work_);
-  EXPECT_EQ(scaledAxis.status, QueryStatus::BadModelAxis);
-  EXPECT_EQ(scaledAxis.contents, 0u);
-  const PointContentsResult badOrigin = pointContents(floor(), {{0, 0, -8}, nanOrigin}, work_);
-  EXPECT_EQ(badOrigin.status, QueryStatus::NonFinite);
-  EXPECT_EQ(badOrigin.contents, 0u);
-  const PointContentsResult inside = pointContents(floor(), {{0, 0, -8}, {}}, work_);
-  EXPECT_EQ(inside.status, QueryStatus::Ok);
-  EXPECT_EQ(inside.contents, contents::kSolid | contents::kOpaque);
-}
-
-TEST_F(QueryGuards, PositionsMustBeFiniteAndInRange) {
-  expectRefused(drop(Mat3::identity(), {kNaN, 0, 64}, {0, 0, -64}), QueryStatus::NonFinite, {kNaN, 0, 64});
-  expectRefused(drop(Mat3::identity(), {0, 0, 64}, {0, kInf, -64}), QueryStatus::NonFinite, {0, 0, 64});
-  // A move of 3e38 used to end at infinity.
-  expectRefused(drop(Mat3::identity(), {0, 0, 64}, {3e38f, 0, 64}), QueryStatus::OutOfRange, {0, 0, 64});
-  const TraceResult far = drop(Mat3::identity(), {0, 0, 64}, {1e9f, 0, 64});  // the limit itself runs
-  EXPECT_EQ(far.status, QueryStatus::Ok);
-  EXPECT_EQ(far.fraction, 1);
-  // Position tests and point contents at NaN are not "inside".
-  // The status of a contents test is on the result (and on its trace).
-  const ContentsResult c = contentsTest(floor(), {&box_, Mat3::identity(), {kNaN, 0, 0}, 1, {}}, work_);
-  EXPECT_EQ(c.status, QueryStatus::NonFinite);
-  EXPECT_EQ(c.trace.status, QueryStatus::NonFinite);
-  EXPECT_EQ(c.contents, 0u);
-  const ContentsResult p = contentsTest(floor(), {nullptr, Mat3::identity(), {kNaN, 0, -8}, 1, {}}, work_);
-  EXPECT_EQ(p.status, QueryStatus::NonFinite);
-  EXPECT_EQ(p.contents, 0u);
-  const ContentsResult ok = contentsTest(floor(), {&box_, Mat3::identity(), {0, 0, -8}, 1, {}}, work_);
-  EXPECT_EQ(ok.status, QueryStatus::Ok);
-  EXPECT_EQ(ok.trace.status, QueryStatus::Ok);
-  EXPECT_NE(ok.contents, 0u);
-  // pointContents refuses a NaN or far point with its status (contents 0,
-  // as before it had a status).
-  const PointContentsResult nanPoint = pointContents(floor(), {{kNaN, kNaN, kNaN}, {}}, work_);
-  EXPECT_EQ(nanPoint.status, QueryStatus::NonFinite);
-  EXPECT_EQ(nanPoint.contents, 0u);
-  const PointContentsResult farPoint = pointContents(floor(), {{0, 0, -2e9f}, {}}, work_);
-  EXPECT_EQ(farPoint.status, QueryStatus::OutOfRange);
-  EXPECT_EQ(farPoint.contents, 0u);
-  EXPECT_EQ(pointContents(floor(), {{0, 0, -8}, {}}, work_).contents, contents::kSolid | contents::kOpaque);
-  // penetration refuses likewise: not stuck.
-  const PenetrationResult pen = penetration(floor(), {&box_, Mat3::identity(), {0, kNaN, -8}, 1, {}}, work_);
-  EXPECT_EQ(pen.status, QueryStatus::NonFinite);
-  EXPECT_FALSE(pen.stuck);
-  const PenetrationResult farPen =
-      penetration(floor(), {&box_, Mat3::identity(), {0, 0, -8}, 1, {{3e9f, 0, 0}, {}}}, work_);
-  EXPECT_EQ(farPen.status, QueryStatus::OutOfRange);
-  EXPECT_FALSE(farPen.stuck);
-  EXPECT_EQ(penetration(floor(), {&box_, Mat3::identity(), {0, 0, -8}, 1, {}}, work_).status,
-            QueryStatus::Ok);
-}
-
-TEST_F(QueryGuards, ContactsNeedAFiniteMove) {
-  ContactsQuery q{&box_, Mat3::identity(), {0, 0, 8}, {0, 0, -1}, 16, 1, {}, 8, {}};
-  const ContactsResult ok = contacts(floor(), q, work_);
-  EXPECT_EQ(ok.status, QueryStatus::Ok);
-  EXPECT_FALSE(ok.contacts.empty());
-  q.depth = kNaN;
-  const ContactsResult nan = contacts(floor(), q, work_);
-  EXPECT_EQ(nan.status, QueryStatus::NonFinite);
-  EXPECT_TRUE(nan.contacts.empty());
-  q.depth = 3e38f;
-  q.dir = {0, 0, -10};
-  EXPECT_EQ(contacts(floor(), q, work_).status, QueryStatus::OutOfRange);
-}
-
-TEST_F(QueryGuards, RotationAxisMustBeUnitAndAngleFinite) {
-  auto turn = [&](const Vec3& axis, Real angle) {
-    return rotate(floor(),
-                  {&box_, Mat3::identity(), {0, 0, 64}, Rotation({0, 0, 64}, axis, angle), 1, {}, false},
-                  work_);
-  };
-  EXPECT_EQ(turn({0, 0, 1}, 90).status, QueryStatus::Ok);
-  expectRefused(turn({0, 0, 10}, 90), QueryStatus::BadRotationAxis, {0, 0, 64});
-  expectRefused(turn({0, 0, 0}, 90), QueryStatus::BadRotationAxis, {0, 0, 64});
-  expectRefused(turn({0, kNaN, 1}, 90), QueryStatus::NonFinite, {0, 0, 64});
-  expectRefused(turn({0, 0, 1}, kNaN), QueryStatus::NonFinite, {0, 0, 64});
-  expectRefused(turn({0, 0, 1}, kInf), QueryStatus::NonFinite, {0, 0, 64});
-  // Nearly unit (1.002): normalised, the same turn as the unit axis.
-  const TraceResult near = turn({0, 0, 1.002f}, 90);
-  const TraceResult unit = turn({0, 0, 1}, 90);
-  EXPECT_EQ(near.status, QueryStatus::Ok);
-  EXPECT_EQ(near.endAxis, unit.endAxis);
-  EXPECT_EQ(near.fraction, unit.fraction);
-}
-
-TEST(QueryGuardsCli, QueryShowsTheRefusal) {
-  if (std::string(CMKIT_CLI_PATH).empty()) GTEST_SKIP() << "the CLI is not built";
-  const test::ScratchDir scratch("guards_cli");
-  const std::filesystem::path& dir = scratch.path();
-  {
-    std::ofstream map(dir / "floor.map");
-    map << "Version 2\n{\n\"classname\" \"worldspawn\"\n"
-        << axialBrush({{-256, -256, -16}, {256, 256, 0}}, "textures/base_wall/lfwall27d") << "}\n";
-    std::ofstream q(dir / "q.txt");
-    q << "translation trm=box:-16,-16,0,16,16,72 start=0,0,64 end=3e38,0,64\n"
-         "translation trm=box:-16,-16,0,16,16,72 start=0,0,64 end=0,0,-64\n";
-  }
-  int rc = 0;
-  const std::string out =
-      test::runCapture(std::string(CMKIT_CLI_PATH) + " query " + (dir / "floor.map").string() + " " +
-                           (dir / "q.txt").string() + " 2>/dev/null",
-                       rc);
-  EXPECT_EQ(rc, 3);  // every line written; some are error= (cmkit query --help, exit codes)
-  EXPECT_NE(
-      out.find(
-          "error=refused: a coordinate, the end of the move or the trace model's size is beyond 1e9 units"),
-      std::string::npos)
-      << out;
-  EXPECT_NE(out.find("fraction="), std::string::npos) << out;
-}
-
 // ---- points honour the mask; pointContents is the OR ------------------------
 
 TEST(PointContents, IsTheOrOfEveryBrushAndPointsHonourTheMask) {
   // A solid block with a clip brush overlapping its upper half.
-  const auto models = buildText("Version 2\n{\n\"classname\" \"worldspawn\"\n" +
-                                axialBrush({{0, 0, 0}, {64, 64, 64}}, "textures/base_wall/lfwall27d") +
-                                axialBrush({{0, 0, 32}, {64, 64, 96}}, "textures/common/clip") + "}\n");
+  const auto models =
+      test::buildModelsFromText("Version 2\n{\n\"classname\" \"worldspawn\"\n" +
+                                test::axialBrush({{0, 0, 0}, {64, 64, 64}}, "textures/base_wall/lfwall27d") +
+                                test::axialBrush({{0, 0, 32}, {64, 64, 96}}, "textures/common/clip") + "}\n");
   ASSERT_EQ(models.size(), 1u);
   const CollisionModel& m = *models[0];
   const std::uint32_t clip = test::pointContentsAt(m, {32, 32, 80});

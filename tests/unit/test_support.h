@@ -197,6 +197,30 @@ inline std::uint32_t pointContentsAt(const CollisionModel& m, const Vec3& p,
   return pointContents(m, {p, placement}, work).contents;
 }
 
+/// One axial brush side per bound, all with `material`.
+inline std::string axialBrush(const Bounds& b, const char* material) {
+  std::string s = "{\n brushDef3\n {\n";
+  const double planes[6][4] = {{1, 0, 0, -b.max.x}, {-1, 0, 0, b.min.x}, {0, 1, 0, -b.max.y},
+                               {0, -1, 0, b.min.y}, {0, 0, 1, -b.max.z}, {0, 0, -1, b.min.z}};
+  for (const auto& p : planes) {
+    s += "  ( " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " " +
+         std::to_string(p[3]) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
+  }
+  return s + " }\n}\n";
+}
+
+/// The models of a map given as text (a failed parse or build fails the test).
+inline std::vector<ModelPtr> buildModelsFromText(const std::string& text, bool robustEdges = false) {
+  auto map = parseMapText(text);
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
+  if (!map) return {};
+  BuildOptions options;
+  options.robustEdges = robustEdges;
+  auto models = buildCollisionModels(*map, MaterialTable{}, options);
+  EXPECT_TRUE(models.ok());
+  return models ? models->models : std::vector<ModelPtr>{};
+}
+
 }  // namespace cmkit::test
 
 /// Skips the current test with a message when ../shared is absent: for
