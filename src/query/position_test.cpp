@@ -1,6 +1,9 @@
 // Position tests (the original's TestTrmVertsInBrush, TestTrmInPolygon and
 // the position-test set-up of ContentsTrm).
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <span>
 
 #include "query/cull_lanes.h"
@@ -23,6 +26,16 @@ void placePositionTestFeatures(TraceWork& tw) {
     wp.used = true;
     wp.plane.fitThroughPoint(tw.vertices[std::size_t(wp.planeVertex)].p);
   }
+#ifdef CMKIT_QUERY_LANES
+  for (int i = 0; i < tw.numPolys; ++i) {
+    TrmPlaneRows& rows = tw.scratch.trm.planeRows[std::size_t(i / 4)];
+    const Plane& pl = tw.polys[std::size_t(i)].plane;
+    rows.x[i % 4] = pl.normal.x;
+    rows.y[i % 4] = pl.normal.y;
+    rows.z[i % 4] = pl.normal.z;
+    rows.dist[i % 4] = pl.dist;
+  }
+#endif
 }
 
 /// Which side of trace-model edge te's line a model edge's line passes: the
@@ -33,42 +46,97 @@ unsigned edgeLineSide(const WorkEdge& te, const Pluecker& modelEdge) {
   return unsigned(signBitSet(te.pl.permutedInnerProduct(modelEdge)));
 }
 
+// "A point inside a convex set of planes" (a trace-model vertex in a brush,
+// a model vertex in a convex trace model): behind every plane (a distance
+// >= 0 on any puts it outside; a NaN distance does not), and where it is,
+// the plane nearest it (the first of the largest distances), as the
+// original's loops find them.
+
+/// Whether p is behind every plane planeAt(0 .. numPlanes - 1).
+template <class PlaneAt>
+bool behindEveryPlane(const Vec3& p, int numPlanes, PlaneAt planeAt) {
+  for (int i = 0; i < numPlanes; ++i)
+    if (planeAt(i).distance(p) >= 0) return false;
+  return true;
+}
+
+/// The plane nearest p, a point behind every plane: the first of the
+/// largest distances (0 when none is above -kBoundsInfinity).
+template <class PlaneAt>
+int nearestPlaneBehind(const Vec3& p, int numPlanes, PlaneAt planeAt) {
+  int best = 0;
+  Real bestd = -tol::kBoundsInfinity;
+  for (int i = 0; i < numPlanes; ++i) {
+    const Real d = planeAt(i).distance(p);
+    if (d > bestd) {
+      bestd = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+#ifdef CMKIT_QUERY_LANES
+/// Four points at once (rows x, y, z; lane j point j): the lanes (bit j)
+/// that some plane has on or in front of it, from `out` (lanes already
+/// out: unused ones), Plane::distance's arithmetic in each lane; stops at
+/// the plane that puts the last lane out.
+template <class PlaneAt>
+unsigned lanesNotBehindPlanes(F4 x, F4 y, F4 z, unsigned out, int numPlanes, PlaneAt planeAt) {
+  for (int i = 0; i < numPlanes && out != 0xFu; ++i) {
+    const Plane& pl = planeAt(i);
+    const F4 d =
+        F4::all(pl.normal.x) * x + F4::all(pl.normal.y) * y + F4::all(pl.normal.z) * z - F4::all(pl.dist);
+    out |= simd::bits(d >= F4::zero());
+  }
+  return out;
+}
+
+/// Bit i set for each of the first n of four lanes.
+inline unsigned firstLanes(int n) { return (1u << n) - 1; }
+#endif
+
 }  // namespace
 
 namespace {
 
 // A brush past the culls of testTrmVertsInBrushes: true (stuck) when a
-// trace-model vertex is inside it.
+// trace-model vertex is inside it (the first in vertex order; four at a
+// time where there are float lanes).
 bool trmVertexInBrush(TraceWork& tw, const CmBrush& b) {
   const auto planes = tw.model.planesOf(b);
+  if (planes.empty()) return false;
+  const auto planeAt = [&planes](int i) -> const Plane& { return planes[std::size_t(i)]; };
+  const int numPlanes = int(planes.size());
   const int numVerts = tw.numVerts;  // a position test always has a trace model (points: pointContents)
-  for (int j = 0; j < numVerts; ++j) {
-    const Vec3& p = tw.vertices[std::size_t(j)].p;
-    // Inside when behind every plane; remember the nearest plane.
-    std::size_t bestPlane = 0;
-    Real bestd = -tol::kBoundsInfinity;
-    std::size_t i = 0;
-    for (; i < planes.size(); ++i) {
-      const Real d = planes[i].distance(p);
-      if (d >= 0) break;
-      if (d > bestd) {
-        bestd = d;
-        bestPlane = i;
-      }
+  int j = 0;
+#ifdef CMKIT_QUERY_LANES
+  for (; j < numVerts; j += 4) {
+    F4 x, y, z;
+    trmVertexRows(tw, j / 4, x, y, z);
+    const unsigned out =
+        lanesNotBehindPlanes(x, y, z, ~firstLanes(std::min(numVerts - j, 4)) & 0xFu, numPlanes, planeAt);
+    if (out != 0xFu) {
+      j += std::countr_zero(~out);
+      break;
     }
-    if (i < planes.size() || planes.empty()) continue;
-    tw.fraction = 0;
-    tw.c.type = ContactType::TrmVertex;
-    tw.c.normal = planes[bestPlane].normal;
-    tw.c.dist = planes[bestPlane].dist;
-    tw.c.contents = b.contents;
-    tw.c.material = b.material;
-    tw.c.point = p;
-    tw.c.modelFeature = 0;
-    tw.c.trmFeature = j;
-    return true;
   }
-  return false;
+#else
+  while (j < numVerts && !behindEveryPlane(tw.vertices[std::size_t(j)].p, numPlanes, planeAt)) ++j;
+#endif
+  if (j >= numVerts) return false;
+  const Vec3& p = tw.vertices[std::size_t(j)].p;
+  const Plane& nearest = planes[std::size_t(nearestPlaneBehind(p, numPlanes, planeAt))];
+  tw.fraction = 0;
+  tw.c.type = ContactType::TrmVertex;
+  tw.c.normal = nearest.normal;
+  tw.c.dist = nearest.dist;
+  tw.c.contents = b.contents;
+  tw.c.material = b.material;
+  tw.c.point = p;
+  tw.c.modelFeature = 0;
+  tw.c.trmFeature = j;
+  return true;
 }
 
 // A polygon past the culls of testTrmInPolygons: true when the trace model
@@ -92,45 +160,82 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
     tw.c.trmFeature = trmFeature;
     return true;
   };
+  const auto trmPlane = [&tw](int k) -> const Plane& { return tw.polys[std::size_t(k)].plane; };
 
-  // 1. (convex trm) a polygon vertex strictly behind every trm polygon plane.
+  // 1. (convex trm) a polygon vertex strictly behind every trm polygon
+  // plane: the first such in the order of the polygon's edges.
   if (tw.isConvex) {
-    for (std::int32_t edgeNum : edges) {
-      const std::size_t e = std::size_t(std::abs(edgeNum));
+    std::size_t inside = 0;
+    bool found = false;
+#ifdef CMKIT_QUERY_LANES
+    // Four vertices at a time, in that order.
+    alignas(16) float xs[4] = {}, ys[4] = {}, zs[4] = {};
+    std::size_t numbers[4] = {};
+    int n = 0;
+    const auto testBlock = [&] {
+      const unsigned out = lanesNotBehindPlanes(F4::load(xs), F4::load(ys), F4::load(zs),
+                                                ~firstLanes(n) & 0xFu, tw.numPolys, trmPlane);
+      n = 0;
+      if (out == 0xFu) return false;
+      inside = numbers[std::countr_zero(~out)];
+      return found = true;
+    };
+#endif
+    for (std::size_t i = 0; i < edges.size() && !found; ++i) {
+      const std::size_t e = std::size_t(std::abs(edges[i]));
       if (s.isChecked(s.edgeChecked, e)) continue;
-      for (int j = 0; j < 2; ++j) {
+      for (int j = 0; j < 2 && !found; ++j) {
         const std::size_t vn = std::size_t(m.edges()[e].vertex[j]);
         if (s.isChecked(s.vertexChecked, vn)) continue;
+#ifdef CMKIT_QUERY_LANES
         const Vec3& p = m.vertices()[vn];
-        int bestPlane = 0;
-        Real bestd = -tol::kBoundsInfinity;
-        int k = 0;
-        for (; k < tw.numPolys; ++k) {
-          const Real d = tw.polys[std::size_t(k)].plane.distance(p);
-          if (d >= 0) break;
-          if (d > bestd) {
-            bestd = d;
-            bestPlane = k;
-          }
+        xs[n] = p.x;
+        ys[n] = p.y;
+        zs[n] = p.z;
+        numbers[n] = vn;
+        if (++n == 4) testBlock();
+#else
+        if (behindEveryPlane(m.vertices()[vn], tw.numPolys, trmPlane)) {
+          inside = vn;
+          found = true;
         }
-        if (k >= tw.numPolys) {
-          const Plane& pl = tw.polys[std::size_t(bestPlane)].plane;
-          return stuck(ContactType::ModelVertex, -pl.normal, -pl.dist, p, std::int32_t(vn), 0);
-        }
+#endif
       }
+    }
+#ifdef CMKIT_QUERY_LANES
+    if (!found && n > 0) testBlock();
+#endif
+    if (found) {
+      const Vec3& p = m.vertices()[inside];
+      const Plane& pl = trmPlane(nearestPlaneBehind(p, tw.numPolys, trmPlane));
+      return stuck(ContactType::ModelVertex, -pl.normal, -pl.dist, p, std::int32_t(inside), 0);
     }
   }
   setPolygonEdgeLines(tw, poly);
   for (const std::int32_t edgeNum : edges) s.mark(s.vertexChecked, std::size_t(m.edgeStart(edgeNum)));
 
-  // 2. a trm edge crossing the polygon plane inside all polygon edges.
-  int sides[kMaxTrmVertices];
+  // 2. a trm edge crossing the polygon plane inside all polygon edges. Bit
+  // v of `behind`: trace-model vertex v lies behind the polygon's plane.
+  std::uint32_t behind = 0;
+#ifdef CMKIT_QUERY_LANES
+  {
+    const F4 nx = F4::all(poly.plane.normal.x), ny = F4::all(poly.plane.normal.y),
+             nz = F4::all(poly.plane.normal.z), dist = F4::all(poly.plane.dist);
+    for (int k = 0; 4 * k < tw.numVerts; ++k) {
+      F4 x, y, z;
+      trmVertexRows(tw, k, x, y, z);
+      behind |= std::uint32_t(simd::bits(nx * x + ny * y + nz * z - dist < F4::zero())) << (4 * k);
+    }
+    behind &= allTrmVertices(tw.numVerts);
+  }
+#else
   for (int i = 0; i < tw.numVerts; ++i)
-    sides[i] = poly.plane.distance(tw.vertices[std::size_t(i)].p) < 0 ? -1 : 1;
+    behind |= std::uint32_t(poly.plane.distance(tw.vertices[std::size_t(i)].p) < 0) << i;
+#endif
   for (int i = 1; i <= tw.numEdges; ++i) {
     const WorkEdge& te = tw.edges[std::size_t(i)];
-    if (sides[te.vertexNum[0]] == sides[te.vertexNum[1]]) continue;
-    const unsigned flip = sides[te.vertexNum[0]] < 0 ? 1u : 0u;
+    const unsigned flip = (behind >> te.vertexNum[0]) & 1u;
+    if (flip == ((behind >> te.vertexNum[1]) & 1u)) continue;
     std::size_t j = 0;
     for (; j < edges.size(); ++j) {
       const std::int32_t edgeNum = edges[j];
@@ -143,32 +248,58 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
     }
   }
 
-  // 3. a polygon edge crossing a trm polygon plane inside that polygon's edges.
+  // 3. a polygon edge crossing a trm polygon plane inside that polygon's
+  // edges (trm polygons in order; where there are float lanes, each edge's
+  // two ends against four planes at a time).
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const std::int32_t edgeNum = edges[i];
     const std::size_t e = std::size_t(std::abs(edgeNum));
     if (s.testAndMark(s.edgeChecked, e)) continue;
     const CmEdge& edge = m.edges()[e];
     const std::size_t v1 = std::size_t(edge.vertex[0]), v2 = std::size_t(edge.vertex[1]);
-    for (int j = 0; j < tw.numPolys; ++j) {
+    // Trace-model polygon j, whose plane the edge crosses (flip: from
+    // behind): true when it crosses inside the polygon's edges.
+    const auto crossesInside = [&](int j, unsigned flip) {
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
-      // side = distance < 0 (not the sign bit: -0 counts as in front)
-      const unsigned s1 = unsigned(tp.plane.distance(m.vertices()[v1]) < 0);
-      const unsigned s2 = unsigned(tp.plane.distance(m.vertices()[v2]) < 0);
-      if (s1 == s2) continue;
-      const unsigned flip = s1;
-      int k = 0;
-      for (; k < tp.source->numEdges; ++k) {
+      for (int k = 0; k < tp.source->numEdges; ++k) {
         const int trmEdgeNum = tp.source->edges[std::size_t(k)];
         const WorkEdge& te = tw.edges[std::size_t(std::abs(trmEdgeNum))];
         const unsigned side = edgeLineSide(te, s.polygonEdgeLines[i]);
-        if (unsigned(trmEdgeNum < 0) ^ side ^ flip) break;
+        if (unsigned(trmEdgeNum < 0) ^ side ^ flip) return false;
       }
-      if (k >= tp.source->numEdges) {
-        return stuck(ContactType::Edge, -tp.plane.normal, -tp.plane.dist, m.vertices()[flip ? v2 : v1],
-                     edgeNum, j);
+      return true;
+    };
+    // (side = distance < 0, not the sign bit: -0 counts as in front)
+#ifdef CMKIT_QUERY_LANES
+    const Vec3& p1 = m.vertices()[v1];
+    const Vec3& p2 = m.vertices()[v2];
+    const F4 x1 = F4::all(p1.x), y1 = F4::all(p1.y), z1 = F4::all(p1.z);
+    const F4 x2 = F4::all(p2.x), y2 = F4::all(p2.y), z2 = F4::all(p2.z);
+    for (int first = 0; first < tw.numPolys; first += 4) {
+      const TrmPlaneRows& rows = tw.scratch.trm.planeRows[std::size_t(first / 4)];
+      const F4 nx = F4::load(rows.x), ny = F4::load(rows.y), nz = F4::load(rows.z), d = F4::load(rows.dist);
+      const unsigned s1 = simd::bits(nx * x1 + ny * y1 + nz * z1 - d < F4::zero());
+      const unsigned s2 = simd::bits(nx * x2 + ny * y2 + nz * z2 - d < F4::zero());
+      for (unsigned crossing = (s1 ^ s2) & firstLanes(std::min(tw.numPolys - first, 4)); crossing;
+           crossing &= crossing - 1) {
+        const int lane = std::countr_zero(crossing);
+        const unsigned flip = (s1 >> lane) & 1u;
+        const int j = first + lane;
+        if (crossesInside(j, flip))
+          return stuck(ContactType::Edge, -trmPlane(j).normal, -trmPlane(j).dist,
+                       m.vertices()[flip ? v2 : v1], edgeNum, j);
       }
     }
+#else
+    for (int j = 0; j < tw.numPolys; ++j) {
+      const unsigned s1 = unsigned(trmPlane(j).distance(m.vertices()[v1]) < 0);
+      const unsigned s2 = unsigned(trmPlane(j).distance(m.vertices()[v2]) < 0);
+      if (s1 == s2) continue;
+      if (crossesInside(j, s1))
+        return stuck(ContactType::Edge, -trmPlane(j).normal, -trmPlane(j).dist, m.vertices()[s1 ? v2 : v1],
+                     edgeNum, j);
+    }
+#endif
   }
   return false;
 }

@@ -50,6 +50,11 @@ struct WorkPolygon {
 
 struct RotationWork;
 
+/// Four planes as rows: lane j plane j.
+struct alignas(16) TrmPlaneRows {
+  Real x[kLanes], y[kLanes], z[kLanes], dist[kLanes];
+};
+
 /// The trace-model features of a query. They live in the caller's scratch
 /// (about 6 KB: constructing and zeroing them per query cost more than a
 /// short point trace). Every query's set-up writes the fields it uses for the
@@ -63,6 +68,11 @@ struct TrmFeatures {
   /// that does not move (translate.cpp's SSE2 edge sides; other builds
   /// leave it unused).
   std::array<LineBlock, kMaxTrmVertices / kLanes> vertexLines;
+  /// A position test's polygon planes (WorkPolygon::plane) kLanes at a
+  /// time: lane i % kLanes of block i / kLanes is polygon i's; the lanes past
+  /// numPolys stale (position_test.cpp's float lanes; other builds leave it
+  /// unused).
+  std::array<TrmPlaneRows, kMaxTrmPolygons / kLanes> planeRows;
 };
 
 /// Polygon edges per bit mask in the translation's edge tests.

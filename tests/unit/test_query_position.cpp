@@ -1,12 +1,15 @@
-// The position test's brush test (contentsTest of a trace model): which
-// trace-model vertex it reports inside a brush, and against which plane,
-// computed here vertex by vertex and plane by plane.
+// The position test (contentsTest of a trace model): which trace-model
+// vertex it reports inside a brush, and against which plane, computed here
+// vertex by vertex and plane by plane; which trace-model face it reports a
+// model polygon's edge crossing, found here by geometry.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "cmkit/query.h"
 #include "cmkit/trace_model.h"
 #include "model_fixtures.h"
@@ -96,6 +99,103 @@ TEST(PositionTest, ReportsTheFirstVertexInsideABrushAndItsNearestPlane) {
   EXPECT_GT(inside, 500);
   EXPECT_GT(outside, 500);
   EXPECT_GT(laterBlock, 100);
+}
+
+// Where segment a-b crosses trace-model polygon j's face away from its
+// border (by `margin`): true, with the point in `at`.
+bool crossesFace(const TraceModel& trm, int j, const Vec3& a, const Vec3& b, Real margin) {
+  const TrmPolygon& face = trm.polygon(j);
+  const Real da = face.normal.dot(a) - face.dist, db = face.normal.dot(b) - face.dist;
+  if (!((da < -margin && db > margin) || (da > margin && db < -margin))) return false;
+  const Vec3 at = a + (b - a) * (da / (da - db));
+  for (const int e : face.edgeList()) {  // counter-clockwise around the normal
+    const Vec3 from = trm.vertex(trm.edgeVertex(std::abs(e), e < 0 ? 1 : 0));
+    const Vec3 to = trm.vertex(trm.edgeVertex(std::abs(e), e < 0 ? 0 : 1));
+    const Vec3 along = to - from;
+    if ((along.cross(at - from)).dot(face.normal) < margin * along.length()) return false;
+  }
+  return true;
+}
+
+// Whether segment a-b crosses the triangle t0 t1 t2 near or inside it.
+bool crossesTriangleNear(const Vec3& a, const Vec3& b, const Vec3& t0, const Vec3& t1, const Vec3& t2) {
+  const Vec3 n = (t1 - t0).cross(t2 - t0).normalized();
+  const Real da = n.dot(a - t0), db = n.dot(b - t0);
+  if ((da > 0) == (db > 0)) return false;
+  const Vec3 at = a + (b - a) * (da / (da - db));
+  const Vec3 corners[3] = {t0, t1, t2};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 along = corners[(k + 1) % 3] - corners[k];
+    if (along.cross(at - corners[k]).dot(n) < -0.1f * along.length()) return false;  // (0.1 outside: near)
+  }
+  return true;
+}
+
+// A thin triangle (one polygon of a mesh) whose two long edges pass through
+// a trace model at the origin, its corners far outside: no model vertex is
+// inside the trace model and, where no trace-model edge crosses the triangle
+// (checked here; the others are left out), the position test reports the
+// first trace-model polygon, in order, whose face a long edge crosses: an
+// edge contact against that face's plane negated. Both long edges cross the
+// same two faces (checked here), so it is the first of those. Directions all
+// round, so that the faces take indices past the first four (the test's
+// float lanes take four planes at a time).
+TEST(PositionTest, ReportsTheFirstTrmFaceAModelEdgeCrosses) {
+  const Bounds size{{-12, -12, -10}, {12, 12, 10}};
+  const std::vector<TraceModel> shapes = {*TraceModel::box(size), *TraceModel::cylinder(size, 8),
+                                          *TraceModel::cylinder(size, 10), *TraceModel::cone(size, 13),
+                                          *TraceModel::dodecahedron(size)};
+  MeshBuildOptions options;
+  options.contents = contents::kSolid;
+  QueryWork work;
+  int tested = 0, laterFaces = 0, leftOut = 0;
+  for (const TraceModel& trm : shapes) {
+    for (int k = 0; k < 90; ++k) {
+      const Real angle = Real(2 * 3.14159265358979 * (k + 0.37) / 90);
+      const Vec3 dir{std::cos(angle), std::sin(angle), 0};
+      const Vec3 centre{0.7f, -0.4f, 0.3f};
+      const Vec3 a = centre - dir * 60, b = centre + dir * 60, c = b + Vec3{0, 0, 0.5f};
+      // The first face each long edge crosses, in the trace model's order.
+      int first = -1, firstOther = -1;
+      for (int j = trm.numPolygons() - 1; j >= 0; --j) {
+        if (crossesFace(trm, j, a, b, Real(0.01))) first = j;
+        if (crossesFace(trm, j, c, a, Real(0.01))) firstOther = j;
+      }
+      bool edgeThrough = false;  // a trace-model edge through the triangle: the earlier test's case
+      for (int e = 1; e <= trm.numEdges(); ++e)
+        edgeThrough |=
+            crossesTriangleNear(trm.vertex(trm.edgeVertex(e, 0)), trm.vertex(trm.edgeVertex(e, 1)), a, b, c);
+      if (first < 0 || first != firstOther || edgeThrough) {
+        ++leftOut;
+        continue;
+      }
+      TriangleMesh mesh;
+      mesh.positions = {a, b, c};
+      mesh.surfaces.push_back({"sliver", {0, 1, 2}});
+      const auto built = buildCollisionModelFromTriangles(mesh, "sliver", MaterialTable{}, options);
+      ASSERT_TRUE(built) << built.error().message;
+      ASSERT_EQ(built->model->polygons().size(), 1u) << (built->warnings.empty() ? "" : built->warnings[0]);
+      ContentsQuery q;
+      q.trm = &trm;
+      const ContentsResult r = contentsTest(*built->model, q, work);
+      ++tested;
+      laterFaces += first >= 4;
+      ASSERT_EQ(r.contents, contents::kSolid) << trm.numPolygons() << " polygons, direction " << k;
+      ASSERT_EQ(r.trace.contact.type, ContactType::Edge) << trm.numPolygons() << " polygons, direction " << k;
+      EXPECT_EQ(r.trace.contact.trmFeature, first) << trm.numPolygons() << " polygons, direction " << k;
+      const Vec3 want = -trm.polygon(first).normal;
+      EXPECT_NEAR(r.trace.contact.normal.x, want.x, 1e-5)
+          << trm.numPolygons() << " polygons, direction " << k;
+      EXPECT_NEAR(r.trace.contact.normal.y, want.y, 1e-5)
+          << trm.numPolygons() << " polygons, direction " << k;
+      EXPECT_NEAR(r.trace.contact.normal.z, want.z, 1e-5)
+          << trm.numPolygons() << " polygons, direction " << k;
+    }
+  }
+  // Almost every direction tested (448 of 450), 90 of them against a face
+  // past the fourth.
+  EXPECT_GT(tested, 400) << leftOut << " left out";
+  EXPECT_GT(laterFaces, 60);
 }
 
 }  // namespace
