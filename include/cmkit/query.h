@@ -143,7 +143,11 @@ struct QueryStats {
   std::uint64_t nodesVisited = 0;    ///< tree nodes entered by the walks
   std::uint64_t polygonsMet = 0;     ///< polygons met at those nodes for the first time in a query
   std::uint64_t polygonsTested = 0;  ///< of those, polygons past every polygon cull (features tested)
-  std::uint64_t brushesMet = 0;      ///< brushes met for the first time by position tests
+  /// Of those, polygons whose tests brought the nearest contact closer (a
+  /// translation's or rotation's; a position test's: the polygon it found
+  /// crossed). Collecting contacts, each polygon that adds one.
+  std::uint64_t polygonsCloser = 0;
+  std::uint64_t brushesMet = 0;  ///< brushes met for the first time by position tests
   std::uint64_t vertexTests =
       0;                        ///< trace-model vertex / polygon and model vertex / trace-model polygon tests
   std::uint64_t edgePairs = 0;  ///< trace-model edge / model edge tests

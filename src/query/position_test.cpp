@@ -149,6 +149,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
   const auto edges = m.edgesOf(poly);
   auto stuck = [&](ContactType type, const Vec3& normal, Real dist, const Vec3& point,
                    std::int32_t modelFeature, int trmFeature) {
+    count(s, &QueryStats::polygonsCloser);
     tw.fraction = 0;
     tw.c.type = type;
     tw.c.normal = normal;

@@ -169,6 +169,7 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
 // (Always inline: GCC called it, a call for every polygon tested.)
 [[gnu::always_inline]] inline bool finishPolygon(TraceWork& tw, RotationWork& rw, std::int32_t polyNum,
                                                  double limit) {
+  if (rw.maxTan < limit) count(tw.scratch, &QueryStats::polygonsCloser);
   if (rw.contactsFound) {
     recordPolygonContact(tw, rw, polyNum, limit);
     return false;

@@ -316,6 +316,16 @@ struct TraceWork {
   }
 };
 
+/// The contacts a query has collected so far (0 when it does not collect).
+inline std::size_t contactCount(const TraceWork& tw) { return tw.contacts ? tw.contacts->size() : 0; }
+/// Counts a tested polygon whose tests brought the nearest contact closer
+/// than `before` or added to the `contactsBefore` collected
+/// (QueryStats::polygonsCloser; nothing unless counted).
+inline void countCloser(TraceWork& tw, Real before, std::size_t contactsBefore) {
+  if constexpr (kQueryStats)
+    if (tw.fraction < before || contactCount(tw) > contactsBefore) ++tw.scratch.stats.polygonsCloser;
+}
+
 // ---- shared steps (tree_walk.cpp, translate.cpp, position_test.cpp) --------
 
 /// Walks the model's tree along tw.start -> tw.end testing the polygons met

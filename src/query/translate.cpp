@@ -371,19 +371,27 @@ void placeTranslationFeatures(TraceWork& tw) {
 
 bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& poly,
                                 const PolygonCorner* corners) {
-  QueryScratch& s = tw.scratch;
   if (const PlaneCull cull = cullByPolygonPlane(tw, poly.plane); cull != PlaneCull::Test)
     return cull == PlaneCull::Stop;
-  count(s, &QueryStats::polygonsTested);
+  count(tw.scratch, &QueryStats::polygonsTested);
+  // (Counts the polygon when its tests bring the nearest contact closer:
+  // only in a QueryStats build, where countCloser does anything.)
+  const Real before = tw.fraction;
+  const std::size_t contactsBefore = contactCount(tw);
+  const auto finish = [&](bool blocked) {
+    countCloser(tw, before, contactsBefore);
+    return blocked;
+  };
+  QueryScratch& s = tw.scratch;
   placeTranslationFeatures(tw);
   // The sides of the polygon's edge lines the trace-model vertices pass.
   const PolygonEdges edges = corners ? polygonEdges(tw, corners, poly.numEdges) : polygonEdges(tw, poly);
 #ifdef CMKIT_QUERY_LANES
   switch (smallSidesShift(tw, edges.size)) {
     case 3:
-      return translateTrmThroughSmallPolygon<3>(tw, polyNum, poly, edges);
+      return finish(translateTrmThroughSmallPolygon<3>(tw, polyNum, poly, edges));
     case 4:
-      return translateTrmThroughSmallPolygon<4>(tw, polyNum, poly, edges);
+      return finish(translateTrmThroughSmallPolygon<4>(tw, polyNum, poly, edges));
     default:
       break;
   }
@@ -409,7 +417,7 @@ bool translateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPol
 
   translateTrmVerticesThroughPolygon(tw, polyNum, poly, inside);
   if (anyToTest) translateTrmEdgesThroughPolygon(tw, poly, edges);
-  return testModelVerticesThroughTrm(tw, poly, edges);
+  return finish(testModelVerticesThroughTrm(tw, poly, edges));
 }
 
 namespace {

@@ -50,7 +50,9 @@ bool pointThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& p
   count(tw.scratch, &QueryStats::polygonsTested);
   count(tw.scratch, &QueryStats::vertexTests);
   const Real before = tw.fraction;
+  const std::size_t contactsBefore = contactCount(tw);
   translatePointThroughPolygon(tw, polyNum, poly);
+  countCloser(tw, before, contactsBefore);
   if (tw.fraction == before) return false;
   shrinkTraceBounds(tw);
   return tw.fraction == 0;

@@ -43,6 +43,7 @@ TEST(QueryStats, CountedOnlyWhenBuiltIn) {
     EXPECT_EQ(s.nodesVisited, 0u);
     EXPECT_EQ(s.polygonsMet, 0u);
     EXPECT_EQ(s.polygonsTested, 0u);
+    EXPECT_EQ(s.polygonsCloser, 0u);
     EXPECT_EQ(s.brushesMet, 0u);
     EXPECT_EQ(s.vertexTests, 0u);
     EXPECT_EQ(s.edgePairs, 0u);
@@ -52,7 +53,11 @@ TEST(QueryStats, CountedOnlyWhenBuiltIn) {
   EXPECT_GT(s.nodesVisited, 0u);
   EXPECT_GE(s.polygonsMet, s.polygonsTested);
   EXPECT_GE(s.polygonsTested, 3u);  // the floor's top face, by each query
-  EXPECT_GE(s.brushesMet, 1u);      // the floor brush, by the position test
+  // The translation and the rotation stop on it (the position test finds the
+  // box in the floor's brush first, before any polygon).
+  EXPECT_GE(s.polygonsCloser, 2u);
+  EXPECT_LE(s.polygonsCloser, s.polygonsTested);
+  EXPECT_GE(s.brushesMet, 1u);  // the floor brush, by the position test
   EXPECT_GT(s.vertexTests, 0u);
   work.resetStats();
   EXPECT_EQ(work.stats().queries, 0u);

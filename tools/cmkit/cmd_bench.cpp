@@ -221,12 +221,13 @@ void printSuiteText(const std::vector<SuiteRow>& rows, const SuiteRow& all, int 
 }
 
 /// The kinds that ran (--stats) with their work counters per query, in
-/// QueryStats' order after the count: nodes, polygons met and tested,
-/// brushes met, vertex tests, edge pairs (the text table and the JSON).
+/// QueryStats' order after the count: nodes, polygons met, tested and
+/// closer, brushes met, vertex tests, edge pairs (the text table and the
+/// JSON).
 struct KindWork {
   QueryOp op;
   std::uint64_t queries;
-  std::array<double, 6> perQuery;
+  std::array<double, 7> perQuery;
 };
 std::vector<KindWork> workPerQuery(const std::map<QueryOp, QueryStats>& stats) {
   std::vector<KindWork> out;
@@ -238,15 +239,17 @@ std::vector<KindWork> workPerQuery(const std::map<QueryOp, QueryStats>& stats) {
     out.push_back({op,
                    s.queries,
                    {double(s.nodesVisited) / n, double(s.polygonsMet) / n, double(s.polygonsTested) / n,
-                    double(s.brushesMet) / n, double(s.vertexTests) / n, double(s.edgePairs) / n}});
+                    double(s.polygonsCloser) / n, double(s.brushesMet) / n, double(s.vertexTests) / n,
+                    double(s.edgePairs) / n}});
   }
   return out;
 }
 
 /// The work counters per query of each kind (--stats), as a JSON object.
 std::string jsonWork(const std::map<QueryOp, QueryStats>& stats) {
-  static constexpr const char* kNames[6] = {"nodes",       "polygons met", "polygons tested",
-                                            "brushes met", "vertex tests", "edge pairs"};
+  static constexpr const char* kNames[7] = {"nodes",           "polygons met", "polygons tested",
+                                            "polygons closer", "brushes met",  "vertex tests",
+                                            "edge pairs"};
   std::string out = "{";
   for (const KindWork& k : workPerQuery(stats)) {
     if (out.size() > 1) out += ", ";
@@ -283,12 +286,12 @@ void printSuiteStats(const std::map<QueryOp, QueryStats>& stats) {
   fmt::print(
       "\nwork per query, all files (counted by a CMKIT_QUERY_STATS build; see QueryStats in "
       "cmkit/query.h)\n");
-  fmt::print("{:<14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "kind", "queries", "nodes", "polys met",
-             "polys tst", "brushes", "vert tst", "edge prs");
+  fmt::print("{:<14} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "kind", "queries", "nodes",
+             "polys met", "polys tst", "closer", "brushes", "vert tst", "edge prs");
   for (const KindWork& k : workPerQuery(stats)) {
     const auto& w = k.perQuery;
-    fmt::print("{:<14} {:>9} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n", toString(k.op),
-               k.queries, w[0], w[1], w[2], w[3], w[4], w[5]);
+    fmt::print("{:<14} {:>9} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f}\n",
+               toString(k.op), k.queries, w[0], w[1], w[2], w[3], w[4], w[5], w[6]);
   }
 }
 
@@ -363,8 +366,8 @@ int runSuite(const BenchOptions& o) {
       QueryStats& st = stats[op];
       const QueryStats& w = work.stats();
       for (auto field : {&QueryStats::queries, &QueryStats::nodesVisited, &QueryStats::polygonsMet,
-                         &QueryStats::polygonsTested, &QueryStats::brushesMet, &QueryStats::vertexTests,
-                         &QueryStats::edgePairs})
+                         &QueryStats::polygonsTested, &QueryStats::polygonsCloser, &QueryStats::brushesMet,
+                         &QueryStats::vertexTests, &QueryStats::edgePairs})
         st.*field += w.*field;
       const std::size_t n = queries.size() * std::size_t(o.repeat);
       row.kinds[op] = {ns, n, queries.size()};
@@ -447,8 +450,9 @@ void registerBench(CLI::App& app) {
       "its models (DIR/../maps/rbdoom-unittests/NAME.cm, else DIR/../maps/*/NAME.map): each file is\n"
       "parsed once and run --repeat times on 1 thread; it prints ns/query per kind and file, or JSON\n"
       "with --json. bench/compare.sh OLD_COMMIT compares these tables of two builds in one run.\n"
-      "--stats adds the work per query of each kind (tree nodes, polygons met and tested, feature\n"
-      "tests), counted by a library built with -DCMKIT_QUERY_STATS=ON (cmake --preset stats);\n"
+      "--stats adds the work per query of each kind (tree nodes, polygons met and tested, the tested\n"
+      "ones that brought the nearest contact closer, feature tests), counted by a library built with\n"
+      "-DCMKIT_QUERY_STATS=ON (cmake --preset stats);\n"
       "with --json as the object \"work per query\".\n\n"
       "Examples:\n"
       "  cmkit bench data/maps/lt4/lt4.map\n"
