@@ -46,14 +46,7 @@ std::vector<const CmEdge*> cornerEdges(const CollisionModel& m) {
 std::string lt4Path() { return std::string(CMKIT_SOURCE_DIR) + "/data/maps/lt4/lt4.map"; }
 
 std::vector<ModelPtr> buildLt4(bool robustEdges) {
-  auto map = loadMapFile(lt4Path());
-  EXPECT_TRUE(map.ok());
-  if (!map) return {};
-  BuildOptions options;
-  options.robustEdges = robustEdges;
-  auto models = buildCollisionModels(*map, MaterialTable{}, options);
-  EXPECT_TRUE(models.ok());
-  return models ? models->models : std::vector<ModelPtr>{};
+  return test::buildModelsFromMap(loadMapFile(lt4Path()), robustEdges);
 }
 
 TraceModel trm(const char* spec) { return TraceModel::parse(spec).value(); }

@@ -209,9 +209,9 @@ inline std::string axialBrush(const Bounds& b, const char* material) {
   return s + " }\n}\n";
 }
 
-/// The models of a map given as text (a failed parse or build fails the test).
-inline std::vector<ModelPtr> buildModelsFromText(const std::string& text, bool robustEdges = false) {
-  auto map = parseMapText(text);
+/// The models of a parsed or loaded map (a failed parse, load or build
+/// fails the test).
+inline std::vector<ModelPtr> buildModelsFromMap(const Result<MapFile>& map, bool robustEdges = false) {
   EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
   if (!map) return {};
   BuildOptions options;
@@ -219,6 +219,11 @@ inline std::vector<ModelPtr> buildModelsFromText(const std::string& text, bool r
   auto models = buildCollisionModels(*map, MaterialTable{}, options);
   EXPECT_TRUE(models.ok());
   return models ? models->models : std::vector<ModelPtr>{};
+}
+
+/// The models of a map given as text (buildModelsFromMap).
+inline std::vector<ModelPtr> buildModelsFromText(const std::string& text, bool robustEdges = false) {
+  return buildModelsFromMap(parseMapText(text), robustEdges);
 }
 
 }  // namespace cmkit::test
