@@ -27,21 +27,29 @@ inline void vectorRows(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
   y = F4::lanes(a.y, b.y, c.y, d.y);
   z = F4::lanes(a.z, b.z, c.z, d.z);
 }
-/// Row vectors times m (Vec3 * Mat3's arithmetic in each lane).
+/// a * x + b * y + c * z in each lane, in that order (a row or column of a
+/// matrix times a vector, as Mat3's scalar products make it).
+inline F4 weightedSum(float a, float b, float c, F4 x, F4 y, F4 z) {
+  return F4::all(a) * x + F4::all(b) * y + F4::all(c) * z;
+}
+/// Row vectors times m (Vec3 * Mat3's arithmetic in each lane: column k of
+/// m weights x, y, z).
 inline void timesMat3(const Mat3& m, F4& x, F4& y, F4& z) {
   const Vec3 &r0 = m.rows[0], &r1 = m.rows[1], &r2 = m.rows[2];
-  const F4 ox = F4::all(r0.x) * x + F4::all(r1.x) * y + F4::all(r2.x) * z;
-  const F4 oy = F4::all(r0.y) * x + F4::all(r1.y) * y + F4::all(r2.y) * z;
-  const F4 oz = F4::all(r0.z) * x + F4::all(r1.z) * y + F4::all(r2.z) * z;
-  x = ox, y = oy, z = oz;
+  const F4 ox = weightedSum(r0.x, r1.x, r2.x, x, y, z);
+  const F4 oy = weightedSum(r0.y, r1.y, r2.y, x, y, z);
+  z = weightedSum(r0.z, r1.z, r2.z, x, y, z);
+  x = ox;
+  y = oy;
 }
-/// m times column vectors (Mat3 * Vec3's arithmetic in each lane).
+/// m times column vectors (Mat3 * Vec3's arithmetic in each lane: row k of
+/// m weights x, y, z).
 inline void mat3Times(const Mat3& m, F4& x, F4& y, F4& z) {
-  const Vec3 &r0 = m.rows[0], &r1 = m.rows[1], &r2 = m.rows[2];
-  const F4 ox = F4::all(r0.x) * x + F4::all(r0.y) * y + F4::all(r0.z) * z;
-  const F4 oy = F4::all(r1.x) * x + F4::all(r1.y) * y + F4::all(r1.z) * z;
-  const F4 oz = F4::all(r2.x) * x + F4::all(r2.y) * y + F4::all(r2.z) * z;
-  x = ox, y = oy, z = oz;
+  const auto row = [&](int k) { return weightedSum(m.rows[k].x, m.rows[k].y, m.rows[k].z, x, y, z); };
+  const F4 ox = row(0), oy = row(1);
+  z = row(2);
+  x = ox;
+  y = oy;
 }
 
 /// Trace-model vertices 0 .. numVerts - 1 in the model's frame, the trace
