@@ -62,7 +62,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
   static_assert(kLanes == 4 && kMaxTrmVertices <= 32);
   const std::uint32_t moving = tw.movingVertices;
   // The vertex blocks up to the last moving vertex.
-  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
+  const int numVerts = bitsThrough(moving);
   const std::size_t vertexBlocks = std::size_t(numVerts + 3) / 4;
   const LineBlock* vertexLines = tw.scratch.trm.vertexLines.data();
   std::uint32_t outside = 0;  // bit v: vertex v passes outside an edge
@@ -111,7 +111,7 @@ std::uint32_t sidesOfPolygonEdges(TraceWork& tw, const PolygonEdges& edges) {
 
 void placeVertexLines(TraceWork& tw) {
   const std::uint32_t moving = tw.movingVertices;
-  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
+  const int numVerts = bitsThrough(moving);
   const F4 dx = F4::all(tw.dir.x), dy = F4::all(tw.dir.y), dz = F4::all(tw.dir.z);
   for (int k = 0; 4 * k < numVerts; ++k) {
     F4 x, y, z;

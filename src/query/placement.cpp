@@ -14,7 +14,7 @@ void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o
 #ifdef CMKIT_QUERY_LANES
   if ((o.trmRotated || o.modelRotated) && vertices) {  // turned: four at a time
     alignas(16) float x[kMaxTrmVertices], y[kMaxTrmVertices], z[kMaxTrmVertices];
-    placedTrmVerticesInLanes(trm, o, relative, 32 - std::countl_zero(vertices), x, y, z);
+    placedTrmVerticesInLanes(trm, o, relative, bitsThrough(vertices), x, y, z);
     for (; vertices; vertices &= vertices - 1) {
       const std::size_t i = std::size_t(std::countr_zero(vertices));
       tw.vertices[i].p = {x[i], y[i], z[i]};

@@ -91,9 +91,6 @@ unsigned lanesNotBehindPlanes(F4 x, F4 y, F4 z, unsigned out, int numPlanes, Pla
   }
   return out;
 }
-
-/// Bit i set for each of the first n of four lanes.
-inline unsigned firstLanes(int n) { return (1u << n) - 1; }
 #endif
 
 }  // namespace
@@ -115,7 +112,7 @@ bool trmVertexInBrush(TraceWork& tw, const CmBrush& b) {
     F4 x, y, z;
     trmVertexRows(tw, j / 4, x, y, z);
     const unsigned out =
-        lanesNotBehindPlanes(x, y, z, ~firstLanes(std::min(numVerts - j, 4)) & 0xFu, numPlanes, planeAt);
+        lanesNotBehindPlanes(x, y, z, ~lowBits(std::min(numVerts - j, 4)) & 0xFu, numPlanes, planeAt);
     if (out != 0xFu) {
       j += std::countr_zero(~out);
       break;
@@ -174,8 +171,8 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
     std::size_t numbers[4] = {};
     int n = 0;
     const auto testBlock = [&] {
-      const unsigned out = lanesNotBehindPlanes(F4::load(xs), F4::load(ys), F4::load(zs),
-                                                ~firstLanes(n) & 0xFu, tw.numPolys, trmPlane);
+      const unsigned out = lanesNotBehindPlanes(F4::load(xs), F4::load(ys), F4::load(zs), ~lowBits(n) & 0xFu,
+                                                tw.numPolys, trmPlane);
       n = 0;
       if (out == 0xFu) return false;
       inside = numbers[std::countr_zero(~out)];
@@ -281,7 +278,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
       const F4 nx = F4::load(rows.x), ny = F4::load(rows.y), nz = F4::load(rows.z), d = F4::load(rows.dist);
       const unsigned s1 = simd::bits(nx * x1 + ny * y1 + nz * z1 - d < F4::zero());
       const unsigned s2 = simd::bits(nx * x2 + ny * y2 + nz * z2 - d < F4::zero());
-      for (unsigned crossing = (s1 ^ s2) & firstLanes(std::min(tw.numPolys - first, 4)); crossing;
+      for (unsigned crossing = (s1 ^ s2) & lowBits(std::min(tw.numPolys - first, 4)); crossing;
            crossing &= crossing - 1) {
         const int lane = std::countr_zero(crossing);
         const unsigned flip = (s1 >> lane) & 1u;

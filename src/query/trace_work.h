@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -525,10 +526,13 @@ inline Vec3 placedTrmVertex(const TraceModel& trm, const Orientation& o, int i, 
   return p;
 }
 
+/// Bits 0 .. n - 1 set (n <= 32): the first n vertices, polygons or lanes.
+inline std::uint32_t lowBits(int n) { return n >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << n) - 1; }
 /// The mask of a trace model's vertices 0..numVerts-1.
-inline std::uint32_t allTrmVertices(int numVerts) {
-  return numVerts >= 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << numVerts) - 1;
-}
+inline std::uint32_t allTrmVertices(int numVerts) { return lowBits(numVerts); }
+/// One past the highest bit of `mask` (0 for none): how many of a trace
+/// model's vertices reach its last one that `mask` names.
+inline int bitsThrough(std::uint32_t mask) { return 32 - std::countl_zero(mask); }
 
 /// Placing `trm` (turned by its axis) at `position` in the model's frame,
 /// the set-up every query kind starts from, in three parts that a kind may

@@ -40,7 +40,7 @@ void makeTranslationHeartPlanes(TraceWork& tw) {
   Real max1 = 0, max2 = 0;
 #ifdef CMKIT_QUERY_LANES
   const std::uint32_t moving = tw.movingVertices;
-  const int numVerts = moving ? 32 - std::countl_zero(moving) : 0;
+  const int numVerts = bitsThrough(moving);
   const Plane &h1 = tw.heartPlane1, &h2 = tw.heartPlane2;
   const F4 n1x = F4::all(h1.normal.x), n1y = F4::all(h1.normal.y), n1z = F4::all(h1.normal.z);
   const F4 n2x = F4::all(h2.normal.x), n2y = F4::all(h2.normal.y), n2z = F4::all(h2.normal.z);
@@ -123,7 +123,7 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
       if (flat) faces = faces | (d == F4::zero());
       facing |= std::uint32_t(simd::bits(faces)) << (4 * k);
     }
-    movingPolygons = facing & std::uint32_t(allTrmVertices(tw.numPolys));  // (the first numPolys bits)
+    movingPolygons = facing & lowBits(tw.numPolys);
     for (std::uint32_t f = movingPolygons; f; f &= f - 1) {
       const int i = std::countr_zero(f);
       movingEdges |= trm.polygonEdgeBits(i);
@@ -152,8 +152,7 @@ void setupTrmTranslation(TraceWork& tw, const TranslationQuery& q, const Orienta
   // the last moving one (placedTrmVertex's arithmetic in each lane).
   alignas(16) float placedX[kMaxTrmVertices], placedY[kMaxTrmVertices], placedZ[kMaxTrmVertices];
   if (turned)
-    placedTrmVerticesInLanes(trm, o, relative, movingVertices ? 32 - std::countl_zero(movingVertices) : 0,
-                             placedX, placedY, placedZ);
+    placedTrmVerticesInLanes(trm, o, relative, bitsThrough(movingVertices), placedX, placedY, placedZ);
 #endif
   Bounds size;
   for (std::uint32_t moving = movingVertices; moving; moving &= moving - 1) {
