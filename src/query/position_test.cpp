@@ -25,17 +25,15 @@ void placePositionTestFeatures(TraceWork& tw) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.used = true;
     wp.plane.fitThroughPoint(tw.vertices[std::size_t(wp.planeVertex)].p);
-  }
 #ifdef CMKIT_QUERY_LANES
-  for (int i = 0; i < tw.numPolys; ++i) {
+    // (And as rows, four planes at a time, for the polygon test's edges.)
     TrmPlaneRows& rows = tw.scratch.trm.planeRows[std::size_t(i / 4)];
-    const Plane& pl = tw.polys[std::size_t(i)].plane;
-    rows.x[i % 4] = pl.normal.x;
-    rows.y[i % 4] = pl.normal.y;
-    rows.z[i % 4] = pl.normal.z;
-    rows.dist[i % 4] = pl.dist;
-  }
+    rows.x[i % 4] = wp.plane.normal.x;
+    rows.y[i % 4] = wp.plane.normal.y;
+    rows.z[i % 4] = wp.plane.normal.z;
+    rows.dist[i % 4] = wp.plane.dist;
 #endif
+  }
 }
 
 /// Which side of trace-model edge te's line a model edge's line passes: the
