@@ -5,8 +5,8 @@
 # (OLD, NEW, OLD, NEW, ...), each run with Jolt beside cmkit in the same
 # process. Prints every run's cmkit ns and cmkit/Jolt ratio, then per kind
 # the new/old time of each pair (the two runs next to each other, so a
-# burst of load on the machine falls on both) and its median, and the
-# median cmkit/Jolt ratio of each build. On the shared VM one run moves by
+# burst of load on the machine falls on both) and its median, and each
+# build's cmkit/Jolt ratios: range, median, how many runs above 1, each run's. On the shared VM one run moves by
 # up to 20 %: a step is judged by the median over six or more pairs
 # (DEVELOPERS.md, bench/). KINDS as cmkit_peers --kinds (e.g.
 # 'box,box+axis'); SCENE lt4 or generated (default generated); QUERIES
@@ -77,5 +77,7 @@ for kind in kinds:
     for which in ("old", "new"):
         if ratio[which]:
             rs = ratio[which]
-            print(f"{kind}: {which} / peer {min(rs):.2f}-{max(rs):.2f}, median {statistics.median(rs):.2f}")
+            above = sum(1 for x in rs if x > 1)
+            print(f"{kind}: {which} / peer {min(rs):.2f}-{max(rs):.2f}, median {statistics.median(rs):.2f}, "
+                  f"above 1 in {above} of {len(rs)} ({' '.join(f'{x:.2f}' for x in rs)})")
 EOF
