@@ -70,20 +70,28 @@ constexpr int kPath = 64;
   bool atLeaf = false;
   while (!atLeaf) {
     int count = 0;
-    while (count < kPath) {
+    for (;;) {
       const PointNode node = nodes[n];
-      if (node.hasBrushes()) {
-        path[count++] = n;
-        if (prefetchBrushes) {
-          const PointBrushes& list = tree.brushes[n];
-          for (std::uint32_t r = 0; r < list.numBrushRefs; ++r)
-            prefetch(&brushes[std::size_t(brushRefs[list.firstBrushRef + r])]);
-        }
-      }
       const std::uint32_t axis = node.axis();
-      if (axis == PointNode::kLeafAxis) {
-        atLeaf = true;
-        break;
+      // A leaf or a node with brushes (one test for both: most nodes on a
+      // path are neither).
+      if ((node.word & (PointNode::kHasBrushes | 3u)) >= PointNode::kLeafAxis) {
+        if (node.hasBrushes()) {
+          path[count++] = n;
+          if (prefetchBrushes) {
+            const PointBrushes& list = tree.brushes[n];
+            for (std::uint32_t r = 0; r < list.numBrushRefs; ++r)
+              prefetch(&brushes[std::size_t(brushRefs[list.firstBrushRef + r])]);
+          }
+        }
+        if (axis == PointNode::kLeafAxis) {
+          atLeaf = true;
+          break;
+        }
+        if (count == kPath) {  // the path is full: its brushes first, then on from the child
+          n = node.front() + std::uint32_t(!(coord[axis] > node.dist));
+          break;
+        }
       }
       // The front child when the point is in front of the split, else the
       // back one beside it. (A branch on purpose: the processor guesses its

@@ -42,6 +42,39 @@ TEST(PointContents, SeesTheBrushInTheLeafOfADeepTree) {
   }
 }
 
+TEST(PointContents, SeesEveryBrushOnAPathLongerThanTheWalksBuffer) {
+  // The walks collect the nodes with brushes on the way down 64 at a time
+  // (point_contents.cpp's kPath), test their brushes, then go on; here every
+  // node of the path holds a brush containing the point. Brushes are
+  // solid, but for a few with a flag of their own around the 64th and
+  // 128th node, so that one lost at a refill, or a wrong turn after it,
+  // shows in the contents. 100 splits: the model's nodes are walked; 300:
+  // its point tree (more than kPointTreeMinNodes nodes).
+  const std::uint32_t own[] = {contents::kWater,        contents::kPlayerClip, contents::kMonsterClip,
+                               contents::kMoveableClip, contents::kIkClip,     contents::kBlood};
+  const int ownAt[] = {62, 63, 64, 65, 127, 128};
+  const auto contentsOf = [&](int i) {
+    for (int k = 0; k < 6; ++k)
+      if (ownAt[k] == i) return own[k];
+    return contents::kSolid;
+  };
+  for (const int depth : {100, 300}) {
+    const ModelPtr m = test::brushAtEveryNode(depth, contentsOf);
+    ASSERT_TRUE(m);
+    for (const int i : {0, 50, 63, 64, 99})
+      ASSERT_EQ(m->brushesAt(m->nodes()[std::size_t(i)]).size(), 1u) << "node " << i << " holds its brush";
+    // Stopping after node `last` (x between last - 1 and last): inside brushes 0 .. last - 1.
+    for (const int last : {10, 63, 64, 65, 66, 70, 99, 129, 200, depth}) {
+      if (last > depth) continue;
+      const Real x = last == depth ? Real(1004) : Real(last) - Real(0.75);
+      std::uint32_t expected = 0;
+      for (int i = 0; i < depth && Real(i) - Real(0.5) <= x; ++i) expected |= contentsOf(i);
+      EXPECT_EQ(test::pointContentsAt(*m, {x, 5, 5}), expected) << "depth " << depth << ", x " << x;
+      EXPECT_EQ(test::pointContentsAt(*m, {x, 5, 15}), 0u) << "depth " << depth << ", x " << x;
+    }
+  }
+}
+
 TEST(Contents, SeesTheBrushInTheLeafOfADeepTree) {
   // A position test walks both sides of every split it stands on: on the
   // 300-deep chain the walk keeps a far side waiting at every node (more
