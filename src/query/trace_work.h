@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cmkit/query.h"
+#include "math/axis_lanes.h"
 #include "model/query_data.h"
 #include "util/assert.h"
 
@@ -468,9 +469,6 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
 }
 
 // ---- placing the trace model (placement.cpp) ------------------------------
-
-/// True when the axis differs from identity.
-inline bool isRotated(const Mat3& axis) { return !axis.isIdentity(); }
 
 /// A query's two orientations, the trace model's and the model's
 /// placement, with whether each differs from the identity (asked once per

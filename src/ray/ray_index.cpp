@@ -12,6 +12,7 @@
 // ray_index_layout.h); the geometry is Real.
 #include "cmkit/ray_index.h"
 
+#include "math/axis_lanes.h"
 #include "ray/ray_index_data.h"
 #include "ray/ray_index_kernel.h"
 #include "ray/ray_index_layout.h"
@@ -193,17 +194,6 @@ inline __m128 lanesOf(const Vec3& v) {
   return _mm_movelh_ps(xy, _mm_load_ss(&v.z));
 }
 
-/// Whether a placement rotates: !axis.isIdentity(), in two vector compares
-/// (Mat3::isIdentity's 26 instructions were a twentieth of a cast's). The
-/// same answer: == on each element, so an off-diagonal -0 counts as 0.
-inline bool rotates(const Mat3& axis) {
-  static_assert(sizeof(Mat3) == 9 * sizeof(float));
-  const float* m = &axis.rows[0].x;
-  const __m128 first = _mm_cmpeq_ps(_mm_loadu_ps(m), _mm_setr_ps(1, 0, 0, 0));
-  const __m128 second = _mm_cmpeq_ps(_mm_loadu_ps(m + 4), _mm_setr_ps(1, 0, 0, 0));
-  return _mm_movemask_ps(_mm_and_ps(first, second)) != 0xF || !(m[8] == 1.0f);
-}
-
 [[gnu::always_inline]] inline bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd,
                                               std::uint32_t mask, const Placement& placement, bool rotated,
                                               detail::Ray& ray, RayUse use) {
@@ -239,8 +229,6 @@ inline bool rotates(const Mat3& axis) {
   return true;
 }
 #else
-inline bool rotates(const Mat3& axis) { return !axis.isIdentity(); }
-
 bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask, const Placement& placement,
                 bool rotated, detail::Ray& ray, RayUse use) {
   // The segment in the model's space. One finiteness check, of its
@@ -363,7 +351,7 @@ constexpr std::size_t kMaxBlock = std::size_t(1) << 30;
 RayHit RayIndex::cast(const RayCastQuery& query) const {
   if (!data_ || data_->nodes.empty()) return {};
   const detail::RayIndexData& d = *data_;
-  const bool rotated = rotates(query.placement.axis);
+  const bool rotated = detail::isRotated(query.placement.axis);
   detail::Ray ray;
   if (!prepareRay(query.start, query.end, query.contentMask, query.placement, rotated, ray, RayUse::Single))
     return {};
@@ -393,7 +381,7 @@ void RayIndex::castMany(const RayBatch& batch, std::span<RayHit> out) const {
   std::fill(out.begin(), out.end(), RayHit{});
   if (!data_ || data_->nodes.empty()) return;
   const detail::RayIndexData& d = *data_;
-  const bool rotated = rotates(placement.axis);
+  const bool rotated = detail::isRotated(placement.axis);
   const auto pick = [](std::span<const Vec3> v, std::size_t i) -> const Vec3& {
     return v[v.size() == 1 ? 0 : i];
   };
