@@ -28,7 +28,13 @@ PointTree buildPointTree(const ModelArrays& m) {
     CMKIT_ASSERT(nodeNum >= 0 && std::size_t(nodeNum) < m.nodes.size() && place < t.nodes.size());
     const CmNode& n = m.nodes[std::size_t(nodeNum)];
     PointNode& out = t.nodes[place];
-    t.brushes[place] = {n.firstBrushRef, n.numBrushRefs};
+    t.brushes[place] = {std::uint32_t(t.boxes.size()), n.numBrushRefs};
+    for (std::uint32_t r = 0; r < n.numBrushRefs; ++r) {
+      const std::int32_t b = m.brushRefs[std::size_t(n.firstBrushRef + r)];
+      CMKIT_ASSERT(b >= 0 && std::size_t(b) < m.brushes.size());
+      const CmBrush& brush = m.brushes[std::size_t(b)];
+      t.boxes.push_back({brush.bounds, brush.contents, std::uint32_t(b)});
+    }
     t.modelNodes[place] = std::uint32_t(nodeNum);
     const std::uint32_t itemBits = (n.numBrushRefs != 0 ? PointNode::kHasBrushes : 0) |
                                    (n.numPolygonRefs != 0 ? PointNode::kHasPolygons : 0);

@@ -33,10 +33,22 @@ struct PointNode {
   std::uint32_t front() const { return word >> kFrontShift; }
 };
 
-/// The brush list of a node (CmNode's, into the model's brushRefs).
+/// A brush of a node's list as point contents read it first: its bounds and
+/// contents (CmBrush's, copied), which decide whether its planes are read,
+/// and its number in the model. A node's one after another (32 bytes each
+/// in float builds), in place of the node's brushRefs entries and, for
+/// every brush, its record anywhere in memory.
+struct PointBrushBox {
+  Bounds bounds;
+  std::uint32_t contents = 0;
+  std::uint32_t brush = 0;
+};
+
+/// The brush list of a node: its boxes (PointTree::boxes), in the order of
+/// the node's brushRefs entries.
 struct PointBrushes {
-  std::uint32_t firstBrushRef;
-  std::uint32_t numBrushRefs;
+  std::uint32_t firstBox;
+  std::uint32_t numBoxes;
 };
 
 struct PointTree {
@@ -44,6 +56,8 @@ struct PointTree {
   std::vector<PointNode> nodes;
   /// Per node: its brushes (read only where PointNode::hasBrushes).
   std::vector<PointBrushes> brushes;
+  /// The nodes' brushes, node by node in the nodes' order.
+  std::vector<PointBrushBox> boxes;
   /// Per node: the model's node it is (read only where PointNode::hasItems:
   /// a position test tests that node's brushes and polygons).
   std::vector<std::uint32_t> modelNodes;

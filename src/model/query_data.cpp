@@ -81,7 +81,7 @@ ModelMemory modelMemory(const CollisionModel& model) {
   if (const detail::QueryData* d = detail::queryDataOf(model))
     m.queryData = bytes(d->edgeUses) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
                   bytes(d->bvh.uses) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) +
-                  bytes(d->pointTree.modelNodes);
+                  bytes(d->pointTree.boxes) + bytes(d->pointTree.modelNodes);
   return m;
 }
 

@@ -10,9 +10,9 @@
 namespace cmkit::detail {
 
 /// Models with more brushes than this (40 bytes each: 40 KiB, about an L1
-/// data cache) have their brushes prefetched on pointContents' way down; for
-/// smaller ones that only costs. A speed choice only: the same brushes are
-/// tested either way.
+/// data cache), or point trees with more brush boxes (32 bytes each), have
+/// them prefetched on pointContents' way down; for smaller ones that only
+/// costs. A speed choice only: the same brushes are tested either way.
 constexpr std::size_t kPointContentsCachedBrushes = 1024;
 
 /// Whether p is behind every plane (distance < 0): inside the brush they
@@ -59,8 +59,8 @@ constexpr int kPath = 64;
                                                                      const PointTree& tree, const Vec3& p,
                                                                      std::uint32_t mask) {
   const std::span<const CmBrush> brushes = model.brushes();
-  const std::span<const std::int32_t> brushRefs = model.brushRefs();
-  const bool prefetchBrushes = brushes.size() > kPointContentsCachedBrushes;
+  const PointBrushBox* boxes = tree.boxes.data();
+  const bool prefetchBoxes = tree.boxes.size() > kPointContentsCachedBrushes;
   // Indexed by a node's axis; a leaf's (3) is never compared.
   const Real coord[4] = {p.x, p.y, p.z, 0};
   const PointNode* nodes = tree.nodes.data();
@@ -78,11 +78,7 @@ constexpr int kPath = 64;
       if ((node.word & (PointNode::kHasBrushes | 3u)) >= PointNode::kLeafAxis) {
         if (node.hasBrushes()) {
           path[count++] = n;
-          if (prefetchBrushes) {
-            const PointBrushes& list = tree.brushes[n];
-            for (std::uint32_t r = 0; r < list.numBrushRefs; ++r)
-              prefetch(&brushes[std::size_t(brushRefs[list.firstBrushRef + r])]);
-          }
+          if (prefetchBoxes) prefetch(boxes + tree.brushes[n].firstBox);  // (the first two boxes)
         }
         if (axis == PointNode::kLeafAxis) {
           atLeaf = true;
@@ -108,9 +104,11 @@ constexpr int kPath = 64;
     }
     while (count > 0) {
       const PointBrushes& list = tree.brushes[path[--count]];
-      for (std::uint32_t r = 0; r < list.numBrushRefs; ++r) {
-        const CmBrush& b = brushes[std::size_t(brushRefs[list.firstBrushRef + r])];
-        if (brushAdds(model, b, p, mask, contents)) contents |= b.contents;
+      for (const PointBrushBox& box : std::span(boxes + list.firstBox, list.numBoxes)) {
+        // (brushAdds, its first two tests on the box)
+        if (!(box.contents & mask & ~contents) || !box.bounds.containsPoint(p)) continue;
+        const CmBrush& b = brushes[box.brush];
+        if (b.numPlanes != 0 && behindAllPlanes(model.planesOf(b), p)) contents |= box.contents;
       }
     }
   }

@@ -236,8 +236,17 @@ void checkPointNode(const CollisionModel& m, const PointTree& t, std::int32_t no
   EXPECT_EQ(p.hasBrushes(), n.numBrushRefs != 0);
   EXPECT_EQ(p.hasItems(), n.numBrushRefs != 0 || n.numPolygonRefs != 0);
   EXPECT_EQ(t.modelNodes[place], std::uint32_t(nodeNum));
-  EXPECT_EQ(t.brushes[place].firstBrushRef, n.firstBrushRef);
-  EXPECT_EQ(t.brushes[place].numBrushRefs, n.numBrushRefs);
+  // The node's brushes as boxes, in the order of its brushRefs entries.
+  ASSERT_EQ(t.brushes[place].numBoxes, n.numBrushRefs);
+  ASSERT_LE(std::size_t(t.brushes[place].firstBox) + n.numBrushRefs, t.boxes.size());
+  for (std::uint32_t r = 0; r < n.numBrushRefs; ++r) {
+    const detail::PointBrushBox& box = t.boxes[t.brushes[place].firstBox + r];
+    const std::int32_t b = m.brushRefs()[n.firstBrushRef + r];
+    EXPECT_EQ(box.brush, std::uint32_t(b));
+    EXPECT_EQ(box.contents, m.brushes()[std::size_t(b)].contents);
+    EXPECT_EQ(box.bounds.min, m.brushes()[std::size_t(b)].bounds.min);
+    EXPECT_EQ(box.bounds.max, m.brushes()[std::size_t(b)].bounds.max);
+  }
   if (n.isLeaf()) {
     EXPECT_EQ(p.axis(), PointNode::kLeafAxis);
     return;
@@ -259,6 +268,7 @@ TEST(PointTree, IsTheBspTreeNodeForNode) {
   checkPointNode(*world, t, 0, 0, visited);
   EXPECT_EQ(visited, world->nodes().size());
   EXPECT_EQ(t.nodes.size(), world->nodes().size());
+  EXPECT_EQ(t.boxes.size(), world->brushRefs().size()) << "every brushRefs entry, once";
 }
 
 TEST(PointTree, PointContentsThroughItAreThoseThroughTheModelsNodes) {
