@@ -130,8 +130,10 @@ constexpr int kPath = 64;
   // The nodes with brushes are collected on the way down (up to kPath at a
   // time) and their brushes tested from the leaf up: the deepest, smallest
   // brushes first, and a brush that could add no flag to those found is not
-  // tested (the OR does not depend on the order). (The point tree's walk
-  // above does the same.)
+  // tested. With every flag asked (pointContents) the OR does not depend on
+  // the order; with a mask (a point's contentsTest) the flags outside it
+  // that come along do: those of the brushes tested first. (The point tree's
+  // walk above does the same, in the same order.)
   const CmNode* withBrushes[kPath];
   std::uint32_t contents = 0;
   std::int32_t n = 0;
