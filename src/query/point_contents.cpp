@@ -41,11 +41,14 @@ inline bool behindAllPlanes(std::span<const Plane> planes, const Vec3& p) {
 
 namespace {
 
-/// Whether brush b may add a flag of `mask` to `contents` at p: it has such a
-/// flag, p is in its bounds and behind all its planes.
+/// Whether brush b matches `mask`, has a flag not in `contents` and holds p
+/// (in its bounds and behind all its planes): then it adds its flags. (Any
+/// flag not found yet, not only one of the mask's: with a mask the OR is
+/// then every matching brush's, whatever the order the walk meets them in.)
 inline bool brushAdds(const CollisionModel& model, const CmBrush& b, const Vec3& p, std::uint32_t mask,
                       std::uint32_t contents) {
-  if (!(b.contents & mask & ~contents) || !b.bounds.containsPoint(p) || b.numPlanes == 0) return false;
+  if (!(b.contents & ~contents) || !(b.contents & mask) || !b.bounds.containsPoint(p) || b.numPlanes == 0)
+    return false;
   return behindAllPlanes(model.planesOf(b), p);
 }
 
@@ -106,7 +109,7 @@ constexpr int kPath = 64;
       const PointBrushes& list = tree.brushes[path[--count]];
       for (const PointBrushBox& box : std::span(boxes + list.firstBox, list.numBoxes)) {
         // (brushAdds, its first two tests on the box)
-        if (!(box.contents & mask & ~contents) || !box.bounds.containsPoint(p)) continue;
+        if (!(box.contents & ~contents) || !(box.contents & mask) || !box.bounds.containsPoint(p)) continue;
         const CmBrush& b = brushes[box.brush];
         if (b.numPlanes != 0 && behindAllPlanes(model.planesOf(b), p)) contents |= box.contents;
       }
@@ -130,10 +133,9 @@ constexpr int kPath = 64;
   // The nodes with brushes are collected on the way down (up to kPath at a
   // time) and their brushes tested from the leaf up: the deepest, smallest
   // brushes first, and a brush that could add no flag to those found is not
-  // tested. With every flag asked (pointContents) the OR does not depend on
-  // the order; with a mask (a point's contentsTest) the flags outside it
-  // that come along do: those of the brushes tested first. (The point tree's
-  // walk above does the same, in the same order.)
+  // tested (the OR does not depend on the order: with a mask, a point's
+  // contentsTest, it is that of every brush matching the mask). (The point
+  // tree's walk above does the same.)
   const CmNode* withBrushes[kPath];
   std::uint32_t contents = 0;
   std::int32_t n = 0;

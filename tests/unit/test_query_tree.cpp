@@ -75,6 +75,37 @@ TEST(PointContents, SeesEveryBrushOnAPathLongerThanTheWalksBuffer) {
   }
 }
 
+TEST(PointContents, AMaskedPointHasTheFlagsOfEveryBrushMatchingTheMask) {
+  // A point's position test honours the mask (docs/fidelity.md): its
+  // contents are the OR of the brushes holding the point that match the
+  // mask, every flag of each, whatever order the walk meets them in. Here
+  // the deepest brush, met first, is solid only; two above it are solid
+  // with water and solid with player clip: solid asked finds all three.
+  // Both walks: the model's nodes (3 splits) and the point tree (300).
+  for (const int depth : {3, 300}) {
+    const auto contentsOf = [depth](int i) {
+      if (i == depth - 2) return contents::kSolid | contents::kWater;
+      if (i == depth - 3) return contents::kSolid | contents::kPlayerClip;
+      return contents::kSolid;
+    };
+    const ModelPtr m = test::brushAtEveryNode(depth, contentsOf);
+    ASSERT_TRUE(m);
+    QueryWork work;
+    ContentsQuery q;
+    q.position = {1004, 5, 5};  // in every brush, at the deepest leaf
+    q.contentMask = contents::kSolid;
+    EXPECT_EQ(contentsTest(*m, q, work).contents, contents::kSolid | contents::kWater | contents::kPlayerClip)
+        << "depth " << depth;
+    q.contentMask = contents::kWater;
+    EXPECT_EQ(contentsTest(*m, q, work).contents, contents::kSolid | contents::kWater) << "depth " << depth;
+    q.contentMask = contents::kMonsterClip;
+    EXPECT_EQ(contentsTest(*m, q, work).contents, 0u) << "depth " << depth;
+    EXPECT_EQ(test::pointContentsAt(*m, q.position),
+              contents::kSolid | contents::kWater | contents::kPlayerClip)
+        << "depth " << depth;
+  }
+}
+
 TEST(Contents, SeesTheBrushInTheLeafOfADeepTree) {
   // A position test walks both sides of every split it stands on: on the
   // 300-deep chain the walk keeps a far side waiting at every node (more
