@@ -108,7 +108,7 @@ constexpr int kPath = 64;
     while (count > 0) {
       const PointBrushes& list = tree.brushes[path[--count]];
       for (const PointBrushBox& box : std::span(boxes + list.firstBox, list.numBoxes)) {
-        // (brushAdds, its first two tests on the box)
+        // (brushAdds, its tests of contents and bounds on the box)
         if (!(box.contents & ~contents) || !(box.contents & mask) || !box.bounds.containsPoint(p)) continue;
         const CmBrush& b = brushes[box.brush];
         if (b.numPlanes != 0 && behindAllPlanes(model.planesOf(b), p)) contents |= box.contents;
