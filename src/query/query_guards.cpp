@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cmkit/tolerances.h"
+#include "math/axis_lanes.h"
 #include "util/simd.h"
 
 namespace cmkit {
@@ -104,7 +105,7 @@ bool withinDrift(const Mat3& m) {
 /// placements and trace models are not turned); otherwise validateAxis
 /// (finite, right-handed, orthonormal within tol::kAxisRejectTolerance;
 /// re-orthonormalised beyond tol::kAxisDriftEpsilon).
-inline bool checkAxis(Mat3& axis) { return axis.isIdentity() || checkTurnedAxis(axis); }
+inline bool checkAxis(Mat3& axis) { return !isRotated(axis) || checkTurnedAxis(axis); }
 
 bool hasShape(const TraceModel* trm) { return trm && !trm->isPoint(); }
 
