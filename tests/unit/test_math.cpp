@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cmkit/math.h"
+#include "math/axis_lanes.h"
 
 using namespace cmkit;
 
@@ -319,4 +320,32 @@ TEST(Mat3, RotationFromUniformsIsARotationAndHandChecked) {
     mean = mean + m.rows[0] * (Real(1) / kDraws);
   }
   EXPECT_LT(mean.length(), 0.03f);
+}
+
+TEST(Mat3, IsRotatedIsNotIsIdentityElementByElement) {
+  // detail::isRotated (two four-lane compares where there are float lanes)
+  // answers !isIdentity() for every element set to each of these: the
+  // identity's own value, -0 and +0, 1 and -1, a tiny and a huge value,
+  // infinity and NaN. (An off-diagonal -0 counts as 0; a diagonal must be
+  // exactly 1.)
+  const Real values[] = {0,
+                         -Real(0),
+                         1,
+                         -1,
+                         std::numeric_limits<Real>::denorm_min(),
+                         Real(1e30),
+                         std::numeric_limits<Real>::infinity(),
+                         std::numeric_limits<Real>::quiet_NaN(),
+                         Real(1) + std::numeric_limits<Real>::epsilon()};
+  EXPECT_FALSE(detail::isRotated(Mat3::identity()));
+  int turned = 0;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col)
+      for (const Real v : values) {
+        Mat3 m = Mat3::identity();
+        (&m.rows[row].x)[col] = v;
+        EXPECT_EQ(detail::isRotated(m), !m.isIdentity()) << "element " << row << "," << col << " = " << v;
+        turned += detail::isRotated(m);
+      }
+  EXPECT_EQ(turned, 9 * 9 - 6 * 2 - 3 * 1) << "every value but the identity's own (and -0 off the diagonal)";
 }
