@@ -41,15 +41,22 @@ inline bool behindAllPlanes(std::span<const Plane> planes, const Vec3& p) {
 
 namespace {
 
-/// Whether brush b matches `mask`, has a flag not in `contents` and holds p
-/// (in its bounds and behind all its planes): then it adds its flags. (Any
-/// flag not found yet, not only one of the mask's: with a mask the OR is
-/// then every matching brush's, whatever the order the walk meets them in.)
+/// Whether a brush of these contents and bounds is worth its planes' test
+/// at p: it matches `mask`, has a flag not in `found` and its bounds hold p.
+/// (Any flag not found yet, not only one of the mask's: with a mask the OR
+/// is then every matching brush's, whatever the order the walk meets them
+/// in.)
+inline bool mayAdd(std::uint32_t brushContents, const Bounds& bounds, const Vec3& p, std::uint32_t mask,
+                   std::uint32_t found) {
+  return (brushContents & ~found) && (brushContents & mask) && bounds.containsPoint(p);
+}
+
+/// Whether brush b adds its flags to `found` at p: mayAdd, and p is behind
+/// all its planes.
 inline bool brushAdds(const CollisionModel& model, const CmBrush& b, const Vec3& p, std::uint32_t mask,
-                      std::uint32_t contents) {
-  if (!(b.contents & ~contents) || !(b.contents & mask) || !b.bounds.containsPoint(p) || b.numPlanes == 0)
-    return false;
-  return behindAllPlanes(model.planesOf(b), p);
+                      std::uint32_t found) {
+  return mayAdd(b.contents, b.bounds, p, mask, found) && b.numPlanes != 0 &&
+         behindAllPlanes(model.planesOf(b), p);
 }
 
 /// Nodes with brushes collected on the way down at a time (their brushes
@@ -108,8 +115,7 @@ constexpr int kPath = 64;
     while (count > 0) {
       const PointBrushes& list = tree.brushes[path[--count]];
       for (const PointBrushBox& box : std::span(boxes + list.firstBox, list.numBoxes)) {
-        // (brushAdds, its tests of contents and bounds on the box)
-        if (!(box.contents & ~contents) || !(box.contents & mask) || !box.bounds.containsPoint(p)) continue;
+        if (!mayAdd(box.contents, box.bounds, p, mask, contents)) continue;  // (from the box alone)
         const CmBrush& b = brushes[box.brush];
         if (b.numPlanes != 0 && behindAllPlanes(model.planesOf(b), p)) contents |= box.contents;
       }
