@@ -185,47 +185,42 @@ inline void finishRay(detail::Ray& ray, std::uint32_t mask, unsigned signs, RayU
 // Four float lanes, the fourth unused (0): a cast's set-up was a third of
 // its instructions where the index fits the caches, and this takes about 80
 // where the scalar version took about 120 (lt4's casts in cmkit_peers).
-
-/// v's coordinates in lanes 0-2 (lane 3: 0), read as 8 + 4 bytes: a Vec3
-/// may be the last element of an array, so not 16.
-inline __m128 lanesOf(const Vec3& v) {
-  static_assert(sizeof(Vec3) == 3 * sizeof(float));
-  const __m128 xy = _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(&v.x));
-  return _mm_movelh_ps(xy, _mm_load_ss(&v.z));
-}
-
 [[gnu::always_inline]] inline bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd,
                                               std::uint32_t mask, const Placement& placement, bool rotated,
                                               detail::Ray& ray, RayUse use) {
-  constexpr unsigned kXyz = 0x7;  // movemask bits of lanes 0-2
-  const __m128 worldStartLanes = lanesOf(worldStart), worldEndLanes = lanesOf(worldEnd);
-  __m128 start, end;
+  using detail::simd::F4;
+  namespace simd = detail::simd;
+  static_assert(sizeof(Vec3) == 3 * sizeof(float));
+  constexpr unsigned kXyz = 0x7;  // bits of lanes 0-2
+  const F4 worldStartLanes = F4::loadXyz(&worldStart.x), worldEndLanes = F4::loadXyz(&worldEnd.x);
+  F4 start, end;
   if (rotated) {  // (rare: in Vec3, then into lanes)
-    start = lanesOf(placement.axis * (worldStart - placement.origin));
-    end = lanesOf(placement.axis * (worldEnd - placement.origin));
+    const Vec3 s = placement.axis * (worldStart - placement.origin);
+    const Vec3 e = placement.axis * (worldEnd - placement.origin);
+    start = F4::loadXyz(&s.x);
+    end = F4::loadXyz(&e.x);
   } else {
-    const __m128 origin = lanesOf(placement.origin);
-    start = _mm_sub_ps(worldStartLanes, origin);
-    end = _mm_sub_ps(worldEndLanes, origin);
+    const F4 origin = F4::loadXyz(&placement.origin.x);
+    start = worldStartLanes - origin;
+    end = worldEndLanes - origin;
   }
-  const __m128 dir = _mm_sub_ps(end, start);
+  const F4 dir = end - start;
   // One finiteness check, of the direction, covers both ends (as in the
   // scalar version below); x - x is 0 for a finite x, NaN otherwise.
-  const __m128 dirLess = _mm_sub_ps(dir, dir);
-  if ((_mm_movemask_ps(_mm_cmpord_ps(dirLess, dirLess)) & kXyz) != kXyz ||
-      (_mm_movemask_ps(_mm_cmpeq_ps(worldStartLanes, worldEndLanes)) & kXyz) == kXyz)
+  const F4 dirLess = dir - dir;
+  if ((simd::bits(simd::ordered(dirLess, dirLess)) & kXyz) != kXyz ||
+      (simd::bits(worldStartLanes == worldEndLanes) & kXyz) == kXyz)
     return false;
-  const __m128 signBits = _mm_set1_ps(-0.0f);
-  const __m128 huge = _mm_or_ps(_mm_set1_ps(kHugeInverse), _mm_and_ps(dir, signBits));
-  const __m128 large = _mm_cmpgt_ps(_mm_andnot_ps(signBits, dir), _mm_set1_ps(1e-30f));
-  const __m128 inv =
-      _mm_or_ps(_mm_and_ps(large, _mm_div_ps(_mm_set1_ps(1.0f), dir)), _mm_andnot_ps(large, huge));
-  _mm_store_ps(ray.start, start);
-  _mm_store_ps(ray.end, end);
-  _mm_store_ps(ray.dir, dir);
-  _mm_store_ps(ray.inv, inv);
-  _mm_store_ps(ray.startTimesInv, _mm_mul_ps(start, inv));
-  finishRay(ray, mask, unsigned(_mm_movemask_ps(dir)) & kXyz, use);
+  const F4 signBits = F4::all(-0.0f);
+  const F4 huge = F4::all(kHugeInverse) | (dir & signBits);
+  const F4 large = simd::andNot(signBits, dir) > F4::all(1e-30f);
+  const F4 inv = (large & (F4::all(1.0f) / dir)) | simd::andNot(large, huge);
+  start.store(ray.start);
+  end.store(ray.end);
+  dir.store(ray.dir);
+  inv.store(ray.inv);
+  (start * inv).store(ray.startTimesInv);
+  finishRay(ray, mask, simd::bits(dir) & kXyz, use);
   return true;
 }
 #else

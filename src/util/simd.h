@@ -48,6 +48,12 @@ struct F4 {
   static F4 zero() { return {_mm_setzero_ps()}; }
   /// Lanes 0..3 set to a, b, c, d.
   static F4 lanes(float a, float b, float c, float d) { return {_mm_setr_ps(a, b, c, d)}; }
+  /// Three floats (x, y, z of a vector, which may end an array) in lanes
+  /// 0-2, 0 in lane 3: read as 8 + 4 bytes, never past the third.
+  static F4 loadXyz(const float* p) {
+    const __m128 xy = _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(p));
+    return {_mm_movelh_ps(xy, _mm_load_ss(p + 2))};
+  }
   /// Stores the lanes to 16-byte aligned memory.
   void store(float* p) const { _mm_store_ps(p, v); }
 };
@@ -55,6 +61,7 @@ struct F4 {
 inline F4 operator+(F4 a, F4 b) { return {_mm_add_ps(a.v, b.v)}; }
 inline F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
 inline F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+inline F4 operator/(F4 a, F4 b) { return {_mm_div_ps(a.v, b.v)}; }
 inline F4 operator|(F4 a, F4 b) { return {_mm_or_ps(a.v, b.v)}; }
 inline F4 operator&(F4 a, F4 b) { return {_mm_and_ps(a.v, b.v)}; }
 inline F4 operator^(F4 a, F4 b) { return {_mm_xor_ps(a.v, b.v)}; }
@@ -75,6 +82,8 @@ inline F4 operator<=(F4 a, F4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
 inline F4 operator>(F4 a, F4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
 inline F4 operator>=(F4 a, F4 b) { return {_mm_cmpge_ps(a.v, b.v)}; }
 inline F4 operator==(F4 a, F4 b) { return {_mm_cmpeq_ps(a.v, b.v)}; }
+/// A mask of the lanes where neither a nor b is NaN.
+inline F4 ordered(F4 a, F4 b) { return {_mm_cmpord_ps(a.v, b.v)}; }
 /// A mask of the lanes whose bits are the same (-0 and 0 differ; NaNs by their bits).
 inline F4 sameBits(F4 a, F4 b) {
   return {_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v)))};

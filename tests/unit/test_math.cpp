@@ -2,12 +2,17 @@
 // Pluecker and Rotation.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
 #include "cmkit/math.h"
 #include "math/axis_lanes.h"
+#include "util/simd.h"
+
+#include <vector>
 
 using namespace cmkit;
 
@@ -349,3 +354,29 @@ TEST(Mat3, IsRotatedIsNotIsIdentityElementByElement) {
       }
   EXPECT_EQ(turned, 9 * 9 - 6 * 2 - 3 * 1) << "every value but the identity's own (and -0 off the diagonal)";
 }
+
+#ifdef CMKIT_FLOAT_LANES
+TEST(SimdLanes, LoadXyzDivisionAndOrderedAsScalars) {
+  using detail::simd::F4;
+  namespace simd = detail::simd;
+  alignas(16) float out[4];
+  // loadXyz reads the last vector of an array (exactly 24 bytes: a read
+  // past its 12 bytes is caught by the AddressSanitizer build) into lanes
+  // 0-2, with 0 in lane 3.
+  const std::vector<Vec3> vs = {{1, 2, 3}, {4, -5, 6.5f}};
+  F4::loadXyz(&vs.back().x).store(out);
+  EXPECT_EQ(out[0], 4.0f);
+  EXPECT_EQ(out[1], -5.0f);
+  EXPECT_EQ(out[2], 6.5f);
+  EXPECT_EQ(std::bit_cast<std::uint32_t>(out[3]), 0u);
+  // Division lane by lane, bit for bit the scalar quotient (a double
+  // build's casts compute their reciprocals in scalar floats).
+  const float num[4] = {1, -3, 1e-30f, 7}, den[4] = {3, 0.1f, 3e-8f, -0.0f};
+  (F4::lanes(num[0], num[1], num[2], num[3]) / F4::lanes(den[0], den[1], den[2], den[3])).store(out);
+  for (int k = 0; k < 4; ++k)
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(out[k]), std::bit_cast<std::uint32_t>(num[k] / den[k])) << k;
+  // ordered: the lanes where neither side is NaN.
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(simd::bits(simd::ordered(F4::lanes(nan, 1, inf, 0), F4::lanes(0, 2, -inf, nan))), 0x6u);
+}
+#endif
