@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "cmkit/query.h"
@@ -94,43 +95,53 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
 // values at and past the limits (range: 1e9 and the next float, infinities,
 // NaN, -0; axis: -0 and 0 off the diagonal, 1 and its neighbours, -1, a
 // subnormal): the status and contents are those of the guard and the
-// general path.
+// general path. On a model of brushes, and on one of triangles alone (no
+// brush: pointContents decides only the status there, by its own axis test).
 TEST(PointContents, TheUsualQueryTestIsTheGuardsOnEveryFloat) {
-  const CollisionModel m = ModelMaker().addBox({{-10, -10, -10}, {10, 10, 10}}).build();
-  QueryWork work;
-  const Real lim = tol::kMaxQueryCoordinate, inf = std::numeric_limits<Real>::infinity();
-  const Real nan = std::numeric_limits<Real>::quiet_NaN();
-  const Real past = std::nextafter(lim, inf);
-  const std::vector<Real> rangeValues = {lim, -lim, past, -past, inf, -inf, nan, -0.0f, 0.0f, 5, -5};
-  const std::vector<Real> axisValues = {0.0f,
-                                        -0.0f,
-                                        1,
-                                        -1,
-                                        std::nextafter(Real(1), Real(2)),
-                                        std::nextafter(Real(1), Real(0)),
-                                        std::numeric_limits<Real>::denorm_min(),
-                                        -std::numeric_limits<Real>::denorm_min(),
-                                        0.5f,
-                                        nan};
-  int checked = 0, refused = 0;
-  for (int f = 0; f < 15; ++f)
-    for (const Real v : f < 6 ? rangeValues : axisValues) {
-      PointContentsQuery q{{1, 2, 3}, {}};
-      Real* value = f < 3   ? &q.point[f]
-                    : f < 6 ? &q.placement.origin[f - 3]
-                            : &q.placement.axis[(f - 6) / 3][(f - 6) % 3];
-      *value = v;
-      PointContentsQuery guarded = q;
-      const QueryStatus status = detail::guardPointContents(guarded);
-      const std::uint32_t contents =
-          status == QueryStatus::Ok ? detail::pointContentsMasked(m, q.point, q.placement, ~std::uint32_t(0))
-                                    : 0;
-      const PointContentsResult r = pointContents(m, q, work);
-      EXPECT_EQ(r.status, status) << "float " << f << " = " << v;
-      EXPECT_EQ(r.contents, contents) << "float " << f << " = " << v;
-      ++checked;
-      refused += status != QueryStatus::Ok;
-    }
-  EXPECT_GT(refused, 20);  // both outcomes were met
-  EXPECT_GT(checked - refused, 20);
+  std::mt19937 rng(7);
+  const auto mesh = test::twoSidedTerrainModel(4, rng);
+  ASSERT_TRUE(mesh);
+  ASSERT_TRUE(mesh->brushes().empty());
+  const CollisionModel brushes = ModelMaker().addBox({{-10, -10, -10}, {10, 10, 10}}).build();
+  ASSERT_FALSE(brushes.brushes().empty());
+  for (const CollisionModel* model : {&brushes, mesh.get()}) {
+    const CollisionModel& m = *model;
+    QueryWork work;
+    const Real lim = tol::kMaxQueryCoordinate, inf = std::numeric_limits<Real>::infinity();
+    const Real nan = std::numeric_limits<Real>::quiet_NaN();
+    const Real past = std::nextafter(lim, inf);
+    const std::vector<Real> rangeValues = {lim, -lim, past, -past, inf, -inf, nan, -0.0f, 0.0f, 5, -5};
+    const std::vector<Real> axisValues = {0.0f,
+                                          -0.0f,
+                                          1,
+                                          -1,
+                                          std::nextafter(Real(1), Real(2)),
+                                          std::nextafter(Real(1), Real(0)),
+                                          std::numeric_limits<Real>::denorm_min(),
+                                          -std::numeric_limits<Real>::denorm_min(),
+                                          0.5f,
+                                          nan};
+    int checked = 0, refused = 0;
+    for (int f = 0; f < 15; ++f)
+      for (const Real v : f < 6 ? rangeValues : axisValues) {
+        PointContentsQuery q{{1, 2, 3}, {}};
+        Real* value = f < 3   ? &q.point[f]
+                      : f < 6 ? &q.placement.origin[f - 3]
+                              : &q.placement.axis[(f - 6) / 3][(f - 6) % 3];
+        *value = v;
+        PointContentsQuery guarded = q;
+        const QueryStatus status = detail::guardPointContents(guarded);
+        const std::uint32_t contents =
+            status == QueryStatus::Ok
+                ? detail::pointContentsMasked(m, q.point, q.placement, ~std::uint32_t(0))
+                : 0;
+        const PointContentsResult r = pointContents(m, q, work);
+        EXPECT_EQ(r.status, status) << "float " << f << " = " << v;
+        EXPECT_EQ(r.contents, contents) << "float " << f << " = " << v;
+        ++checked;
+        refused += status != QueryStatus::Ok;
+      }
+    EXPECT_GT(refused, 20);  // both outcomes were met
+    EXPECT_GT(checked - refused, 20);
+  }
 }
