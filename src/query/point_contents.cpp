@@ -219,7 +219,7 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
     // element (Mat3::isIdentity), not in isRotated's two 16-byte loads: the
     // caller has just written the query, a load spanning two of its stores
     // waits for both to reach the cache, and no walk follows to hide that
-    // wait (these queries took 1.3x less time; where a walk follows, the
+    // wait (these queries took about 1.25x less time; where a walk follows, the
     // wide loads' fewer instructions are the faster).
     if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) ||
         !placement.axis.isIdentity()) {
