@@ -7,12 +7,11 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "cmkit/math.h"
 #include "math/axis_lanes.h"
 #include "util/simd.h"
-
-#include <vector>
 
 using namespace cmkit;
 
