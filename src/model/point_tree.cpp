@@ -15,7 +15,6 @@ PointTree buildPointTree(const ModelArrays& m) {
   // (A tree of n nodes takes n places, every inner node placing two
   // children; room for two more guards a malformed one.)
   t.nodes.resize(m.nodes.size() + 2);
-  t.brushes.resize(m.nodes.size() + 2);
   t.modelNodes.resize(m.nodes.size() + 2);
   // Depth first: a node's children get the next two free places when the
   // node is placed, and their subtrees follow (front first).
@@ -28,13 +27,6 @@ PointTree buildPointTree(const ModelArrays& m) {
     CMKIT_ASSERT(nodeNum >= 0 && std::size_t(nodeNum) < m.nodes.size() && place < t.nodes.size());
     const CmNode& n = m.nodes[std::size_t(nodeNum)];
     PointNode& out = t.nodes[place];
-    t.brushes[place] = {std::uint32_t(t.boxes.size()), n.numBrushRefs};
-    for (std::uint32_t r = 0; r < n.numBrushRefs; ++r) {
-      const std::int32_t b = m.brushRefs[std::size_t(n.firstBrushRef + r)];
-      CMKIT_ASSERT(b >= 0 && std::size_t(b) < m.brushes.size());
-      const CmBrush& brush = m.brushes[std::size_t(b)];
-      t.boxes.push_back({brush.bounds, brush.contents, std::uint32_t(b)});
-    }
     t.modelNodes[place] = std::uint32_t(nodeNum);
     const std::uint32_t itemBits = (n.numBrushRefs != 0 ? PointNode::kHasBrushes : 0) |
                                    (n.numPolygonRefs != 0 ? PointNode::kHasPolygons : 0);
@@ -53,7 +45,6 @@ PointTree buildPointTree(const ModelArrays& m) {
     pending.emplace_back(n.children[0], front);
   }
   t.nodes.resize(next);
-  t.brushes.resize(next);
   t.modelNodes.resize(next);
   return t;
 }

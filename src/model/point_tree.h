@@ -1,10 +1,9 @@
-// Internal: the BSP tree as point contents, position tests and rotations'
-// box walks read it, made once with the model (query_data.h): 8 bytes a
-// node, a node's two children side by side,
-// the pairs in depth-first order (a walk down a subtree stays near its
-// root's line), so that a walk from the root to a point's leaf reads a few
-// cache lines instead of a node's 36 bytes each, and picks a child by
-// arithmetic instead of a branch whose way is unpredictable.
+// Internal: the BSP tree as position tests and rotations' box walks read it,
+// made once with the model (query_data.h): 8 bytes a node, a node's two
+// children side by side, the pairs in depth-first order (a walk down a
+// subtree stays near its root's line), so that a walk reads a few cache
+// lines instead of a node's 36 bytes each. (Point contents of a large model
+// read its point grid instead, point_grid.h.)
 #pragma once
 
 #include <cstdint>
@@ -18,7 +17,7 @@ namespace cmkit::detail {
 struct PointNode {
   Real dist;  ///< the split plane's coordinate (0 in a leaf)
   /// Bits 0-1: the split axis (kLeafAxis: a leaf); bit 2: the node lists
-  /// brushes (PointTree::brushes); bit 3: it lists polygons; bits 4-31: the
+  /// brushes; bit 3: it lists polygons; bits 4-31: the
   /// front child's number (the back child's is the next).
   std::uint32_t word;
 
@@ -33,31 +32,9 @@ struct PointNode {
   std::uint32_t front() const { return word >> kFrontShift; }
 };
 
-/// A brush of a node's list as point contents read it first: its bounds and
-/// contents (CmBrush's, copied), which decide whether its planes are read,
-/// and its number in the model. A node's one after another (32 bytes each
-/// in float builds), in place of the node's brushRefs entries and, for
-/// every brush, its record anywhere in memory.
-struct PointBrushBox {
-  Bounds bounds;
-  std::uint32_t contents = 0;
-  std::uint32_t brush = 0;
-};
-
-/// The brush list of a node: its boxes (PointTree::boxes), in the order of
-/// the node's brushRefs entries.
-struct PointBrushes {
-  std::uint32_t firstBox;
-  std::uint32_t numBoxes;
-};
-
 struct PointTree {
   /// Node 0 is the root (none for a model without nodes).
   std::vector<PointNode> nodes;
-  /// Per node: its brushes (read only where PointNode::hasBrushes).
-  std::vector<PointBrushes> brushes;
-  /// The nodes' brushes, node by node in the nodes' order.
-  std::vector<PointBrushBox> boxes;
   /// Per node: the model's node it is (read only where PointNode::hasItems:
   /// a position test tests that node's brushes and polygons).
   std::vector<std::uint32_t> modelNodes;

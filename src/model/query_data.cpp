@@ -63,6 +63,7 @@ std::shared_ptr<const QueryData> makeQueryData(const ModelArrays& model) {
     d->bvh = buildPolygonBvh(model, d->edgeUses);
   }
   d->pointTree = buildPointTree(model);
+  d->pointGrid = buildPointGrid(model);
   return d;
 }
 
@@ -80,8 +81,8 @@ ModelMemory modelMemory(const CollisionModel& model) {
              bytes(model.nodes()) + bytes(model.polygonRefs()) + bytes(model.brushRefs());
   if (const detail::QueryData* d = detail::queryDataOf(model))
     m.queryData = bytes(d->edgeUses) + bytes(d->culls) + bytes(d->bvh.nodes) + bytes(d->bvh.leaves) +
-                  bytes(d->bvh.uses) + bytes(d->pointTree.nodes) + bytes(d->pointTree.brushes) +
-                  bytes(d->pointTree.boxes) + bytes(d->pointTree.modelNodes);
+                  bytes(d->bvh.uses) + bytes(d->pointTree.nodes) + bytes(d->pointTree.modelNodes) +
+                  bytes(d->pointGrid.firstBox) + bytes(d->pointGrid.boxes);
   return m;
 }
 

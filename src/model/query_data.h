@@ -24,6 +24,7 @@
 
 #include "cmkit/model.h"
 
+#include "model/point_grid.h"
 #include "model/point_tree.h"
 #include "model/polygon_bvh.h"
 #include "model/query_blocks.h"
@@ -41,6 +42,8 @@ struct QueryData {
   PolygonBvh bvh;
   /// The BSP tree as point contents walk it.
   PointTree pointTree;
+  /// Large models' brushes in a grid for point contents.
+  PointGrid pointGrid;
 };
 
 /// The query data of arrays whose numbers are in range (a sealed model's).

@@ -1,6 +1,7 @@
 // Point contents: the brushes containing a point (every brush on the path
 // from the root to the point's leaf, including those stored at interior
-// nodes, unlike the original), and the public pointContents().
+// nodes, unlike the original; a large model's from the point's cell of its
+// point grid, which lists the same), and the public pointContents().
 #include <span>
 
 #include "query/query_guards.h"
@@ -10,9 +11,8 @@
 namespace cmkit::detail {
 
 /// Models with more brushes than this (40 bytes each: 40 KiB, about an L1
-/// data cache), or point trees with more brush boxes (32 bytes each), have
-/// them prefetched on pointContents' way down; for smaller ones that only
-/// costs. A speed choice only: the same brushes are tested either way.
+/// data cache) have them prefetched on pointContents' way down their nodes;
+/// for smaller ones that only costs. A speed choice only: the same brushes are tested either way.
 constexpr std::size_t kPointContentsCachedBrushes = 1024;
 
 /// Whether p is behind every plane (distance < 0): inside the brush they
@@ -64,68 +64,31 @@ inline bool brushAdds(const CollisionModel& model, const CmBrush& b, const Vec3&
 /// goes on).
 constexpr int kPath = 64;
 
-/// pointContentsMasked through the model's point tree (model/point_tree.h).
-[[gnu::always_inline]] inline std::uint32_t pointContentsThroughTree(const CollisionModel& model,
-                                                                     const PointTree& tree, const Vec3& p,
+/// pointContentsMasked through the model's point grid (model/point_grid.h):
+/// the boxes of the point's cell are the parts of brushes the walk of the
+/// model's nodes would meet there, so the brushes whose planes are tested
+/// are among those the walk tests (the same contents; the OR does not
+/// depend on the order). One cell's list in place of about 20 levels of the
+/// tree, each level's way a guess the processor often got wrong: lt4's point
+/// contents took about 1.4x less time.
+[[gnu::always_inline]] inline std::uint32_t pointContentsThroughGrid(const CollisionModel& model,
+                                                                     const PointGrid& grid, const Vec3& p,
                                                                      std::uint32_t mask) {
+  if (!grid.bounds.containsPoint(p)) return 0;
+  const std::size_t cell = grid.cellOf(p);
   const std::span<const CmBrush> brushes = model.brushes();
-  const PointBrushBox* boxes = tree.boxes.data();
-  const bool prefetchBoxes = tree.boxes.size() > kPointContentsCachedBrushes;
-  // Indexed by a node's axis; a leaf's (3) is never compared.
-  const Real coord[4] = {p.x, p.y, p.z, 0};
-  const PointNode* nodes = tree.nodes.data();
-  std::uint32_t path[kPath];
+  const PointBrushBox* box = grid.boxes.data() + grid.firstBox[cell];
+  const PointBrushBox* end = grid.boxes.data() + grid.firstBox[cell + 1];
   std::uint32_t contents = 0;
-  std::uint32_t n = 0;
-  bool atLeaf = false;
-  while (!atLeaf) {
-    int count = 0;
-    for (;;) {
-      const PointNode node = nodes[n];
-      const std::uint32_t axis = node.axis();
-      // A leaf or a node with brushes (one test for both: most nodes on a
-      // path are neither).
-      if ((node.word & (PointNode::kHasBrushes | 3u)) >= PointNode::kLeafAxis) {
-        if (node.hasBrushes()) {
-          path[count++] = n;
-          if (prefetchBoxes) prefetch(boxes + tree.brushes[n].firstBox);  // (the first two boxes)
-        }
-        if (axis == PointNode::kLeafAxis) {
-          atLeaf = true;
-          break;
-        }
-        if (count == kPath) {  // the path is full: its brushes first, then on from the child
-          n = node.front() + std::uint32_t(!(coord[axis] > node.dist));
-          break;
-        }
-      }
-      // The front child when the point is in front of the split, else the
-      // back one beside it. (A branch on purpose: the processor guesses its
-      // way and loads the next node meanwhile; the choice by arithmetic made
-      // every step wait for its node, 0.89x.)
-      // (The empty asm statement keeps the compiler from turning the branch
-      // into a select.)
-      if (coord[axis] > node.dist) {
-        n = node.front();
-      } else {
-        __asm__ volatile("");
-        n = node.front() + 1;
-      }
-    }
-    while (count > 0) {
-      const PointBrushes& list = tree.brushes[path[--count]];
-      for (const PointBrushBox& box : std::span(boxes + list.firstBox, list.numBoxes)) {
-        if (!mayAdd(box.contents, box.bounds, p, mask, contents)) continue;  // (from the box alone)
-        const CmBrush& b = brushes[box.brush];
-        if (b.numPlanes != 0 && behindAllPlanes(model.planesOf(b), p)) contents |= box.contents;
-      }
-    }
+  for (; box != end; ++box) {
+    if (!mayAdd(box->contents, box->bounds, p, mask, contents)) continue;
+    const CmBrush& b = brushes[box->brush];
+    if (b.numPlanes != 0 && behindAllPlanes(model.planesOf(b), p)) contents |= box->contents;
   }
   return contents;
 }
 
-/// pointContentsMasked for a small model or one without query data (not
-/// through a point tree).
+/// pointContentsMasked for a small model or one without a point grid.
 [[gnu::always_inline]] inline std::uint32_t pointContentsThroughNodes(const CollisionModel& model,
                                                                       const Vec3& p, std::uint32_t mask) {
   const std::span<const CmNode> nodes = model.nodes();
@@ -140,8 +103,7 @@ constexpr int kPath = 64;
   // time) and their brushes tested from the leaf up: the deepest, smallest
   // brushes first, and a brush that could add no flag to those found is not
   // tested (the OR does not depend on the order: with a mask, a point's
-  // contentsTest, it is that of every brush matching the mask). (The point
-  // tree's walk above does the same.)
+  // contentsTest, it is that of every brush matching the mask).
   const CmNode* withBrushes[kPath];
   std::uint32_t contents = 0;
   std::int32_t n = 0;
@@ -181,8 +143,8 @@ constexpr int kPath = 64;
   // No brush, nothing to be inside (a model of patches or meshes alone).
   if (numNodes == 0 || model.brushes().empty()) return 0;
   if (numNodes > kPointTreeMinNodes)
-    if (const QueryData* d = queryDataOf(model); d && !d->pointTree.empty())
-      return pointContentsThroughTree(model, d->pointTree, p, mask);
+    if (const QueryData* d = queryDataOf(model); d && !d->pointGrid.empty())
+      return pointContentsThroughGrid(model, d->pointGrid, p, mask);
   return pointContentsThroughNodes(model, p, mask);
 }
 

@@ -1,11 +1,14 @@
 // cmkit's own query layout of a model (src/model/polygon_bvh.h,
-// point_tree.h): the polygon hierarchy holds every polygon once, with boxes
-// and contents that contain what is below them; the point tree is the BSP
-// tree node for node. (That the queries answer alike with and without it:
+// point_tree.h, point_grid.h): the polygon hierarchy holds every polygon
+// once, with boxes and contents that contain what is below them; the point
+// tree is the BSP tree node for node; the point grid lists at each point the
+// brushes the walk down the tree meets there. (That the queries answer alike with and without it:
 // QueryData.PreparedAndBareModelsAnswerAlike* in test_query_properties.cpp.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <vector>
@@ -17,6 +20,7 @@
 #include "model/twins.h"
 #include "model_fixtures.h"
 #include "test_support.h"
+#include "tree_fixtures.h"
 
 namespace cmkit {
 namespace {
@@ -236,17 +240,6 @@ void checkPointNode(const CollisionModel& m, const PointTree& t, std::int32_t no
   EXPECT_EQ(p.hasBrushes(), n.numBrushRefs != 0);
   EXPECT_EQ(p.hasItems(), n.numBrushRefs != 0 || n.numPolygonRefs != 0);
   EXPECT_EQ(t.modelNodes[place], std::uint32_t(nodeNum));
-  // The node's brushes as boxes, in the order of its brushRefs entries.
-  ASSERT_EQ(t.brushes[place].numBoxes, n.numBrushRefs);
-  ASSERT_LE(std::size_t(t.brushes[place].firstBox) + n.numBrushRefs, t.boxes.size());
-  for (std::uint32_t r = 0; r < n.numBrushRefs; ++r) {
-    const detail::PointBrushBox& box = t.boxes[t.brushes[place].firstBox + r];
-    const std::int32_t b = m.brushRefs()[n.firstBrushRef + r];
-    EXPECT_EQ(box.brush, std::uint32_t(b));
-    EXPECT_EQ(box.contents, m.brushes()[std::size_t(b)].contents);
-    EXPECT_EQ(box.bounds.min, m.brushes()[std::size_t(b)].bounds.min);
-    EXPECT_EQ(box.bounds.max, m.brushes()[std::size_t(b)].bounds.max);
-  }
   if (n.isLeaf()) {
     EXPECT_EQ(p.axis(), PointNode::kLeafAxis);
     return;
@@ -268,10 +261,115 @@ TEST(PointTree, IsTheBspTreeNodeForNode) {
   checkPointNode(*world, t, 0, 0, visited);
   EXPECT_EQ(visited, world->nodes().size());
   EXPECT_EQ(t.nodes.size(), world->nodes().size());
-  EXPECT_EQ(t.boxes.size(), world->brushRefs().size()) << "every brushRefs entry, once";
 }
 
-TEST(PointTree, PointContentsThroughItAreThoseThroughTheModelsNodes) {
+/// The brushes whose bounds hold p among those of the nodes on p's path
+/// down the model's own tree (what point contents test the planes of),
+/// sorted, each once.
+std::vector<std::uint32_t> brushesOnThePath(const CollisionModel& m, const Vec3& p) {
+  std::vector<std::uint32_t> out;
+  for (std::int32_t n = 0;;) {
+    const CmNode& node = m.nodes()[std::size_t(n)];
+    for (const std::int32_t b : m.brushesAt(node))
+      if (m.brushes()[std::size_t(b)].bounds.containsPoint(p)) out.push_back(std::uint32_t(b));
+    if (node.isLeaf()) break;
+    n = p[node.planeType] > node.planeDist ? node.children[0] : node.children[1];
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+/// The brushes whose boxes in p's cell of the grid hold p, sorted, each once.
+std::vector<std::uint32_t> brushesInTheCell(const detail::PointGrid& g, const Vec3& p) {
+  std::vector<std::uint32_t> out;
+  if (!g.bounds.containsPoint(p)) return out;
+  const std::size_t cell = g.cellOf(p);
+  for (std::uint32_t i = g.firstBox[cell]; i < g.firstBox[cell + 1]; ++i)
+    if (g.boxes[i].bounds.containsPoint(p)) out.push_back(g.boxes[i].brush);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+/// Points where the walk's and the grid's edges are: in a random brush's
+/// bounds, each coordinate at random, or at the bounds' faces, or at a split
+/// of the tree within them (exactly, or the next number up, where the walk
+/// turns front), or rounded to an integer (map coordinates are).
+std::vector<Vec3> pointsAtTheEdges(const CollisionModel& m, std::size_t count) {
+  std::mt19937 rng(11);
+  std::vector<Real> splits[3];
+  for (const CmNode& n : m.nodes())
+    if (!n.isLeaf()) splits[n.planeType].push_back(n.planeDist);
+  for (auto& s : splits) std::sort(s.begin(), s.end());
+  std::vector<Vec3> out;
+  while (out.size() < count) {
+    const CmBrush& b =
+        m.brushes()[std::uniform_int_distribution<std::size_t>(0, m.brushes().size() - 1)(rng)];
+    Vec3 p;
+    for (int k = 0; k < 3; ++k) {
+      const Real lo = b.bounds.min[k], hi = b.bounds.max[k];
+      Real c = std::uniform_real_distribution<Real>(lo, hi)(rng);
+      switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
+        case 0:
+          c = lo;
+          break;
+        case 1:
+          c = hi;
+          break;
+        case 2:
+        case 3: {  // a split within the bounds, or the next number up
+          const auto first = std::lower_bound(splits[k].begin(), splits[k].end(), lo);
+          const auto last = std::upper_bound(splits[k].begin(), splits[k].end(), hi);
+          if (first != last) {
+            c = first[std::uniform_int_distribution<std::ptrdiff_t>(0, last - first - 1)(rng)];
+            if (std::uniform_int_distribution<int>(0, 1)(rng)) c = std::nextafter(c, Real(1e30));
+          }
+          break;
+        }
+        case 4:
+          c = std::round(c);
+          break;
+        default:
+          break;
+      }
+      p[k] = c;
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+TEST(PointGrid, ListsAtEachPointTheBrushesTheWalkMeetsThere) {
+  // The grid's cell of a point lists (among others) a box holding it for
+  // exactly the brushes whose bounds hold it on the point's path down the
+  // tree: a brush straddling a split is met only on the side the walk takes
+  // (front: coordinate > split), so its box is cut there. Here the points
+  // lie on brushes' faces and on splits, where a cut one number off shows.
+  const ModelPtr world = lt4World();
+  ASSERT_TRUE(world);
+  const detail::QueryData* d = detail::queryDataOf(*world);
+  ASSERT_NE(d, nullptr);
+  const detail::PointGrid& g = d->pointGrid;
+  ASSERT_FALSE(g.empty()) << "lt4's world has a point grid";
+  ASSERT_EQ(g.firstBox.size(), std::size_t(g.dims[0]) * g.dims[1] * g.dims[2] + 1);
+  ASSERT_EQ(g.firstBox.back(), g.boxes.size());
+  for (const detail::PointBrushBox& box : g.boxes) {
+    ASSERT_LT(box.brush, world->brushes().size());
+    const CmBrush& b = world->brushes()[box.brush];
+    EXPECT_EQ(box.contents, b.contents);
+    EXPECT_TRUE(b.bounds.containsBounds(box.bounds)) << "a box is a part of its brush's bounds";
+  }
+  std::size_t met = 0;
+  for (const Vec3& p : pointsAtTheEdges(*world, 100000)) {
+    const std::vector<std::uint32_t> walk = brushesOnThePath(*world, p);
+    ASSERT_EQ(brushesInTheCell(g, p), walk) << p.x << " " << p.y << " " << p.z;
+    met += !walk.empty();
+  }
+  EXPECT_GT(met, 50000u) << "too few points in a brush's bounds: the test would test little";
+}
+
+TEST(PointGrid, PointContentsThroughItAreThoseThroughTheModelsNodes) {
   const ModelPtr world = lt4World();
   ASSERT_TRUE(world);
   ASSERT_GT(world->nodes().size(), 256u);  // (smaller models are walked from their own nodes)
@@ -279,15 +377,38 @@ TEST(PointTree, PointContentsThroughItAreThoseThroughTheModelsNodes) {
   std::mt19937 rng(7);
   const Bounds b = world->bounds();
   std::uniform_real_distribution<float> x(b.min.x, b.max.x), y(b.min.y, b.max.y), z(b.min.z, b.max.z);
+  std::vector<Vec3> points = pointsAtTheEdges(*world, 20000);
+  for (int i = 0; i < 20000; ++i) points.push_back({x(rng), y(rng), z(rng)});
   QueryWork work;
   int inside = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const PointContentsQuery q{{x(rng), y(rng), z(rng)}, {}};
+  for (const Vec3& p : points) {
+    const PointContentsQuery q{p, {}};
     const std::uint32_t a = pointContents(*world, q, work).contents;
-    ASSERT_EQ(a, pointContents(bare, q, work).contents) << q.point.x << " " << q.point.y << " " << q.point.z;
+    ASSERT_EQ(a, pointContents(bare, q, work).contents) << p.x << " " << p.y << " " << p.z;
     inside += a != 0;
   }
-  EXPECT_GT(inside, 1000) << "too few points inside brushes: the test would test little";
+  EXPECT_GT(inside, 4000) << "too few points inside brushes: the test would test little";
+}
+
+TEST(PointGrid, NoneForSmallModelsModelsWithoutBrushesAndBrushesAsLargeAsTheModel) {
+  const auto gridOf = [](const CollisionModel& m) -> const detail::PointGrid& {
+    return detail::queryDataOf(m)->pointGrid;
+  };
+  // 601 nodes, one brush: a grid of its one box (in each cell it meets).
+  const ModelPtr chain = test::deepChain(300);
+  ASSERT_TRUE(chain);
+  ASSERT_FALSE(gridOf(*chain).empty());
+  for (const detail::PointBrushBox& box : gridOf(*chain).boxes) EXPECT_EQ(box.brush, 0u);
+  // 201 nodes: walked from its own.
+  const ModelPtr small = test::deepChain(100);
+  ASSERT_TRUE(small);
+  EXPECT_TRUE(gridOf(*small).empty());
+  // 300 brushes each nearly as long as the model: every cell of any grid
+  // would list most of them, so none (the walk of the model's nodes).
+  const ModelPtr nested = test::brushAtEveryNode(300, [](int) { return contents::kSolid; });
+  ASSERT_TRUE(nested);
+  EXPECT_TRUE(gridOf(*nested).empty());
+  EXPECT_EQ(test::pointContentsAt(*nested, {1004, 5, 5}), contents::kSolid);
 }
 
 }  // namespace

@@ -438,9 +438,10 @@ TEST(QueryData, PreparedEdgeUsesAndCullsAreTheModels) {
   EXPECT_EQ(detail::queryDataOf(**again)->edgeUses.size(), d->edgeUses.size());
 }
 
-// The query data adds at most twice the model's own arrays (the speed
-// issue's limit: the model with its query data within twice 33f7cee's).
-TEST(QueryData, AtMostTwiceTheModelsArrays) {
+// The query data adds at most 2.5 times the model's own arrays (within the
+// speed issue's limit: the model with its query data within twice
+// 33f7cee's).
+TEST(QueryData, AtMostTwoAndAHalfTimesTheModelsArrays) {
   const auto lt4 = test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map");
   std::vector<ModelPtr> models(lt4.begin(), lt4.end());
   models.push_back(std::make_shared<const CollisionModel>(generatedScene()));
@@ -449,9 +450,9 @@ TEST(QueryData, AtMostTwiceTheModelsArrays) {
     EXPECT_GT(memory.queryData, 0u) << m->name();
     // (The budget: model and query data together at most twice
     // 33f7cee's, whose query data was 0.82x of the arrays on lt4: query
-    // data up to 2.64x the arrays. Each model is held to 2x; lt4's world
-    // takes 1.46x since the edge uses.)
-    EXPECT_LE(memory.queryData, memory.arrays * 2) << m->name();
+    // data up to 2.64x the arrays. Each model is held to 2.5x; lt4's world
+    // takes 2.26x since the point grid, 1.46x before.)
+    EXPECT_LE(memory.queryData, memory.arrays * 5 / 2) << m->name();
   }
   // A copy without it.
   const CollisionModel bare = detail::ModelAccess::withoutQueryData(*models.front());
