@@ -97,7 +97,7 @@ void forCells(const PointGrid& g, const Bounds& b, F&& f) {
 
 PointGrid buildPointGrid(const ModelArrays& m) {
   PointGrid g;
-  if (m.nodes.size() <= kPointTreeMinNodes || m.brushRefs.empty()) return g;
+  if (m.nodes.size() < 2 || m.brushRefs.empty()) return g;
   const std::vector<PointBrushBox> boxes = seenBoxes(m);
   if (boxes.empty()) return g;
   for (const PointBrushBox& b : boxes) {

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "cmkit/model.h"
-#include "model/point_tree.h"  // kPointTreeMinNodes
 
 namespace cmkit::detail {
 
@@ -56,11 +55,11 @@ struct PointGrid {
   std::size_t cellOf(const Vec3& p) const { return cell(cellOf(p.x, 0), cellOf(p.y, 1), cellOf(p.z, 2)); }
 };
 
-/// The point grid of a model with more than kPointTreeMinNodes nodes (the
-/// smaller ones walk their own nodes: shallow and cached); empty for the
-/// others, for a tree that is not one, and where the boxes are so much
-/// larger than the cells that even a coarser grid lists them too often (the
-/// point tree's walk then).
+/// The point grid of a model with brushes and a tree (a model of one leaf
+/// has its brushes' list: point contents read that); empty for the others,
+/// for a tree that is not one, and where the boxes are so much larger than
+/// the cells that even a coarser grid lists them too often (point contents
+/// walk the model's nodes then).
 PointGrid buildPointGrid(const ModelArrays& m);
 
 }  // namespace cmkit::detail

@@ -142,7 +142,7 @@ constexpr int kPath = 64;
   const std::size_t numNodes = model.nodes().size();
   // No brush, nothing to be inside (a model of patches or meshes alone).
   if (numNodes == 0 || model.brushes().empty()) return 0;
-  if (numNodes > kPointTreeMinNodes)
+  if (numNodes > 1)  // (a single leaf is its brushes' list: not worth reading the query data for)
     if (const QueryData* d = queryDataOf(model); d && !d->pointGrid.empty())
       return pointContentsThroughGrid(model, d->pointGrid, p, mask);
   return pointContentsThroughNodes(model, p, mask);

@@ -369,40 +369,59 @@ TEST(PointGrid, ListsAtEachPointTheBrushesTheWalkMeetsThere) {
   EXPECT_GT(met, 50000u) << "too few points in a brush's bounds: the test would test little";
 }
 
-TEST(PointGrid, PointContentsThroughItAreThoseThroughTheModelsNodes) {
-  const ModelPtr world = lt4World();
-  ASSERT_TRUE(world);
-  ASSERT_GT(world->nodes().size(), 256u);  // (smaller models are walked from their own nodes)
-  const CollisionModel bare = detail::ModelAccess::withoutQueryData(*world);
+/// How many of `count` random points in the model's bounds and `count`
+/// points at its brushes' edges are inside a brush, each point's contents
+/// through the grid checked against the walk of the model's nodes.
+int pointContentsAsThroughTheNodes(const CollisionModel& m, std::size_t count) {
+  const CollisionModel bare = detail::ModelAccess::withoutQueryData(m);
   std::mt19937 rng(7);
-  const Bounds b = world->bounds();
+  const Bounds b = m.bounds();
   std::uniform_real_distribution<float> x(b.min.x, b.max.x), y(b.min.y, b.max.y), z(b.min.z, b.max.z);
-  std::vector<Vec3> points = pointsAtTheEdges(*world, 20000);
-  for (int i = 0; i < 20000; ++i) points.push_back({x(rng), y(rng), z(rng)});
+  std::vector<Vec3> points = pointsAtTheEdges(m, count);
+  for (std::size_t i = 0; i < count; ++i) points.push_back({x(rng), y(rng), z(rng)});
   QueryWork work;
   int inside = 0;
   for (const Vec3& p : points) {
     const PointContentsQuery q{p, {}};
-    const std::uint32_t a = pointContents(*world, q, work).contents;
-    ASSERT_EQ(a, pointContents(bare, q, work).contents) << p.x << " " << p.y << " " << p.z;
+    const std::uint32_t a = pointContents(m, q, work).contents;
+    EXPECT_EQ(a, pointContents(bare, q, work).contents) << p.x << " " << p.y << " " << p.z;
+    if (a != pointContents(bare, q, work).contents) break;
     inside += a != 0;
   }
-  EXPECT_GT(inside, 4000) << "too few points inside brushes: the test would test little";
+  return inside;
 }
 
-TEST(PointGrid, NoneForSmallModelsModelsWithoutBrushesAndBrushesAsLargeAsTheModel) {
+TEST(PointGrid, PointContentsThroughItAreThoseThroughTheModelsNodes) {
+  const ModelPtr world = lt4World();
+  ASSERT_TRUE(world);
+  ASSERT_FALSE(detail::queryDataOf(*world)->pointGrid.empty());
+  EXPECT_GT(pointContentsAsThroughTheNodes(*world, 20000), 4000)
+      << "too few points inside brushes: the test would test little";
+  // A small map's (54 nodes).
+  const auto room = test::buildMapModels(test::dataFile("maps/synthetic/box_room.map"));
+  ASSERT_FALSE(room.empty());
+  ASSERT_FALSE(detail::queryDataOf(*room.front())->pointGrid.empty());
+  EXPECT_GT(pointContentsAsThroughTheNodes(*room.front(), 5000), 1000)
+      << "too few points inside brushes: the test would test little";
+}
+
+TEST(PointGrid, NoneForOneLeafModelsWithoutBrushesAndBrushesAsLargeAsTheModel) {
   const auto gridOf = [](const CollisionModel& m) -> const detail::PointGrid& {
     return detail::queryDataOf(m)->pointGrid;
   };
-  // 601 nodes, one brush: a grid of its one box (in each cell it meets).
-  const ModelPtr chain = test::deepChain(300);
-  ASSERT_TRUE(chain);
-  ASSERT_FALSE(gridOf(*chain).empty());
-  for (const detail::PointBrushBox& box : gridOf(*chain).boxes) EXPECT_EQ(box.brush, 0u);
-  // 201 nodes: walked from its own.
-  const ModelPtr small = test::deepChain(100);
-  ASSERT_TRUE(small);
-  EXPECT_TRUE(gridOf(*small).empty());
+  // 21 and 601 nodes, one brush: a grid of its one box (in each cell it meets).
+  for (const int depth : {10, 300}) {
+    const ModelPtr chain = test::deepChain(depth);
+    ASSERT_TRUE(chain);
+    ASSERT_FALSE(gridOf(*chain).empty()) << depth;
+    for (const detail::PointBrushBox& box : gridOf(*chain).boxes) EXPECT_EQ(box.brush, 0u);
+  }
+  // One leaf: its list is the brushes; no grid.
+  const ModelPtr leaf = test::deepChain(0);
+  ASSERT_TRUE(leaf);
+  ASSERT_EQ(leaf->nodes().size(), 1u);
+  EXPECT_TRUE(gridOf(*leaf).empty());
+  EXPECT_EQ(test::pointContentsAt(*leaf, {1005, 5, 5}), contents::kSolid);
   // 300 brushes each nearly as long as the model: every cell of any grid
   // would list most of them, so none (the walk of the model's nodes).
   const ModelPtr nested = test::brushAtEveryNode(300, [](int) { return contents::kSolid; });
