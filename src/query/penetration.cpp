@@ -18,7 +18,7 @@ PenetrationResult penetration(const CollisionModel& model, const PenetrationQuer
   // The trace model's vertices in the model frame.
   Vec3 verts[kMaxTrmVertices];
   int numVerts = 1;
-  const bool modelRotated = isRotated(q.placement.axis);
+  const bool modelRotated = isRotated(q.placement);
   if (isPointTrm(q.trm)) {
     verts[0] = q.position;
   } else {

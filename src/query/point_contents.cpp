@@ -155,7 +155,7 @@ std::uint32_t pointContentsMasked(const CollisionModel& model, const Vec3& point
   // The point, the origin and a turned model's axis were checked by the
   // caller's guard (query_guards.cpp): they are not checked again.
   Vec3 p = point - placement.origin;
-  if (isRotated(placement.axis)) p = placement.axis * p;  // world -> model frame
+  if (isRotated(placement)) p = placement.axis * p;  // world -> model frame
   return pointContentsInModel(model, p, mask);
 }
 
@@ -190,7 +190,7 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
     }
     return r;
   }
-  if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement.axis)) {
+  if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement)) {
     PointContentsQuery checked = query;
     r.status = guardPointContents(checked);
     if (r.status == QueryStatus::Ok)

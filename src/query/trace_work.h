@@ -476,7 +476,7 @@ inline PlaneCull cullByPolygonPlane(TraceWork& tw, const Plane& plane) {
 /// It refers to the query's own axes, which outlive the query's work.
 struct Orientation {
   Orientation(const Mat3& trm, const Placement& model)
-      : trmAxis(&trm), placement(&model), trmRotated(isRotated(trm)), modelRotated(isRotated(model.axis)) {}
+      : trmAxis(&trm), placement(&model), trmRotated(isRotated(trm)), modelRotated(isRotated(model)) {}
   const Mat3* trmAxis;
   const Placement* placement;
   bool trmRotated;

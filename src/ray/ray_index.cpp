@@ -346,7 +346,7 @@ constexpr std::size_t kMaxBlock = std::size_t(1) << 30;
 RayHit RayIndex::cast(const RayCastQuery& query) const {
   if (!data_ || data_->nodes.empty()) return {};
   const detail::RayIndexData& d = *data_;
-  const bool rotated = detail::isRotated(query.placement.axis);
+  const bool rotated = detail::isRotated(query.placement);
   detail::Ray ray;
   if (!prepareRay(query.start, query.end, query.contentMask, query.placement, rotated, ray, RayUse::Single))
     return {};
@@ -376,7 +376,7 @@ void RayIndex::castMany(const RayBatch& batch, std::span<RayHit> out) const {
   std::fill(out.begin(), out.end(), RayHit{});
   if (!data_ || data_->nodes.empty()) return;
   const detail::RayIndexData& d = *data_;
-  const bool rotated = detail::isRotated(placement.axis);
+  const bool rotated = detail::isRotated(placement);
   const auto pick = [](std::span<const Vec3> v, std::size_t i) -> const Vec3& {
     return v[v.size() == 1 ? 0 : i];
   };

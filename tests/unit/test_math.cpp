@@ -327,7 +327,8 @@ TEST(Mat3, RotationFromUniformsIsARotationAndHandChecked) {
 }
 
 TEST(Mat3, IsRotatedIsNotIsIdentityElementByElement) {
-  // detail::isRotated (two four-lane compares where there are float lanes)
+  // detail::isRotated, of an axis and of a placement (two four-lane
+  // compares where there are float lanes)
   // answers !isIdentity() for every element set to each of these: the
   // identity's own value, -0 and +0, 1 and -1, a tiny and a huge value,
   // infinity and NaN. (An off-diagonal -0 counts as 0; a diagonal must be
@@ -342,6 +343,7 @@ TEST(Mat3, IsRotatedIsNotIsIdentityElementByElement) {
                          std::numeric_limits<Real>::quiet_NaN(),
                          Real(1) + std::numeric_limits<Real>::epsilon()};
   EXPECT_FALSE(detail::isRotated(Mat3::identity()));
+  EXPECT_FALSE(detail::isRotated(Placement{}));
   int turned = 0;
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
@@ -349,6 +351,10 @@ TEST(Mat3, IsRotatedIsNotIsIdentityElementByElement) {
         Mat3 m = Mat3::identity();
         (&m.rows[row].x)[col] = v;
         EXPECT_EQ(detail::isRotated(m), !m.isIdentity()) << "element " << row << "," << col << " = " << v;
+        // (The placement's overload reads other bytes: the same answer.)
+        const Placement placement{{Real(3), Real(4), Real(5)}, m};
+        EXPECT_EQ(detail::isRotated(placement), !m.isIdentity())
+            << "element " << row << "," << col << " = " << v;
         turned += detail::isRotated(m);
       }
   EXPECT_EQ(turned, 9 * 9 - 6 * 2 - 3 * 1) << "every value but the identity's own (and -0 off the diagonal)";
