@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cmkit/query.h"
+#include "model/model_access.h"
 #include "model_fixtures.h"
 #include "query/query_guards.h"  // guardPointContents
 #include "query/trace_work.h"    // pointContentsMasked
@@ -32,6 +33,25 @@ TEST(PointContents, SeesBrushesAndHandlesRotation) {
   EXPECT_EQ(water.status, QueryStatus::Ok);
   EXPECT_EQ(water.contents, contents::kWater);
   EXPECT_EQ(pointContents(m, {{25, 5, 5}, turned}, work).contents, 0u);
+}
+
+TEST(PointContents, AOneLeafModelHasTheFlagsOfEveryBrushHoldingThePoint) {
+  // Overlapping brushes in a model of one leaf (its brushes tested in turn,
+  // without a walk): a point in two has both's flags, whatever their order.
+  const CollisionModel m = ModelMaker()
+                               .addBox({{0, 0, 0}, {10, 10, 10}}, contents::kWater)
+                               .addBox({{5, 0, 0}, {15, 10, 10}}, contents::kPlayerClip)
+                               .addBox({{8, 0, 0}, {9, 10, 10}}, contents::kWater)
+                               .build();
+  ASSERT_EQ(m.nodes().size(), 1u);
+  QueryWork work;
+  EXPECT_EQ(pointContents(m, {{2, 5, 5}, {}}, work).contents, contents::kWater);
+  EXPECT_EQ(pointContents(m, {{7, 5, 5}, {}}, work).contents, contents::kWater | contents::kPlayerClip);
+  EXPECT_EQ(pointContents(m, {{8.5, 5, 5}, {}}, work).contents, contents::kWater | contents::kPlayerClip);
+  EXPECT_EQ(pointContents(m, {{12, 5, 5}, {}}, work).contents, contents::kPlayerClip);
+  EXPECT_EQ(pointContents(m, {{20, 5, 5}, {}}, work).contents, 0u);
+  const CollisionModel bare = detail::ModelAccess::withoutQueryData(m);
+  EXPECT_EQ(pointContents(bare, {{7, 5, 5}, {}}, work).contents, contents::kWater | contents::kPlayerClip);
 }
 
 // A brush's planes are tested four at a time where SSE2 float lanes exist:
