@@ -12,6 +12,8 @@
 
 #include "cmkit/query.h"
 #include "cmkit/tolerances.h"
+#include "cmkit/trace_model.h"
+#include "math/axis_lanes.h"
 
 namespace cmkit::detail {
 
@@ -57,6 +59,21 @@ inline bool withinQueryRange(const Vec3& p) {
   constexpr Bits kMaxBits = Bits(std::bit_cast<Bits>(tol::kMaxQueryCoordinate) << 1);
   auto beyond = [](Real v) { return Bits(std::bit_cast<Bits>(v) << 1) > kMaxBits; };
   return (int(beyond(p.x)) | int(beyond(p.y)) | int(beyond(p.z))) == 0;
+}
+
+/// Whether checkCommon (a translation's, a position test's shared checks)
+/// would accept a query and leave it as it is: the position and the origin
+/// in range, neither the placement nor a shaped trace model turned, the
+/// trace model's bounds in range. The usual query; its public call then runs
+/// on the caller's query itself, not on a copy (whose wide loads of fields
+/// the caller has just stored waited for those stores to reach the cache,
+/// and whose stores then stalled the guard's loads the same way).
+inline bool passesCommonChecksUnchanged(const Vec3& position, const Placement& placement,
+                                        const TraceModel* trm, const Mat3& trmAxis) {
+  if (!withinQueryRange(position) || !withinQueryRange(placement.origin) || isRotated(placement))
+    return false;
+  if (!trm || trm->isPoint()) return true;
+  return !isRotated(trmAxis) && withinQueryRange(trm->bounds().min) && withinQueryRange(trm->bounds().max);
 }
 
 /// The result of a refused query: fraction 0, endPos = start, endAxis =

@@ -11,8 +11,11 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "cmkit/query.h"
+#include "cmkit/tolerances.h"
+#include "query/query_guards.h"
 #include "test_support.h"
 
 using namespace cmkit;
@@ -294,4 +297,67 @@ TEST(QueryGuardsCli, QueryShowsTheRefusal) {
       std::string::npos)
       << out;
   EXPECT_NE(out.find("fraction="), std::string::npos) << out;
+}
+
+// translate() and contentsTest() answer the usual query (its guard's
+// checks passed with nothing to change) from the caller's query itself,
+// without the guard's copy (detail::passesCommonChecksUnchanged). For every
+// float of start, end, origin, placement axis and trace-model axis set in
+// turn to values at and past the limits: wherever the shortcut is taken,
+// the guard accepts that query and leaves it bit for bit as it was; and the
+// shortcut is taken for the plain query. A box, and boxes reaching past the
+// range above and below (refused by their size alone).
+TEST(QueryGuardsShortcut, TheUsualQueryIsOneTheGuardPassesUnchanged) {
+  const Real lim = tol::kMaxQueryCoordinate, past = std::nextafter(lim, kInf);
+  const std::vector<Real> rangeValues = {lim, -lim, past, -past, kInf, -kInf, kNaN, -0.0f, 0.0f, 5};
+  const std::vector<Real> axisValues = {0.0f,
+                                        -0.0f,
+                                        1,
+                                        -1,
+                                        std::nextafter(Real(1), Real(2)),
+                                        std::nextafter(Real(1), Real(0)),
+                                        std::numeric_limits<Real>::denorm_min(),
+                                        0.5f,
+                                        kNaN};
+  const TraceModel box = trm("box:-16,-16,0,16,16,72");
+  const TraceModel huge = trm("box:-16,-16,0,1e20,16,72"), hugeBelow = trm("box:-16,-1e20,0,16,16,72");
+  const auto sameBits = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof(a)) == 0; };
+  int taken = 0, notTaken = 0;
+  for (const TraceModel* shape : {&box, &huge, &hugeBelow, static_cast<const TraceModel*>(nullptr)})
+    for (int f = 0; f < 27; ++f)
+      for (const Real v : f < 9 ? rangeValues : axisValues) {
+        TranslationQuery q{shape, Mat3::identity(), {1, 2, 3}, {4, 5, 6}, contents::kMaskSolid, {}, false};
+        Real* value = f < 3    ? &q.start[f]
+                      : f < 6  ? &q.end[f - 3]
+                      : f < 9  ? &q.placement.origin[f - 6]
+                      : f < 18 ? &q.placement.axis[(f - 9) / 3][(f - 9) % 3]
+                               : &q.trmAxis[(f - 18) / 3][(f - 18) % 3];
+        *value = v;
+        const bool shortcut = detail::passesCommonChecksUnchanged(q.start, q.placement, q.trm, q.trmAxis);
+        const bool translationShortcut = shortcut && detail::withinQueryRange(q.end);
+        TranslationQuery t = q;
+        const QueryStatus ts = detail::guardTranslation(t);
+        ContentsQuery c{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
+        const QueryStatus cs = detail::guardContents(c);
+        if (translationShortcut) {
+          EXPECT_EQ(ts, QueryStatus::Ok) << "float " << f << " = " << v;
+          EXPECT_TRUE(sameBits(t.start, q.start) && sameBits(t.end, q.end) &&
+                      sameBits(t.trmAxis, q.trmAxis) && sameBits(t.placement, q.placement))
+              << "float " << f << " = " << v;
+        }
+        if (shortcut) {
+          EXPECT_EQ(cs, QueryStatus::Ok) << "float " << f << " = " << v;
+          EXPECT_TRUE(sameBits(c.position, q.start) && sameBits(c.trmAxis, q.trmAxis) &&
+                      sameBits(c.placement, q.placement))
+              << "float " << f << " = " << v;
+        }
+        taken += translationShortcut;
+        notTaken += !shortcut;
+      }
+  EXPECT_GT(taken, 50);  // both ways were met
+  EXPECT_GT(notTaken, 50);
+  const TranslationQuery plain{&box, Mat3::identity(), {1, 2, 3}, {4, 5, 6}, contents::kMaskSolid, {}, false};
+  EXPECT_TRUE(detail::passesCommonChecksUnchanged(plain.start, plain.placement, plain.trm, plain.trmAxis));
+  EXPECT_FALSE(detail::passesCommonChecksUnchanged(plain.start, plain.placement, &huge, plain.trmAxis));
+  EXPECT_FALSE(detail::passesCommonChecksUnchanged(plain.start, plain.placement, &hugeBelow, plain.trmAxis));
 }
