@@ -1,4 +1,5 @@
-// The BSP tree as point contents walk it (point_tree.h): buildPointTree.
+// The BSP tree as position tests and rotations' box walks read it (point_tree.h):
+// buildPointTree.
 #include "model/point_tree.h"
 
 #include <utility>

@@ -43,8 +43,8 @@ struct PointTree {
 
 /// Models with at most this many nodes are walked from their own nodes: a
 /// small tree is in the cache either way, and fetching the point tree cost
-/// more than it saved (point contents of the small reference maps take
-/// 10-60 ns).
+/// more than it saved (measured when point contents still walked it: those
+/// of the small reference maps take 10-60 ns).
 constexpr std::size_t kPointTreeMinNodes = 256;
 
 /// The point tree of a model's BSP tree (numbers in range, children below

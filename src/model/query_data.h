@@ -8,7 +8,9 @@
 //    node's polygons are the entries firstPolygonRef ..), for a
 //    translation's culls, in blocks of kLanes entries with one array per
 //    number, for SIMD loads;
-//  - the BSP tree in 8 bytes a node for point contents (point_tree.h);
+//  - the BSP tree in 8 bytes a node for position tests and rotations' box
+//    walks (point_tree.h);
+//  - a grid of brush boxes for point contents (point_grid.h);
 //  - the polygons' own hierarchy (polygon_bvh.h), which the translations
 //    walk instead of the BSP tree.
 // Block entry i is lane i % kLanes of block i / kLanes. The edge uses hold 16
