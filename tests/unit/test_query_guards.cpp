@@ -15,6 +15,7 @@
 
 #include "cmkit/query.h"
 #include "cmkit/tolerances.h"
+#include "guard_values.h"
 #include "query/query_guards.h"
 #include "test_support.h"
 
@@ -308,17 +309,7 @@ TEST(QueryGuardsCli, QueryShowsTheRefusal) {
 // shortcut is taken for the plain query. A box, and boxes reaching past the
 // range above and below (refused by their size alone).
 TEST(QueryGuardsShortcut, TheUsualQueryIsOneTheGuardPassesUnchanged) {
-  const Real lim = tol::kMaxQueryCoordinate, past = std::nextafter(lim, kInf);
-  const std::vector<Real> rangeValues = {lim, -lim, past, -past, kInf, -kInf, kNaN, -0.0f, 0.0f, 5};
-  const std::vector<Real> axisValues = {0.0f,
-                                        -0.0f,
-                                        1,
-                                        -1,
-                                        std::nextafter(Real(1), Real(2)),
-                                        std::nextafter(Real(1), Real(0)),
-                                        std::numeric_limits<Real>::denorm_min(),
-                                        0.5f,
-                                        kNaN};
+  const std::vector<Real> rangeValues = test::rangeEdgeValues(), axisValues = test::axisEdgeValues();
   const TraceModel box = trm("box:-16,-16,0,16,16,72");
   const TraceModel huge = trm("box:-16,-16,0,1e20,16,72"), hugeBelow = trm("box:-16,-1e20,0,16,16,72");
   const auto sameBits = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof(a)) == 0; };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cmkit/query.h"
+#include "guard_values.h"
 #include "model/model_access.h"
 #include "model_fixtures.h"
 #include "query/query_guards.h"  // guardPointContents
@@ -127,20 +128,7 @@ TEST(PointContents, TheUsualQueryTestIsTheGuardsOnEveryFloat) {
   for (const CollisionModel* model : {&brushes, mesh.get()}) {
     const CollisionModel& m = *model;
     QueryWork work;
-    const Real lim = tol::kMaxQueryCoordinate, inf = std::numeric_limits<Real>::infinity();
-    const Real nan = std::numeric_limits<Real>::quiet_NaN();
-    const Real past = std::nextafter(lim, inf);
-    const std::vector<Real> rangeValues = {lim, -lim, past, -past, inf, -inf, nan, -0.0f, 0.0f, 5, -5};
-    const std::vector<Real> axisValues = {0.0f,
-                                          -0.0f,
-                                          1,
-                                          -1,
-                                          std::nextafter(Real(1), Real(2)),
-                                          std::nextafter(Real(1), Real(0)),
-                                          std::numeric_limits<Real>::denorm_min(),
-                                          -std::numeric_limits<Real>::denorm_min(),
-                                          0.5f,
-                                          nan};
+    const std::vector<Real> rangeValues = test::rangeEdgeValues(), axisValues = test::axisEdgeValues();
     int checked = 0, refused = 0;
     for (int f = 0; f < 15; ++f)
       for (const Real v : f < 6 ? rangeValues : axisValues) {
