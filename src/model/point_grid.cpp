@@ -104,6 +104,9 @@ PointGrid buildPointGrid(const ModelArrays& m) {
     g.bounds.addPoint(b.bounds.min);
     g.bounds.addPoint(b.bounds.max);
   }
+  // (Cells over a box of infinite or overflowing size would have no size:
+  // the walk of the model's nodes then.)
+  if (!(g.bounds.max - g.bounds.min).isFinite()) return PointGrid{};
   double target = std::min(kMaxCells, kCellsPerBox * double(boxes.size()));
   for (int tries = 0;; ++tries, target /= 8) {
     if (tries == kCoarserTries) return PointGrid{};  // (the tree's walk then)

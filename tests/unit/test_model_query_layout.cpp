@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -428,6 +429,31 @@ TEST(PointGrid, NoneForOneLeafModelsWithoutBrushesAndBrushesAsLargeAsTheModel) {
   ASSERT_TRUE(nested);
   EXPECT_TRUE(gridOf(*nested).empty());
   EXPECT_EQ(test::pointContentsAt(*nested, {1004, 5, 5}), contents::kSolid);
+}
+
+TEST(PointGrid, NoneOverBoxesOfInfiniteSize) {
+  // Arrays only (buildPointGrid takes them before any check): a split at
+  // x = 0, a brush in each leaf; one brush reaching to infinity leaves no
+  // size to divide into cells, so no grid (the nodes' walk answers).
+  ModelArrays m;
+  m.nodes.resize(3);
+  m.nodes[0].planeType = 0;
+  m.nodes[0].children[0] = 1;
+  m.nodes[0].children[1] = 2;
+  m.brushes.resize(2);
+  m.brushes[0].bounds = {{1, 0, 0}, {10, 10, 10}};
+  m.brushes[1].bounds = {{-10, 0, 0}, {-1, 10, 10}};
+  m.brushRefs = {0, 1};
+  m.nodes[1].firstBrushRef = 0;
+  m.nodes[1].numBrushRefs = 1;
+  m.nodes[2].firstBrushRef = 1;
+  m.nodes[2].numBrushRefs = 1;
+  EXPECT_FALSE(detail::buildPointGrid(m).empty());
+  m.brushes[1].bounds.min.x = -std::numeric_limits<Real>::infinity();
+  EXPECT_TRUE(detail::buildPointGrid(m).empty());
+  m.brushes[1].bounds.min.x = -std::numeric_limits<Real>::max();
+  m.brushes[0].bounds.max.x = std::numeric_limits<Real>::max();  // (the size overflows)
+  EXPECT_TRUE(detail::buildPointGrid(m).empty());
 }
 
 }  // namespace
