@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "cmkit/contents.h"
@@ -454,6 +455,18 @@ TEST(PointGrid, NoneOverBoxesOfInfiniteSize) {
   m.brushes[1].bounds.min.x = -std::numeric_limits<Real>::max();
   m.brushes[0].bounds.max.x = std::numeric_limits<Real>::max();  // (the size overflows)
   EXPECT_TRUE(detail::buildPointGrid(m).empty());
+  // The same from a .cm file (its reader takes bounds that large): the
+  // model loads, has no grid, and its point contents are its brush's.
+  std::string cm = test::deepChainCm(3);
+  const std::string bounds = "( 1000 0 0 ) ( 1010 10 10 )";
+  ASSERT_NE(cm.find(bounds), std::string::npos);
+  cm.replace(cm.find(bounds), bounds.size(), "( -3e38 0 0 ) ( 3e38 10 10 )");
+  auto f = parseCmText(cm, "huge.cm", MaterialTable{});
+  ASSERT_TRUE(f.ok()) << f.error().toString();
+  const CollisionModel& huge = *f->models.front();
+  EXPECT_TRUE(detail::queryDataOf(huge)->pointGrid.empty());
+  EXPECT_EQ(test::pointContentsAt(huge, {1005, 5, 5}), contents::kSolid);
+  EXPECT_EQ(test::pointContentsAt(huge, {5, 5, 5}), 0u);
 }
 
 }  // namespace
