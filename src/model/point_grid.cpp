@@ -120,6 +120,7 @@ PointGrid buildPointGrid(const ModelArrays& m) {
         ++lists;
       });
     if (lists > kMaxListsPerBox * boxes.size()) continue;
+    if (lists > std::numeric_limits<std::uint32_t>::max()) return PointGrid{};  // (firstBox is 32 bits)
     for (std::size_t c = 0; c < cells; ++c) first[c + 1] += first[c];
     g.boxes.resize(lists);
     g.firstBox = first;
