@@ -1,7 +1,7 @@
 // Point contents: the brushes containing a point (every brush on the path
 // from the root to the point's leaf, including those stored at interior
-// nodes, unlike the original; a large model's from the point's cell of its
-// point grid, which lists the same), and the public pointContents().
+// nodes, unlike the original; for a model with a tree, from the point's cell
+// of its point grid, which lists the same), and the public pointContents().
 #include <span>
 
 #include "query/query_guards.h"
@@ -12,7 +12,8 @@ namespace cmkit::detail {
 
 /// Models with more brushes than this (40 bytes each: 40 KiB, about an L1
 /// data cache) have them prefetched on pointContents' way down their nodes;
-/// for smaller ones that only costs. A speed choice only: the same brushes are tested either way.
+/// for smaller ones that only costs. A speed choice only: the same brushes
+/// are tested either way.
 constexpr std::size_t kPointContentsCachedBrushes = 1024;
 
 /// Whether p is behind every plane (distance < 0): inside the brush they
@@ -67,8 +68,8 @@ constexpr int kPath = 64;
 /// pointContentsMasked through the model's point grid (model/point_grid.h):
 /// the boxes of the point's cell are the parts of brushes the walk of the
 /// model's nodes would meet there, so the brushes whose planes are tested
-/// are among those the walk tests (the same contents; the OR does not
-/// depend on the order). One cell's list in place of about 20 levels of the
+/// are those the walk tests (the same contents; the OR does not depend on
+/// the order). One cell's list in place of about 20 levels of the
 /// tree, each level's way a guess the processor often got wrong: lt4's point
 /// contents took about 1.4x less time.
 [[gnu::always_inline]] inline std::uint32_t pointContentsThroughGrid(const CollisionModel& model,
@@ -88,7 +89,8 @@ constexpr int kPath = 64;
   return contents;
 }
 
-/// pointContentsMasked for a small model or one without a point grid.
+/// pointContentsMasked for a model without a point grid (a copy without
+/// query data, or boxes too large or too far apart for cells).
 [[gnu::always_inline]] inline std::uint32_t pointContentsThroughNodes(const CollisionModel& model,
                                                                       const Vec3& p, std::uint32_t mask) {
   const std::span<const CmNode> nodes = model.nodes();
