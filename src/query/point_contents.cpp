@@ -187,20 +187,6 @@ PointContentsResult pointContents(const CollisionModel& model, const PointConten
   // query costs a few tens of nanoseconds: the guard's copy and calls
   // showed).
   const Placement& placement = query.placement;
-  if (model.nodes().empty() || model.brushes().empty()) {
-    // No brush, nothing to be inside (a model of meshes or patches alone):
-    // only the status is to be decided. (The caller has just written the
-    // query; isRotated of the placement reads the axis where a placement
-    // written as a whole was stored, so its loads are forwarded from those
-    // stores: these queries took 1.2x less time than with Mat3::isIdentity's
-    // nine element loads, and those 1.25x less than with the axis's loads
-    // spanning two stores each, which waited for them to reach the cache.)
-    if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement)) {
-      PointContentsQuery checked = query;
-      r.status = guardPointContents(checked);
-    }
-    return r;
-  }
   if (!withinQueryRange(query.point) || !withinQueryRange(placement.origin) || isRotated(placement)) {
     PointContentsQuery checked = query;
     r.status = guardPointContents(checked);

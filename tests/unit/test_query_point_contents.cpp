@@ -117,7 +117,7 @@ TEST(PointContents, PlanesFourAtATimeAgreeWithOneByOne) {
 // NaN, -0; axis: -0 and 0 off the diagonal, 1 and its neighbours, -1, a
 // subnormal): the status and contents are those of the guard and the
 // general path. On a model of brushes, and on one of triangles alone (no
-// brush: pointContents decides only the status there, by its own axis test).
+// brush: contents 0 whatever the point, so only the status tells).
 TEST(PointContents, TheUsualQueryTestIsTheGuardsOnEveryFloat) {
   std::mt19937 rng(7);
   const auto mesh = test::twoSidedTerrainModel(4, rng);
