@@ -9,8 +9,7 @@ namespace cmkit {
 using namespace detail;  // the query internals (trace_work.h)
 
 ContentsResult contentsTest(const CollisionModel& model, const ContentsQuery& query, QueryWork& work) {
-  if (passesCommonChecksUnchanged(query.position, query.placement, query.trm, query.trmAxis))
-    return contentsTestGuarded(model, query, work);
+  if (passesGuardUnchanged(query)) return contentsTestGuarded(model, query, work);
   ContentsQuery q = query;
   if (const QueryStatus st = guardContents(q); st != QueryStatus::Ok) {
     ContentsResult r;

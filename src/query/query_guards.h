@@ -76,6 +76,17 @@ inline bool passesCommonChecksUnchanged(const Vec3& position, const Placement& p
   return !isRotated(trmAxis) && withinQueryRange(trm->bounds().min) && withinQueryRange(trm->bounds().max);
 }
 
+/// passesCommonChecksUnchanged for a translation: its end in range too
+/// (guardTranslation's one check more). translate() and contentsTest() run
+/// such queries without the guard's copy.
+inline bool passesGuardUnchanged(const TranslationQuery& q) {
+  return withinQueryRange(q.end) && passesCommonChecksUnchanged(q.start, q.placement, q.trm, q.trmAxis);
+}
+/// passesCommonChecksUnchanged for a position test (guardContents' checks).
+inline bool passesGuardUnchanged(const ContentsQuery& q) {
+  return passesCommonChecksUnchanged(q.position, q.placement, q.trm, q.trmAxis);
+}
+
 /// The result of a refused query: fraction 0, endPos = start, endAxis =
 /// trmAxis, no contact.
 TraceResult refusedTrace(const Vec3& start, const Mat3& trmAxis, QueryStatus status);

@@ -224,9 +224,7 @@ namespace cmkit {
 using namespace detail;  // the query internals (trace_work.h)
 
 TraceResult translate(const CollisionModel& model, const TranslationQuery& query, QueryWork& work) {
-  if (withinQueryRange(query.end) &&
-      passesCommonChecksUnchanged(query.start, query.placement, query.trm, query.trmAxis))
-    return translateGuarded(model, query, work);
+  if (passesGuardUnchanged(query)) return translateGuarded(model, query, work);
   TranslationQuery q = query;
   if (const QueryStatus st = guardTranslation(q); st != QueryStatus::Ok)
     return refusedTrace(query.start, query.trmAxis, st);

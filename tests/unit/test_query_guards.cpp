@@ -302,7 +302,7 @@ TEST(QueryGuardsCli, QueryShowsTheRefusal) {
 
 // translate() and contentsTest() answer the usual query (its guard's
 // checks passed with nothing to change) from the caller's query itself,
-// without the guard's copy (detail::passesCommonChecksUnchanged). For every
+// without the guard's copy (detail::passesGuardUnchanged). For every
 // float of start, end, origin, placement axis and trace-model axis set in
 // turn to values at and past the limits: wherever the shortcut is taken,
 // the guard accepts that query and leaves it bit for bit as it was; and the
@@ -324,11 +324,11 @@ TEST(QueryGuardsShortcut, TheUsualQueryIsOneTheGuardPassesUnchanged) {
                       : f < 18 ? &q.placement.axis[(f - 9) / 3][(f - 9) % 3]
                                : &q.trmAxis[(f - 18) / 3][(f - 18) % 3];
         *value = v;
-        const bool shortcut = detail::passesCommonChecksUnchanged(q.start, q.placement, q.trm, q.trmAxis);
-        const bool translationShortcut = shortcut && detail::withinQueryRange(q.end);
+        ContentsQuery c{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
+        const bool translationShortcut = detail::passesGuardUnchanged(q);
+        const bool shortcut = detail::passesGuardUnchanged(c);
         TranslationQuery t = q;
         const QueryStatus ts = detail::guardTranslation(t);
-        ContentsQuery c{q.trm, q.trmAxis, q.start, q.contentMask, q.placement};
         const QueryStatus cs = detail::guardContents(c);
         if (translationShortcut) {
           EXPECT_EQ(ts, QueryStatus::Ok) << "float " << f << " = " << v;
