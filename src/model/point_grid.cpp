@@ -14,8 +14,9 @@ namespace {
 
 /// Cells aimed at per box: about a box a cell on average (a box spans
 /// several); a query's cell then lists about ten boxes on lt4's world, where
-/// the queries are near its walls. Four took 1.05x the time, sixteen 0.97x
-/// with 1.5x the memory.
+/// the queries are near its walls. Fewer cells were slower, more a few per
+/// cent faster for half as much memory again (docs/performance.md, "Point
+/// contents from a grid").
 constexpr double kCellsPerBox = 8;
 /// At most this many cells (4 bytes each).
 constexpr double kMaxCells = double(1 << 20);

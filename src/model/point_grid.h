@@ -1,5 +1,5 @@
-// Internal: a uniform grid over a large model's brushes for point contents
-// (made once with the model, query_data.h). Each cell lists, as boxes, the
+// Internal: a uniform grid over the brushes of a model with a tree, for
+// point contents (made once with the model, query_data.h). Each cell lists, as boxes, the
 // brushes whose part seen by the BSP walk meets it: a brush stored at a node
 // is seen by the points of that node's region (front: coordinate > split,
 // back: <= split) within the brush's bounds, so each (node, brush) pair is

@@ -2,8 +2,8 @@
 // made once with the model (query_data.h): 8 bytes a node, a node's two
 // children side by side, the pairs in depth-first order (a walk down a
 // subtree stays near its root's line), so that a walk reads a few cache
-// lines instead of a node's 36 bytes each. (Point contents of a large model
-// read its point grid instead, point_grid.h.)
+// lines instead of a node's 36 bytes each. (Point contents read the model's
+// point grid instead, point_grid.h.)
 #pragma once
 
 #include <cstdint>

@@ -42,9 +42,9 @@ struct QueryData {
   std::vector<CullBlock> culls;
   /// The polygons' hierarchy (kCullBlocks builds; else empty).
   PolygonBvh bvh;
-  /// The BSP tree as point contents walk it.
+  /// The BSP tree as position tests and rotations' box walks read it.
   PointTree pointTree;
-  /// Large models' brushes in a grid for point contents.
+  /// The brushes in a grid for point contents (models with a tree).
   PointGrid pointGrid;
 };
 
