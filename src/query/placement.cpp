@@ -59,20 +59,6 @@ void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const 
   placeTrmTopology(tw, trm, o);
 }
 
-void placeTrmEdges(TraceWork& tw) {
-  for (int i = 1; i <= tw.numEdges; ++i) {
-    WorkEdge& e = tw.edges[std::size_t(i)];
-    // From locals: read back through e, the ends would be reloaded after
-    // every store (the compiler must assume the arrays may overlap).
-    const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;
-    const Vec3 end = tw.vertices[std::size_t(e.vertexNum[1])].p;
-    e.start = start;
-    e.end = end;
-    e.pl = Pluecker::fromLine(start, end);
-    e.used = true;
-  }
-}
-
 void contactToWorld(ContactInfo& c, const Placement& placement, bool rotated) {
   if (rotated) {
     c.normal = c.normal * placement.axis;

@@ -14,13 +14,13 @@ namespace cmkit::detail {
 
 namespace {
 
-/// The trace model's edges, edge lines and polygon planes for a position
-/// test, once (most position tests meet no polygon past its culls).
+/// The trace model's edges' vertex numbers and its polygons' planes for a
+/// position test, once (most position tests meet no polygon past its
+/// culls); the edges' lines each when first read (placedEdge).
 void placePositionTestFeatures(TraceWork& tw) {
   if (tw.featuresPlaced) return;
   tw.featuresPlaced = true;
   placeTrmTopology(tw, *tw.placedTrm, *tw.placedOrientation);
-  placeTrmEdges(tw);
   for (int i = 0; i < tw.numPolys; ++i) {
     WorkPolygon& wp = tw.polys[std::size_t(i)];
     wp.used = true;
@@ -34,6 +34,19 @@ void placePositionTestFeatures(TraceWork& tw) {
     rows.dist[i % 4] = wp.plane.dist;
 #endif
   }
+}
+
+/// Trace-model edge i with its line (Pluecker::fromLine from its first
+/// vertex to its second), made on first use. (A position test reads no
+/// edge's ends.)
+const WorkEdge& placedEdge(TraceWork& tw, int i) {
+  WorkEdge& e = tw.edges[std::size_t(i)];
+  if (!((tw.edgeLinesPlaced >> i) & 1u)) {
+    tw.edgeLinesPlaced |= std::uint64_t(1) << i;
+    e.pl = Pluecker::fromLine(tw.vertices[std::size_t(e.vertexNum[0])].p,
+                              tw.vertices[std::size_t(e.vertexNum[1])].p);
+  }
+  return e;
 }
 
 /// Which side of trace-model edge te's line a model edge's line passes: the
@@ -229,9 +242,10 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
     behind |= std::uint32_t(poly.plane.distance(tw.vertices[std::size_t(i)].p) < 0) << i;
 #endif
   for (int i = 1; i <= tw.numEdges; ++i) {
-    const WorkEdge& te = tw.edges[std::size_t(i)];
-    const unsigned flip = (behind >> te.vertexNum[0]) & 1u;
-    if (flip == ((behind >> te.vertexNum[1]) & 1u)) continue;
+    const WorkEdge& topology = tw.edges[std::size_t(i)];
+    const unsigned flip = (behind >> topology.vertexNum[0]) & 1u;
+    if (flip == ((behind >> topology.vertexNum[1]) & 1u)) continue;
+    const WorkEdge& te = placedEdge(tw, i);
     std::size_t j = 0;
     for (; j < edges.size(); ++j) {
       const std::int32_t edgeNum = edges[j];
@@ -259,7 +273,7 @@ bool trmCrossesPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygon& pol
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
       for (int k = 0; k < tp.source->numEdges; ++k) {
         const int trmEdgeNum = tp.source->edges[std::size_t(k)];
-        const WorkEdge& te = tw.edges[std::size_t(std::abs(trmEdgeNum))];
+        const WorkEdge& te = placedEdge(tw, std::abs(trmEdgeNum));
         const unsigned side = edgeLineSide(te, s.polygonEdgeLines[i]);
         if (unsigned(trmEdgeNum < 0) ^ side ^ flip) return false;
       }
@@ -351,6 +365,35 @@ bool testTrmInNodePolygons(TraceWork& tw, const CmNode& node) {
   return testTrmInPolygons(tw, tw.model.polygonsAt(node));
 }
 
+namespace {
+
+/// Places the trace model's vertices at the position (placeTrmVertices)
+/// and returns their extent from the centre: Bounds::addPoint of each
+/// p - start, from empty bounds. An unturned trace model's in one loop, in
+/// locals (read back through tw, each vertex would wait for its stores).
+Bounds placeVerticesAndExtent(TraceWork& tw, const TraceModel& trm, const Orientation& o,
+                              const Vec3& position) {
+  Bounds size;
+  const Vec3 start = tw.start;
+  if (o.trmRotated || o.modelRotated) {
+    placeTrmVertices(tw, trm, o, position, allTrmVertices(tw.numVerts));
+    for (int i = 0; i < tw.numVerts; ++i) size.addPoint(tw.vertices[std::size_t(i)].p - start);
+    return size;
+  }
+  const Vec3 relative = position - o.placement->origin;
+  for (int i = 0; i < tw.numVerts; ++i) {
+    const Vec3 p = placedTrmVertex(trm, o, i, relative);
+    Vec3& v = tw.vertices[std::size_t(i)].p;
+    v.x = p.x;
+    v.y = p.y;
+    v.z = p.z;
+    size.addPoint(p - start);
+  }
+  return size;
+}
+
+}  // namespace
+
 void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position,
                        std::uint32_t mask) {
   tw.fraction = 1;
@@ -360,12 +403,10 @@ void setupPositionTest(TraceWork& tw, const TraceModel& trm, const Orientation& 
   tw.pointTrace = false;
   tw.quickExit = false;
   placeTrmFrame(tw, trm, o, position);
-  placeTrmVertices(tw, trm, o, position, allTrmVertices(tw.numVerts));
   tw.placedTrm = &trm;  // the edges and polygons: placePositionTestFeatures
   tw.placedOrientation = &o;
   tw.end = tw.start;
-  tw.size.clear();
-  for (int i = 0; i < tw.numVerts; ++i) tw.size.addPoint(tw.vertices[std::size_t(i)].p - tw.start);
+  tw.size = placeVerticesAndExtent(tw, trm, o, position);
   tw.featuresPlaced = false;
   for (int i = 0; i < 3; ++i) {
     tw.extents[i] = (std::fabs(tw.size.min[i]) > std::fabs(tw.size.max[i]) ? std::fabs(tw.size.min[i])

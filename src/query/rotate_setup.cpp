@@ -171,7 +171,6 @@ Real rotatePart(const CollisionModel& model, const RotationQuery& q, const Rotat
       const std::size_t a = std::size_t(e.vertexNum[0]), b = std::size_t(e.vertexNum[1]);
       e.start = {arcs.px[a], arcs.py[a], arcs.pz[a]};
       e.end = {arcs.px[b], arcs.py[b], arcs.pz[b]};
-      e.used = true;
       rw.usedEdges |= (((rw.usedVertices >> a) | (rw.usedVertices >> b)) & 1u) << (i - 1);
     }
     rw.edgeLinesSet = false;

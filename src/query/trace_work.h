@@ -36,7 +36,6 @@ struct WorkEdge {
   int vertexNum[2] = {0, 0};
   Pluecker pl;  ///< the edge line start -> end
   Vec3 cross;   ///< normal of the plane swept by the edge (translation)
-  bool used = false;
 };
 
 /// A trace-model polygon during a query.
@@ -281,6 +280,11 @@ struct TraceWork {
   /// lines, polygon planes; translations also the vertices' paths) is placed:
   /// made on the first such polygon, since most queries meet few or none.
   bool featuresPlaced = false;
+  /// Position tests: bit i, trace-model edge i's line is made (each when a
+  /// polygon test first reads it: most read a few edges). None at the start
+  /// of a query (a TraceWork is made per query; the lines in the scratch
+  /// are the last query's).
+  std::uint64_t edgeLinesPlaced = 0;
   // Translation: the trace-model features used (facing the movement), as
   // bit masks set up once: bit v for vertex v (whose movement line
   // WorkVertex::pl is set), bit i for edge i, bit j for polygon j.
@@ -547,9 +551,6 @@ void placeTrmVertices(TraceWork& tw, const TraceModel& trm, const Orientation& o
 void placeTrmTopology(TraceWork& tw, const TraceModel& trm, const Orientation& o);
 /// All three, every vertex.
 void placeTrm(TraceWork& tw, const TraceModel& trm, const Orientation& o, const Vec3& position);
-
-/// Sets every trace-model edge's ends and line from tw's placed vertices, marked used.
-void placeTrmEdges(TraceWork& tw);
 
 /// Moves a contact from the model's frame to the world; `rotated`: the
 /// placement's axis is not the identity.

@@ -352,7 +352,9 @@ void placeTranslationFeatures(TraceWork& tw) {
     WorkEdge& e = tw.edges[std::size_t(i)];
     e.vertexNum[0] = trm.edgeVertex(i, 0);
     e.vertexNum[1] = trm.edgeVertex(i, 1);
-    const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;  // (locals: as placeTrmEdges)
+    // (Locals: read back through e, the ends would be reloaded after every
+    // store, the compiler assuming the arrays may overlap.)
+    const Vec3 start = tw.vertices[std::size_t(e.vertexNum[0])].p;
     const Vec3 end = tw.vertices[std::size_t(e.vertexNum[1])].p;
     e.start = start;
     e.end = end;

@@ -108,7 +108,10 @@ TEST(QueryProperties, GeneratedSceneFreeMovesEndFree) { checkFreeMovesEndFree(ge
 // meeting the same features as its own earlier runs (a mark left set would
 // skip a test). On lt4's world the translations walk the polygons'
 // hierarchy and mark edges and vertices. Then position tests, which mark
-// brushes and polygons, on the same QueryWork after the translations.
+// brushes and polygons and make the trace model's edge lines a polygon's
+// test reads (placedEdge: a line left in the scratch by the query before is
+// another position's), on the same QueryWork after the translations: the
+// same contents and contact (this fails when placedEdge makes no line).
 TEST(QueryProperties, ReusedQueryWorkAnswersAsFreshOnes) {
   const auto models = test::buildMapModels(std::filesystem::path(CMKIT_SOURCE_DIR) / "data/maps/lt4/lt4.map");
   ASSERT_FALSE(models.empty());
@@ -147,13 +150,22 @@ TEST(QueryProperties, ReusedQueryWorkAnswersAsFreshOnes) {
     ASSERT_EQ(a.contact.trmFeature, b.contact.trmFeature) << i;
     hits += a.fraction < 1;
   }
+  int stuck = 0;
   for (int i = 0; i < 600; ++i) {
     const Move& mv = moves[std::size_t(i) % moves.size()];
     const ContentsQuery c{mv.trm, mv.axis, mv.end, contents::kMaskSolid, {}};
     QueryWork fresh;
-    ASSERT_EQ(contentsTest(m, c, reused).contents, contentsTest(m, c, fresh).contents) << i;
+    const ContentsResult a = contentsTest(m, c, reused), b = contentsTest(m, c, fresh);
+    ASSERT_EQ(a.contents, b.contents) << i;
+    ASSERT_EQ(a.trace.contact.type, b.trace.contact.type) << i;
+    ASSERT_EQ(a.trace.contact.normal, b.trace.contact.normal) << i;
+    ASSERT_EQ(a.trace.contact.point, b.trace.contact.point) << i;
+    ASSERT_EQ(a.trace.contact.modelFeature, b.trace.contact.modelFeature) << i;
+    ASSERT_EQ(a.trace.contact.trmFeature, b.trace.contact.trmFeature) << i;
+    stuck += a.contents != 0;
   }
   EXPECT_GT(hits, 500);  // most moves through lt4 are stopped: the tests were made
+  EXPECT_GT(stuck, 50);  // and some of their ends are in solid: so were the position tests
 }
 
 // The marks' 16-bit stamps run out every 65 535 queries; every mark is then
