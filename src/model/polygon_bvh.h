@@ -46,6 +46,8 @@ static_assert(sizeof(BvhNode) == 128);
 struct alignas(64) BvhLeaf : CullBlock {
   /// A lane's polygon number with this bit: it has a twin (BvhLeaf::twin).
   static constexpr std::int32_t kHasTwin = std::int32_t(1) << 30;
+  /// The sign bit: set in an unused lane's -1.
+  static constexpr std::int32_t kUnusedBit = std::int32_t(0x80000000u);
   Real dist[kLanes];
   /// Lane j's polygon number, with kHasTwin when it has a twin (-1: unused).
   std::int32_t polygon[kLanes];
@@ -65,22 +67,33 @@ struct alignas(64) BvhLeaf : CullBlock {
   /// lines three times in four).
   static std::size_t usesStride(std::size_t n) { return (n + kUsesPerLine - 1) & ~(kUsesPerLine - 1); }
   static constexpr std::size_t kUsesPerLine = 64 / sizeof(PolygonCorner);
-  /// Where lane j's polygon's edge uses start.
-  std::size_t usesOf(std::size_t j) const {
+  /// Where each lane's polygon's edge uses start, and its twin's.
+  struct UseStarts {
+    std::size_t lane[kLanes];    ///< lane j's polygon's
+    std::size_t stride[kLanes];  ///< usesStride of lane j's polygon: its twin's follow
+    std::size_t of(std::size_t j) const { return lane[j]; }
+    std::size_t twinOf(std::size_t j) const { return lane[j] + stride[j]; }
+  };
+  /// The lanes' use starts, as a running sum over every lane (once a leaf:
+  /// a sum up to the lane asked for ended its loop at a lane the branch
+  /// could not foresee).
+  UseStarts useStarts() const {
+    UseStarts u;
     std::size_t at = firstUse;
-    for (std::size_t i = 0; i < j; ++i)
-      at += usesStride(numEdges[i]) << unsigned((polygon[i] & kHasTwin) != 0);
-    return at;
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      u.lane[j] = at;
+      u.stride[j] = usesStride(numEdges[j]);
+      at += u.stride[j] << unsigned((polygon[j] & kHasTwin) != 0);
+    }
+    return u;
   }
-  /// Where the edge uses of lane j's polygon's twin start.
-  std::size_t twinUsesOf(std::size_t j) const { return usesOf(j) + usesStride(numEdges[j]); }
   /// Lane j's polygon number (lane j used).
   std::int32_t polygonAt(std::size_t j) const { return polygon[j] & ~kHasTwin; }
   /// The used lanes whose polygon has a twin (bit j for lane j).
   unsigned twinLanes() const {
     unsigned lanes = 0;
     for (std::size_t j = 0; j < kLanes; ++j)
-      lanes |= unsigned(polygon[j] >= 0 && (polygon[j] & kHasTwin)) << j;
+      lanes |= unsigned((polygon[j] & (kHasTwin | kUnusedBit)) == kHasTwin) << j;  // (used, with a twin)
     return lanes;
   }
 };

@@ -37,6 +37,19 @@ struct PolygonEdges {
   }
   const Pluecker& line(std::size_t i) const { return lines[i]; }
 };
+/// a and b, or b and a when `swap`: by a mask on their addresses, without a
+/// branch (GCC made one of a plain choice between two references, and which
+/// edges a polygon uses reversed is unpredictable).
+struct EdgeEnds {
+  const Vec3& first;
+  const Vec3& second;
+};
+inline EdgeEnds swappedIf(bool swap, const Vec3& a, const Vec3& b) {
+  const auto pa = reinterpret_cast<std::uintptr_t>(&a), pb = reinterpret_cast<std::uintptr_t>(&b);
+  const std::uintptr_t flip = (pa ^ pb) & (std::uintptr_t(0) - std::uintptr_t(swap));
+  return {*reinterpret_cast<const Vec3*>(pa ^ flip), *reinterpret_cast<const Vec3*>(pb ^ flip)};
+}
+
 /// The uses of a polygon's edges made in the scratch (edgeUses), for a
 /// model without query data; the lines' array sized for them.
 const EdgeUse* makePolygonEdgeUses(TraceWork& tw, const CmPolygon& poly);
@@ -67,8 +80,8 @@ inline PolygonEdges polygonEdges(TraceWork& tw, const PolygonCorner* corners, st
   for (std::size_t i = 0; i < numEdges; ++i) {
     const Vec3& a = corners[i].p;
     const Vec3& b = corners[i + 1 == numEdges ? 0 : i + 1].p;
-    out[i] =
-        corners[i].entry < 0 ? Pluecker::fromLine(b, a) : Pluecker::fromLine(a, b);  // (entry < 0: reversed)
+    const EdgeEnds ends = swappedIf(corners[i].entry < 0, a, b);  // (entry < 0: reversed)
+    out[i] = Pluecker::fromLine(ends.first, ends.second);
   }
   return {nullptr, out, numEdges, corners, nullptr};
 }

@@ -168,8 +168,7 @@ inline unsigned modelVertexSide(const WorkEdge& te, const Vec3& vertex, const Ve
   const CollisionModel& m = tw.model;
   const WorkEdge& te = tw.edges[std::size_t(trmEdgeNum)];
   const std::int32_t edgeNum = edges.edgeNum(i);
-  const Vec3& start = edgeNum < 0 ? v2 : v1;  // (the edge's stored direction)
-  const Vec3& end = edgeNum < 0 ? v1 : v2;
+  const auto [start, end] = swappedIf(edgeNum < 0, v1, v2);  // (the edge's stored direction)
   Real f1;
   if (!translateEdgeThroughEdge(te.cross, te.pl, edges.line(i), f1)) return;
   if (f1 < 0) return;  // moving away from the edge

@@ -151,9 +151,10 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
   unsigned front = pass & facing.front, back = pass & facing.back & b.twinLanes();
   // The lanes' edge uses, asked for together (each polygon's test waits for
   // its own first: this overlaps the waits of the lanes after the first).
+  const BvhLeaf::UseStarts uses = b.useStarts();
   for (unsigned lanes = front | back; lanes; lanes &= lanes - 1) {
     const std::size_t lane = std::size_t(std::countr_zero(lanes));
-    prefetch(bvh.uses.data() + ((front >> lane) & 1u ? b.usesOf(lane) : b.twinUsesOf(lane)));
+    prefetch(bvh.uses.data() + ((front >> lane) & 1u ? uses.of(lane) : uses.twinOf(lane)));
   }
   // A polygon's tests; false when the query is over (blocked completely).
   // The trace bounds shrank at a hit: the lanes left are culled again.
@@ -170,7 +171,7 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
     poly.material = twin ? b.twinMaterial[lane] : b.material[lane];
     poly.numEdges = b.numEdges[lane];
     const std::int32_t polyNum = twin ? b.twin[lane] : b.polygonAt(lane);
-    const PolygonCorner* corners = bvh.uses.data() + (twin ? b.twinUsesOf(lane) : b.usesOf(lane));
+    const PolygonCorner* corners = bvh.uses.data() + (twin ? uses.twinOf(lane) : uses.of(lane));
     const Real before = tw.fraction;
     if (translateTrmThroughPolygon(tw, polyNum, poly, corners)) return false;
     if (tw.fraction != before && (front | back)) {

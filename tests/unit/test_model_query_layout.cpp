@@ -89,8 +89,9 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
       };
       EXPECT_EQ(b.numEdges[j], p.numEdges);
       EXPECT_EQ(b.material[j], p.material);
-      expectUses(p, b.usesOf(j));
-      EXPECT_EQ(b.usesOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
+      const BvhLeaf::UseStarts uses = b.useStarts();
+      expectUses(p, uses.of(j));
+      EXPECT_EQ(uses.of(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
       if (twin >= 0) {  // the lane's other side: reversed, its culls the lane's
         const CmPolygon& t = m.polygons()[std::size_t(twin)];
         ++seen[std::size_t(twin)];
@@ -98,8 +99,8 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
         EXPECT_EQ(t.bounds.min, p.bounds.min);
         EXPECT_EQ(t.bounds.max, p.bounds.max);
         EXPECT_EQ(b.twinMaterial[j], t.material);
-        expectUses(t, b.twinUsesOf(j));  // (a twin's uses follow its polygon's)
-        EXPECT_EQ(b.twinUsesOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
+        expectUses(t, uses.twinOf(j));  // (a twin's uses follow its polygon's)
+        EXPECT_EQ(uses.twinOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
       }
       contents |= p.contents;
       EXPECT_EQ(b.contents[j], p.contents);
