@@ -88,7 +88,7 @@ bool rayInsideEdges(const Vec3& point, const Vec3& dir, int numEdges, EdgeLine e
   for (int k = 0; k < numEdges; ++k) {
     bool reversed;
     const Real d = edgeLine(k, reversed).permutedInnerProduct(ray);
-    if (reversed ? d > 0 : d < 0) return false;
+    if ((unsigned(reversed) & unsigned(d > 0)) | (unsigned(!reversed) & unsigned(d < 0))) return false;
   }
   return true;
 }
@@ -188,6 +188,11 @@ void rotateVertexThroughTrmPolygon(TraceWork& tw, RotationWork& rw, const CmPoly
 /// near-double root) could not fall inside either.
 constexpr double kNoRootMargin = 1e-9;
 
+/// x, or -x when `flip` (the sign bit flipped: exact).
+inline double flipSignIf(double x, bool flip) {
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) ^ (std::uint64_t(flip) << 63));
+}
+
 bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, double& root, double* later) {
   // Most calls have no root before hi (the nearest hit so far): the
   // quadratic keeps one sign on [lo, hi] when it has the same sign, clearly,
@@ -203,8 +208,10 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
     const double gLo = (a * lo + 2 * b) * lo + c, gHi = (a * hi + 2 * b) * hi + c;
     const double sizeLo = (std::fabs(a) * lo + 2 * std::fabs(b)) * lo + std::fabs(c);
     const double sizeHi = (std::fabs(a) * hi + 2 * std::fabs(b)) * hi + std::fabs(c);
-    const bool oneSign = gLo * gHi > 0 && (a * lo + b) * (a * hi + b) > 0;
-    if (oneSign && std::fabs(gLo) > kNoRootMargin * sizeLo && std::fabs(gHi) > kNoRootMargin * sizeHi)
+    // (& not &&: every condition is cheap, and which hold is the data's.)
+    const unsigned oneSign = unsigned(gLo * gHi > 0) & unsigned((a * lo + b) * (a * hi + b) > 0);
+    if (oneSign & unsigned(std::fabs(gLo) > kNoRootMargin * sizeLo) &
+        unsigned(std::fabs(gHi) > kNoRootMargin * sizeHi))
       return false;
   }
   // (After that test, which never rules a root out for a coefficient that
@@ -220,7 +227,9 @@ bool firstQuadraticRoot(double a, double b, double c, double lo, double hi, doub
     const double disc = b * b - a * c;
     if (!(disc > 0)) return false;  // no crossing (a double root only touches)
     // q has the sign of -b and |q| >= sqrt(disc) > 0: no cancellation, no 0/0.
-    const double q = b > 0 ? -b - std::sqrt(disc) : -b + std::sqrt(disc);
+    // (-b + s with the sign of s flipped when b > 0, by its sign bit: -b - s
+    // is -b + (-s) exactly. Not a choice, which GCC made a branch.)
+    const double q = -b + flipSignIf(std::sqrt(disc), b > 0);
     r1 = q / a;
     r2 = c / q;
   }

@@ -23,7 +23,9 @@ bool collisionBetweenEdgeBounds(const RotationWork& rw, const Vec3& s, const Vec
   const Vec3 dirA = (a - rw.origin).cross(rw.axis);
   const Vec3 dirB = (b - rw.origin).cross(rw.axis);
   const Vec3 dir = (dirA.lengthSquared() > dirB.lengthSquared() ? dirA : dirB) * rw.sign;
-  auto sameSide = [](Real d1, Real d2) { return (d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0); };
+  auto sameSide = [](Real d1, Real d2) {  // (& and |: the signs are the data's)
+    return bool((unsigned(d1 > 0) & unsigned(d2 > 0)) | (unsigned(d1 < 0) & unsigned(d2 < 0)));
+  };
   const Pluecker trmLine = Pluecker::fromLine(a, b);
   if (sameSide(trmLine.permutedInnerProduct(Pluecker::fromRay(c, dir)),
                trmLine.permutedInnerProduct(Pluecker::fromRay(d, dir))))

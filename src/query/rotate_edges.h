@@ -85,7 +85,8 @@ void edgePairContact(TraceWork& tw, RotationWork& rw, const CmPolygon& poly, std
   // The next root of the product whose root u is (below); none when u = 0
   // in the band.
   double later = std::numeric_limits<double>::quiet_NaN();
-  const bool inBand = (f1 < 0 && f2 > 0) || (f1 > 0 && f2 < 0);
+  // (& and |, one branch on the answer: the signs are the data's.)
+  const bool inBand = (unsigned(f1 < 0) & unsigned(f2 > 0)) | (unsigned(f1 > 0) & unsigned(f2 < 0));
   if (inBand) {
     // Within the band (on the model edge line included): the side of the
     // epsilon line is the outside, so moving away from it is moving in.
