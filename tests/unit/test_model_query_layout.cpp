@@ -63,6 +63,7 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
         EXPECT_EQ(b.contents[j], 0u) << "an unused lane has no contents";
         EXPECT_GT(b.min[0][j], b.max[0][j]) << "an unused lane's box is inverted";
         EXPECT_EQ(b.polygon[j], -1) << "an unused lane has no twin";
+        EXPECT_EQ(b.twinLanes() >> j & 1u, 0u) << "an unused lane's -1 has the twin bit, yet no twin";
         continue;
       }
       const CmPolygon& p = m.polygons()[std::size_t(polyNum)];
