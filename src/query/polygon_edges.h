@@ -6,6 +6,7 @@
 // position_test.cpp; made in tree_walk.cpp).
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -141,6 +142,36 @@ void forEachNewModelVertex(TraceWork& tw, std::span<const std::int32_t> edges, F
       },
       [&](ModelVertexRef, std::size_t vn, const Vec3& p) { f(vn, p); });
 }
+/// Polygons of more edges than this take the corner loop edge by edge
+/// (forEachNewCornerInOrder): the corners' mask (a 64-bit word) has a bit a
+/// corner and one more, for corner 0 met last.
+inline constexpr std::size_t kMaxCornerMaskEdges = 63;
+/// The corners of forEachNewModelVertex(PolygonEdges) edge by edge, in the
+/// same order: for polygons too large for the mask.
+template <class F>
+void forEachNewCornerInOrder(TraceWork& tw, const PolygonEdges& edges, bool marked, F f) {
+  QueryScratch& s = tw.scratch;
+  bool lastMet = false, firstMet = false;  // (the edge before; edge 0)
+  for (std::size_t i = 0; i < edges.size; ++i) {
+    const std::int32_t edgeNum = edges.edgeNum(i);
+    if (s.testAndMark(s.edgeChecked, std::size_t(std::abs(edgeNum))) || edges.internal(i)) {
+      lastMet = false;
+      continue;
+    }
+    if (!lastMet && !(marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, {edgeNum, 0})))) {
+      const Vec3& a = edges.from(i);
+      if (insideBox(tw.bounds, a)) f(ModelVertexRef{edgeNum, 0}, a);
+    }
+    if (!(i + 1 == edges.size && firstMet) &&
+        !(marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, {edgeNum, 1})))) {
+      const Vec3& b = edges.to(i);
+      if (insideBox(tw.bounds, b)) f(ModelVertexRef{edgeNum, 1}, b);
+    }
+    lastMet = true;
+    firstMet |= i == 0;
+  }
+}
+
 /// The same over a polygon's edges, f(ModelVertexRef, position). With
 /// corners (the hierarchy's), a translation does not mark a vertex (its
 /// number is not at hand): one met again in a later polygon is tested again,
@@ -166,25 +197,37 @@ void forEachNewModelVertex(TraceWork& tw, const PolygonEdges& edges, F f) {
   }
   // Corner i is where edge i starts and edge i - 1 ends: met once, by the
   // first of the two the query meets (as the marks would have it).
-  bool lastMet = false, firstMet = false;  // (the edge before; edge 0)
   const bool marked = tw.gettingContacts();
-  for (std::size_t i = 0; i < edges.size; ++i) {
-    const std::int32_t edgeNum = edges.edgeNum(i);
-    if (s.testAndMark(s.edgeChecked, std::size_t(std::abs(edgeNum))) || edges.internal(i)) {
-      lastMet = false;
-      continue;
-    }
-    if (!lastMet && !(marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, {edgeNum, 0})))) {
-      const Vec3& a = edges.from(i);
-      if (insideBox(tw.bounds, a)) f(ModelVertexRef{edgeNum, 0}, a);
-    }
-    if (!(i + 1 == edges.size && firstMet) &&
-        !(marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, {edgeNum, 1})))) {
-      const Vec3& b = edges.to(i);
-      if (insideBox(tw.bounds, b)) f(ModelVertexRef{edgeNum, 1}, b);
-    }
-    lastMet = true;
-    firstMet |= i == 0;
+  const std::size_t n = edges.size;
+  if (n > kMaxCornerMaskEdges) [[unlikely]] {
+    forEachNewCornerInOrder(tw, edges, marked, f);
+    return;
+  }
+  // The edges met here first (bit i: edge i, not internal), every edge
+  // marked, and the corners in the trace bounds, without a branch an edge
+  // (whether an edge was met before, or a corner lies in the bounds, is
+  // unpredictable); then the corners the new edges reach as a mask, in the
+  // order the edges meet them: corner c (c > 0) with edge c or edge c - 1;
+  // corner 0 first with edge 0, else last (bit n) with edge n - 1. (The
+  // bounds do not change within a polygon's corners: shrinkTraceBounds
+  // follows them. A corner outside them is not marked, where contacts mark
+  // vertices: their bounds never shrink, so it stays outside.)
+  std::uint64_t fresh = 0, inBounds = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool met = s.testAndMarkStoring(s.edgeChecked, std::size_t(std::abs(edges.edgeNum(i))));
+    fresh |= std::uint64_t(unsigned(!met) & unsigned(!edges.internal(i))) << i;
+    inBounds |= std::uint64_t(insideBox(tw.bounds, edges.corners[i].p)) << i;
+  }
+  inBounds |= (inBounds & 1) << n;
+  for (std::uint64_t reached = (fresh | fresh << 1) & ~((fresh & 1) << n) & inBounds; reached;
+       reached &= reached - 1) {
+    const std::size_t b = std::size_t(std::countr_zero(reached));
+    // (Reached by its own edge's start, else by the edge before's end: the
+    // same vertex in a closed polygon, named as the edge loop named it.)
+    const std::size_t viaStart = std::size_t((fresh >> b) & 1);
+    const ModelVertexRef v{edges.edgeNum(b - 1 + viaStart), int(viaStart ^ 1)};
+    if (marked && s.testAndMark(s.vertexChecked, modelVertexNumber(tw.model, v))) continue;
+    f(v, edges.corners[b == n ? 0 : b].p);
   }
 }
 

@@ -106,6 +106,14 @@ class FeatureMarks {
     stamps_[i] = current_;
     return false;
   }
+  /// The same without a branch: the stamp is stored either way (for loops
+  /// where whether a feature was met before is unpredictable).
+  bool testAndSetStoring(std::size_t i) {
+    CMKIT_ASSERT(i < stamps_.size());
+    const bool was = stamps_[i] == current_;
+    stamps_[i] = current_;
+    return was;
+  }
   /// Clears every mark.
   void clear() {
     if (++current_ == 0) {  // the stamps ran out: start again from 1
@@ -184,6 +192,8 @@ struct QueryScratch {
   bool isChecked(const FeatureMarks& marks, std::size_t i) const { return marks.isSet(i); }
   void mark(FeatureMarks& marks, std::size_t i) { marks.testAndSet(i); }
   bool testAndMark(FeatureMarks& marks, std::size_t i) { return marks.testAndSet(i); }
+  /// testAndMark without a branch (FeatureMarks::testAndSetStoring).
+  bool testAndMarkStoring(FeatureMarks& marks, std::size_t i) { return marks.testAndSetStoring(i); }
   /// The rotation's tested pairs of an edge for this query (zeroed on first use).
   std::uint32_t& testedPairs(EdgePairs& f) {
     if (f.pairsGen != generation) {

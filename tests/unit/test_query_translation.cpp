@@ -341,7 +341,10 @@ namespace {
 // at z = 0, facing up, with 25 vertices on each side, counter-clockwise seen
 // from above from (0, -256); the lower-left side x + y = -256 comes last, as
 // edges 76 to 100. More than 64 edges: the edge tests work on groups of 64.
-CollisionModel hundredEdgeFloor() {
+// With `farTriangles` small triangles far below it (each its own edges), so
+// that a model of more than detail::kBvhMinPolygons polygons gets the
+// polygons' hierarchy, whose corners the tests read instead of edge uses.
+CollisionModel hundredEdgeFloor(int farTriangles = 0) {
   ModelArrays m;
   m.name = "hundred";
   const Vec3 corners[4] = {{0, -256, 0}, {256, 0, 0}, {0, 256, 0}, {-256, 0, 0}};
@@ -363,10 +366,31 @@ CollisionModel hundredEdgeFloor() {
     m.polygonEdges.push_back(i + 1);
   }
   m.polygons.push_back(floor);
-  m.nodes.assign(1, CmNode{});
-  m.polygonRefs.push_back(0);
-  m.nodes[0].numPolygonRefs = 1;
   m.bounds = floor.bounds;
+  for (int t = 0; t < farTriangles; ++t) {
+    const auto first = std::int32_t(m.vertices.size());
+    const Vec3 at{Real(-256 + 16 * (t % 32)), Real(-256 + 16 * (t / 32)), -1000};
+    for (const Vec3& d : {Vec3{0, 0, 0}, Vec3{8, 0, 0}, Vec3{0, 8, 0}}) m.vertices.push_back(at + d);
+    CmPolygon tri;
+    tri.plane = Plane{{0, 0, 1}, -1000};
+    tri.contents = contents::kSolid;
+    tri.bounds = {at, at + Vec3{8, 8, 0}};
+    tri.firstEdge = std::uint32_t(m.polygonEdges.size());
+    tri.numEdges = 3;
+    for (std::int32_t k = 0; k < 3; ++k) {
+      CmEdge e;
+      e.vertex[0] = first + k;
+      e.vertex[1] = first + (k + 1) % 3;
+      e.numUsers = 1;
+      m.polygonEdges.push_back(std::int32_t(m.edges.size()));
+      m.edges.push_back(e);
+    }
+    m.polygons.push_back(tri);
+    m.bounds.addBounds(tri.bounds);
+  }
+  m.nodes.assign(1, CmNode{});
+  for (std::size_t i = 0; i < m.polygons.size(); ++i) m.polygonRefs.push_back(std::int32_t(i));
+  m.nodes[0].numPolygonRefs = std::uint32_t(m.polygons.size());
   m.contents = floor.contents;
   detail::computeEdgeNormals(m);
   return **CollisionModel::create(std::move(m));
@@ -408,6 +432,12 @@ void expectHundredEdgeFloorStops(const CollisionModel& m) {
   const TraceResult r = translate(m, q, work);
   EXPECT_NEAR(r.fraction, 127.75f / 300, 1e-5f);
   expectVecNear(r.contact.normal, {-1, 0, 0}, 1e-5f);
+  // The corner, vertex 75 (the polygon's 76th corner, past 64), reaches the
+  // front face (the box's polygon facing +x; the contact's normal is its
+  // reverse).
+  EXPECT_EQ(r.contact.type, ContactType::ModelVertex);
+  EXPECT_EQ(r.contact.modelFeature, 75);
+  EXPECT_EQ(slab.polygons()[std::size_t(r.contact.trmFeature)].normal, Vec3(1, 0, 0));
 }
 
 }  // namespace
@@ -421,4 +451,16 @@ TEST(Translation, PolygonWithMoreThan64Edges) {
     ASSERT_EQ(detail::queryDataOf(m) != nullptr, prepared);
     expectHundredEdgeFloorStops(m);
   }
+}
+
+TEST(Translation, PolygonWithMoreThan64EdgesInTheHierarchy) {
+  // The same floor among 300 far triangles: the polygons' hierarchy, whose
+  // corners (not edge uses) the tests read; the model vertices' corner loop
+  // takes polygons of more than 63 edges edge by edge (its mask has a bit
+  // a corner and one more).
+  const CollisionModel m = hundredEdgeFloor(300);
+  const detail::QueryData* data = detail::queryDataOf(m);
+  ASSERT_NE(data, nullptr);
+  if (data->bvh.empty()) GTEST_SKIP() << "no polygons' hierarchy in this build (double)";
+  expectHundredEdgeFloorStops(m);
 }
