@@ -356,9 +356,15 @@ bool rotateTrmThroughPolygon(TraceWork& tw, std::int32_t polyNum, const CmPolygo
     if ((p - ro).lengthSquared() <= tol::kRotationAxisEpsilon * tol::kRotationAxisEpsilon) return;
     Vec3 endp;  // where the vertex ends: made for the first polygon past the culls (most meet none)
     bool endpSet = false;
-    for (int j = 0; j < tw.numPolys; ++j) {
+    // The used polygons whose boxes hold the vertex, as a mask: no branch a
+    // polygon on which boxes do (unpredictable), the same polygons in the
+    // same order after.
+    std::uint32_t inBox = 0;
+    for (int j = 0; j < tw.numPolys; ++j)
+      if (tw.polys[std::size_t(j)].used) inBox |= std::uint32_t(insideBox(rw.polygonBounds(tw, j), p)) << j;
+    for (; inBox; inBox &= inBox - 1) {
+      const int j = std::countr_zero(inBox);
       const WorkPolygon& tp = tw.polys[std::size_t(j)];
-      if (!tp.used || !insideBox(rw.polygonBounds(tw, j), p)) continue;
       if (backCull && tp.plane.distance(p) < 0) continue;
       if (!endpSet) {
         endp = rw.origin + (p - rw.origin) * rw.backMatrix;
