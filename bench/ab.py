@@ -79,7 +79,7 @@ def bench(cli, suite, repeat):
     return times
 
 
-def instructions(cli, suite, repeat, name, queries, mispredictions=False):
+def callgrind_count(cli, suite, repeat, name, queries, mispredictions=False):
     """Instructions (or mispredicted branches) a query of one file's queries
     (a suite of that file alone)."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -101,8 +101,9 @@ def instructions(cli, suite, repeat, name, queries, mispredictions=False):
     sys.exit(f"ab.py: no count from {cli} on {name}")
 
 
-def count_instructions(a, kinds, dirs, tmp):
-    """{cli: {(kind, file): instructions a query}}, each file a suite of its own."""
+def callgrind_counts(a, kinds, dirs, tmp):
+    """{cli: {(kind, file): instructions (or mispredictions) a query}}, each file a
+    suite of its own."""
     counts = {a.old: {}, a.new: {}}
     for kind in kinds:
         for name in sorted(os.listdir(dirs[kind])):
@@ -115,8 +116,8 @@ def count_instructions(a, kinds, dirs, tmp):
                 f.writelines(lines)
             file = name[: -len(".queries.txt")]
             for cli in (a.old, a.new):
-                counts[cli][(kind, file)] = instructions(cli, os.path.join(one, "ref"), a.repeat, file,
-                                                         len(lines), a.mispredictions)
+                counts[cli][(kind, file)] = callgrind_count(cli, os.path.join(one, "ref"), a.repeat, file,
+                                                            len(lines), a.mispredictions)
     return counts
 
 
@@ -140,7 +141,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         dirs = split_suite(a.suite, kinds, tmp)
         if counting:
-            best = count_instructions(a, kinds, dirs, tmp)
+            best = callgrind_counts(a, kinds, dirs, tmp)
         else:
             for _ in range(a.runs):
                 for kind in kinds:
