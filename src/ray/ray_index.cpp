@@ -116,13 +116,13 @@ RayIndex& RayIndex::operator=(RayIndex&&) noexcept = default;
 
 bool RayIndex::usesAvx2() const { return data_ && data_->avx2; }
 std::size_t RayIndex::numNodes() const { return data_ ? data_->nodes.size() : 0; }
-std::size_t RayIndex::numPolygons() const { return data_ ? data_->details.size() : 0; }
+std::size_t RayIndex::numPolygons() const { return data_ ? data_->records.size() : 0; }
 
 std::size_t RayIndex::memoryBytes() const {
   if (!data_) return 0;
   const detail::RayIndexData& d = *data_;
   return d.nodes.capacity() * sizeof(d.nodes[0]) + d.leafChunks.capacity() * sizeof(d.leafChunks[0]) +
-         d.details.capacity() * sizeof(d.details[0]);
+         d.records.capacity() * sizeof(d.records[0]);
 }
 
 namespace detail {
@@ -252,25 +252,33 @@ bool prepareRay(const Vec3& worldStart, const Vec3& worldEnd, std::uint32_t mask
 }
 #endif
 
+detail::Arrays arraysOf(const detail::RayIndexData& d) {
+  return {d.nodes.data(), d.leafChunks.data(), d.records.data()};
+}
+
 /// The hit of a crossing the walk found (in world space).
 [[gnu::always_inline]] inline RayHit hitOf(const detail::RayIndexData& d, const detail::Crossing& found,
                                            const Vec3& worldStart, const Vec3& worldEnd,
                                            const Placement& placement, bool rotated) {
   RayHit result;
   if (found.slot < 0) return result;
-  const detail::RayLayout::PolygonDetail& best = d.details[std::size_t(found.slot)];
+  // The plane and contents from the polygon's lane (a twin's plane is the
+  // lane's negated exactly, its contents the lane's), the rest from its
+  // record.
+  const detail::RayLayout::LeafHead& head = detail::leafHead(arraysOf(d), found.leaf);
+  const detail::RayLayout::PolygonRecord& record = d.records[std::size_t(found.slot)];
+  const std::uint32_t k = found.lane;
+  const Vec3 lane{head.x[k], head.y[k], head.z[k]};
+  const Vec3 normal = found.twin ? -lane : lane;
+  const Real dist = found.twin ? -head.dist[k] : head.dist[k];
   result.fraction = found.t;
-  result.polygon = best.index;
-  result.contents = best.contents;
-  result.material = best.material;
+  result.polygon = record.index;
+  result.contents = head.contents[k];
+  result.material = record.material;
   result.point = worldStart + (worldEnd - worldStart) * found.t;
-  result.normal = rotated ? best.normal * placement.axis : best.normal;
-  result.dist = best.dist + placement.origin.dot(result.normal);
+  result.normal = rotated ? normal * placement.axis : normal;
+  result.dist = dist + placement.origin.dot(result.normal);
   return result;
-}
-
-detail::Arrays arraysOf(const detail::RayIndexData& d) {
-  return {d.nodes.data(), d.leafChunks.data(), d.details.data()};
 }
 
 /// Bits of the start cell and of the direction in castMany's sort key.

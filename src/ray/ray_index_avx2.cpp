@@ -204,11 +204,9 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
     pr.startTimesInv[a] = packetLanes(rays, count, [a](const Ray& r) { return r.startTimesInv[a]; });
   }
   Crossing best[kPacket];
-  std::int32_t bestIndex[kPacket];
   alignas(32) float bestT[kPacket];
   for (unsigned k = 0; k < kPacket; ++k) {
-    best[k] = Crossing{1, -1};
-    bestIndex[k] = 0x7fffffff;
+    best[k] = Crossing{1, -1, 0, 0, false};
     bestT[k] = 1.0f;
   }
   const __m256 infinity = _mm256_set1_ps(__builtin_huge_valf());
@@ -227,7 +225,7 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
         const std::uint32_t i = side >> 1;
         const bool twin = (side & 1) != 0;
         if (!(h.contents[i] & mask) || (twin && !((h.twins >> i) & 1))) continue;
-        const std::uint32_t detail = twin ? twinDetail(h, ref, i) : h.firstDetail + i;
+        const std::uint32_t rec = twin ? twinRecord(h, ref, i) : h.firstRecord + i;
         alignas(32) float t[kPacket];
         std::uint32_t l = planes.candidates(h, i, twin, bestT, lanes, t);
         if constexpr (PacketPlanes::kFloatLanes) {
@@ -236,9 +234,8 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
           if (several) l = planes.insideEdges(h, i, twin, l);
           for (; l; l &= l - 1) {
             const int k = __builtin_ctz(l);
-            if (notBeyondBest(index, detail, t[k], best[k], bestIndex[k]) &&
-                (several || insideEdges(h, i, rays[k], twin)))
-              keepCrossing(index, detail, rays[k], t[k], best[k], bestIndex[k]);
+            if (notBeyondBest(index, rec, t[k], best[k]) && (several || insideEdges(h, i, rays[k], twin)))
+              keepCrossing(index, ref, i, twin, rec, rays[k], t[k], best[k]);
             bestT[k] = float(best[k].t);
           }
         } else {
@@ -247,9 +244,9 @@ void castPacketAvx2(const Arrays& index, const Ray* rays, unsigned count, Crossi
             Real tk;
             bool front, back;
             crossesPlanes(h, i, rays[k], tk, front, back);
-            if ((twin ? back : front) && notBeyondBest(index, detail, tk, best[k], bestIndex[k]) &&
+            if ((twin ? back : front) && notBeyondBest(index, rec, tk, best[k]) &&
                 insideEdges(h, i, rays[k], twin))
-              keepCrossing(index, detail, rays[k], tk, best[k], bestIndex[k]);
+              keepCrossing(index, ref, i, twin, rec, rays[k], tk, best[k]);
             bestT[k] = float(best[k].t);
           }
         }

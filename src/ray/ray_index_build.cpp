@@ -233,14 +233,13 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
   }
   const BinaryBuilder binary(std::move(itemBoxes), std::move(itemContents));
   const std::vector<BinaryNode>& bn = binary.nodes();
-  const auto detailOf = [&](std::uint32_t k) -> Index::PolygonDetail {
-    const CmPolygon& p = model.polygons()[usable[k]];
-    return {p.plane.normal, p.plane.dist, boxes[k], p.contents, std::int32_t(usable[k]), p.material};
+  const auto recordOf = [&](std::uint32_t k) -> Index::PolygonRecord {
+    return {boxes[k], std::int32_t(usable[k]), model.polygons()[usable[k]].material};
   };
 
   // Each leaf: its head and corner rows in whole chunks, its polygons'
-  // details in leaf order.
-  d.details.reserve(usable.size());
+  // records in leaf order.
+  d.records.reserve(usable.size());
   const auto addLeaf = [&](const BinaryNode& leaf) {
     using Head = Index::LeafHead;
     using Row = Index::CornerRow;
@@ -260,7 +259,7 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
     d.leafChunks.resize(chunk + (bytes + sizeof(Index::LeafChunk) - 1) / sizeof(Index::LeafChunk));
     auto* head = new (d.leafChunks.data() + chunk) Head{};
     auto* row = new (head + 1) Row[rows]{};
-    head->firstDetail = std::uint32_t(d.details.size());
+    head->firstRecord = std::uint32_t(d.records.size());
     head->numEdges = edges;
     head->closingRow = closing ? edges : 0;
     for (std::uint32_t lane = 0; lane < leaf.count; ++lane) {
@@ -281,13 +280,13 @@ void buildRayIndex(const CollisionModel& model, RayIndexData& d) {
         for (int c = 0; c < 3; ++c) row[j].v[c][lane] = corner[c];
         if (j < edges) row[j].reversed |= std::uint32_t(e < 0) << lane;
       }
-      d.details.push_back(detailOf(k));
+      d.records.push_back(recordOf(k));
       if (twin[k] >= 0) head->twins |= 1u << lane;
     }
-    // The twins' details after the lanes', in lane order (twinDetail).
+    // The twins' records after the lanes', in lane order (twinRecord).
     for (std::uint32_t lane = 0; lane < leaf.count; ++lane) {
       const std::uint32_t k = items[binary.order()[leaf.first + lane]];
-      if (twin[k] >= 0) d.details.push_back(detailOf(std::uint32_t(twin[k])));
+      if (twin[k] >= 0) d.records.push_back(recordOf(std::uint32_t(twin[k])));
     }
     return Index::kLeaf | std::uint32_t(chunk) << Index::kLeafCountBits | (leaf.count - 1);
   };

@@ -15,7 +15,7 @@ namespace cmkit::detail {
 struct RayIndexData : RayLayout {
   std::vector<Node> nodes;
   std::vector<LeafChunk> leafChunks;   ///< the leaves, each a LeafHead and its CornerRows
-  std::vector<PolygonDetail> details;  ///< the polygons indexed, in leaf order
+  std::vector<PolygonRecord> records;  ///< the polygons indexed, in leaf order
   bool avx2 = false;
 };
 

@@ -36,7 +36,7 @@ namespace cmkit::detail {
 struct Arrays {
   const RayLayout::Node* nodes;
   const RayLayout::LeafChunk* leafChunks;
-  const RayLayout::PolygonDetail* details;
+  const RayLayout::PolygonRecord* records;
 };
 
 /// A ray in the model's space with its per-ray constants. The near face of
@@ -69,11 +69,15 @@ static inline void rayLine(const Real* s, const Real* dir, Real* line) {
   line[5] = dir[1];
 }
 
-/// The first crossing found: where, and the polygon's position in the
-/// index's details array (-1: none).
+/// The first crossing found: where, the polygon's position in the index's
+/// records array (-1: none), and its leaf (child reference), lane and side
+/// (twin: the lane's twin), where its plane and contents are.
 struct Crossing {
   Real t;
   std::int32_t slot;
+  std::uint32_t leaf;
+  std::uint32_t lane;
+  bool twin;
 };
 
 /// The walk with the node test of ray_index.cpp (SSE2 on x86-64).
@@ -247,31 +251,30 @@ static inline bool insideEdges(const RayLayout::LeafHead& head, std::uint32_t la
   return true;
 }
 
-/// The details[] index of the twin of lane k of the leaf `ref` (bit k of
+/// The records[] index of the twin of lane k of the leaf `ref` (bit k of
 /// head.twins set): after the leaf's lanes, one per twin in lane order.
-static inline std::uint32_t twinDetail(const RayLayout::LeafHead& head, std::uint32_t ref, std::uint32_t k) {
-  return head.firstDetail + leafCount(ref) + std::uint32_t(__builtin_popcount(head.twins & ((1u << k) - 1)));
+static inline std::uint32_t twinRecord(const RayLayout::LeafHead& head, std::uint32_t ref, std::uint32_t k) {
+  return head.firstRecord + leafCount(ref) + std::uint32_t(__builtin_popcount(head.twins & ((1u << k) - 1)));
 }
 
-/// Whether a crossing at t of the polygon `detail` may replace `best`: not
-/// beyond it, and at the same t only from a lower polygon index.
-static inline bool notBeyondBest(const Arrays& index, std::uint32_t detail, Real t, const Crossing& best,
-                                 std::int32_t bestIndex) {
-  return !(t > best.t || (t == best.t && index.details[detail].index > bestIndex));
+/// Whether a crossing at t of the polygon of record `rec` may replace
+/// `best`: not beyond it, and at the same t only from a lower polygon index.
+static inline bool notBeyondBest(const Arrays& index, std::uint32_t rec, Real t, const Crossing& best) {
+  return !(t > best.t ||
+           (t == best.t && best.slot >= 0 && index.records[rec].index > index.records[best.slot].index));
 }
 
 /// The last part of a polygon's test, for a crossing at t inside every
-/// edge of the polygon `detail` and not beyond the best: keeps it as
-/// `best` when it lies in the polygon's acceptance box.
-static inline void keepCrossing(const Arrays& index, std::uint32_t detail, const Ray& r, Real t,
-                                Crossing& best, std::int32_t& bestIndex) {
-  const Bounds& box = index.details[detail].acceptBox;
+/// edge of lane k's polygon of the leaf `ref` (or with `twin` its twin's),
+/// of record `rec` and not beyond the best: keeps it as `best` when it
+/// lies in the polygon's acceptance box.
+static inline void keepCrossing(const Arrays& index, std::uint32_t ref, std::uint32_t k, bool twin,
+                                std::uint32_t rec, const Ray& r, Real t, Crossing& best) {
+  const Bounds& box = index.records[rec].acceptBox;
   const Real x = r.start[0] + r.dir[0] * t, y = r.start[1] + r.dir[1] * t, z = r.start[2] + r.dir[2] * t;
   if (x < box.min.x || y < box.min.y || z < box.min.z || x > box.max.x || y > box.max.y || z > box.max.z)
     return;
-  best.t = t;
-  best.slot = std::int32_t(detail);
-  bestIndex = index.details[detail].index;
+  best = Crossing{t, std::int32_t(rec), ref, k, twin};
 }
 
 /// The plane part of the tests of lane k's polygon and of its twin: whether
@@ -293,15 +296,14 @@ static inline void crossesPlanes(const RayLayout::LeafHead& h, std::uint32_t k, 
 
 /// Tests the polygons of a leaf (reference `ref`), keeping `best` the first
 /// crossing; equal crossings go to the lower model polygon index
-/// (`bestIndex`). Every step on all lanes alike, as plain lane loops
+/// (notBeyondBest). Every step on all lanes alike, as plain lane loops
 /// without branches (the compiler may make them SIMD): the planes and
 /// contents, then, while some lane is left, the edges. A lane's answer
 /// is that of testing its polygon alone (the same operations in the same
 /// order; for its twin the same values with their signs reversed), and the
 /// best kept is the first crossing, lowest index on ties, whatever the
 /// order, so a leaf answers as its polygons tested one by one.
-static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r, Crossing& best,
-                            std::int32_t& bestIndex) {
+static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r, Crossing& best) {
   constexpr std::uint32_t kLanes = RayLayout::kLeafLanes;
   const RayLayout::LeafHead& h = leafHead(index, ref);
   Real t[kLanes];
@@ -315,10 +317,10 @@ static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r
   }
   twinLanes &= h.twins;
   if (!(lanes | twinLanes)) return;
-  // The first candidate's details are read if it passes its edges: their
-  // load overlaps the edge tests.
-  __builtin_prefetch(index.details + (lanes ? h.firstDetail + __builtin_ctz(lanes)
-                                            : twinDetail(h, ref, std::uint32_t(__builtin_ctz(twinLanes)))));
+  // The first candidate's record is read if it passes its edges: its load
+  // overlaps the edge tests.
+  __builtin_prefetch(index.records + (lanes ? h.firstRecord + __builtin_ctz(lanes)
+                                            : twinRecord(h, ref, std::uint32_t(__builtin_ctz(twinLanes)))));
   Real line[6];
   rayLine(r.start, r.dir, line);
   for (std::uint32_t j = 0; j < h.numEdges && (lanes | twinLanes); ++j) {
@@ -328,15 +330,13 @@ static inline void testLeaf(const Arrays& index, std::uint32_t ref, const Ray& r
   }
   for (; lanes; lanes &= lanes - 1) {
     const auto k = std::uint32_t(__builtin_ctz(lanes));
-    const std::uint32_t detail = h.firstDetail + k;
-    if (notBeyondBest(index, detail, t[k], best, bestIndex))
-      keepCrossing(index, detail, r, t[k], best, bestIndex);
+    const std::uint32_t rec = h.firstRecord + k;
+    if (notBeyondBest(index, rec, t[k], best)) keepCrossing(index, ref, k, false, rec, r, t[k], best);
   }
   for (; twinLanes; twinLanes &= twinLanes - 1) {
     const auto k = std::uint32_t(__builtin_ctz(twinLanes));
-    const std::uint32_t detail = twinDetail(h, ref, k);
-    if (notBeyondBest(index, detail, t[k], best, bestIndex))
-      keepCrossing(index, detail, r, t[k], best, bestIndex);
+    const std::uint32_t rec = twinRecord(h, ref, k);
+    if (notBeyondBest(index, rec, t[k], best)) keepCrossing(index, ref, k, true, rec, r, t[k], best);
   }
 }
 
@@ -361,8 +361,7 @@ __attribute__((always_inline)) static inline void prefetchChild(const Arrays& in
 template <class EnteredChildren>
 static Crossing walk(const Arrays& index, const Ray& r, EnteredChildren enteredChildren) {
   constexpr int kWidth = RayLayout::kWidth;
-  Crossing best{1, -1};
-  std::int32_t bestIndex = 0x7fffffff;
+  Crossing best{1, -1, 0, 0, false};
   // At most kWidth - 1 children wait per level, and a node sorts its
   // children in the kWidth slots above the top.
   Pending stack[(kWidth - 1) * kMaxDepth + kWidth];
@@ -370,7 +369,7 @@ static Crossing walk(const Arrays& index, const Ray& r, EnteredChildren enteredC
   std::uint32_t ref = 0;
   for (;;) {
     if (ref & RayLayout::kLeaf) {
-      testLeaf(index, ref, r, best, bestIndex);
+      testLeaf(index, ref, r, best);
     } else {
       const RayLayout::Node& n = index.nodes[ref];
       alignas(32) float entry[kWidth];

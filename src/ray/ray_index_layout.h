@@ -15,7 +15,7 @@
 
 namespace cmkit::detail {
 
-/// The layout of a RayIndex: its nodes, leaves and polygon details.
+/// The layout of a RayIndex: its nodes, leaves and polygon records.
 struct RayLayout {
   /// Children per node.
   static constexpr int kWidth = 8;
@@ -42,7 +42,7 @@ struct RayLayout {
     unsigned char bytes[64];
   };
   /// A leaf's polygons side by side, lane k one polygon: their planes,
-  /// contents, where their details start and how many edges their corner
+  /// contents, where their records start and how many edges their corner
   /// rows make. The walk tests every lane at once (no branch per polygon)
   /// from one run of memory that holds all it reads of a leaf (float
   /// builds: the head and a triangle leaf's corners in four cache lines),
@@ -59,7 +59,7 @@ struct RayLayout {
   struct LeafHead {
     Real x[kLeafLanes], y[kLeafLanes], z[kLeafLanes], dist[kLeafLanes];
     std::uint32_t contents[kLeafLanes];
-    std::uint32_t firstDetail;  ///< details[] index of lane 0 (lane k: + k)
+    std::uint32_t firstRecord;  ///< records[] index of lane 0 (lane k: + k)
     std::uint32_t numEdges;     ///< the most edges of a lane's polygon: numEdges CornerRows follow, or
                                 ///< numEdges + 1 with a closing row
     /// The row the last edge runs to: row numEdges (the closing row, a
@@ -68,8 +68,8 @@ struct RayLayout {
     /// so that going on from the last row to the first closes each lane's
     /// loop.
     std::uint32_t closingRow;
-    /// Lanes holding a twin (bit k: lane k). The twins' details follow the
-    /// lanes', in lane order (twinDetail in ray_index_kernel.h).
+    /// Lanes holding a twin (bit k: lane k). The twins' records follow the
+    /// lanes', in lane order (twinRecord in ray_index_kernel.h).
     std::uint32_t twins;
   };
   /// Corner j of each lane's polygon (v[c][k]: coordinate c of lane k),
@@ -89,15 +89,17 @@ struct RayLayout {
     std::uint32_t reversed;
   };
   static_assert(sizeof(LeafHead) % alignof(CornerRow) == 0, "the corner rows follow the head");
-  /// What is read of a polygon that accepts a crossing (and for the answer).
-  struct PolygonDetail {
-    Vec3 normal;
-    Real dist = 0;
-    Bounds acceptBox;  ///< where the polygon accepts a crossing
-    std::uint32_t contents = 0;
+  /// What is read of a polygon beyond its leaf: where it accepts a crossing
+  /// (read for a crossing inside its edges), and what the answer names
+  /// (its plane and contents are its lane's, a twin's the lane's negated).
+  /// 32 bytes in float builds, on a 32-byte boundary: one cache line, and
+  /// the answer's read finds it in the cache.
+  struct alignas(sizeof(Real) == 4 ? 32 : 8) PolygonRecord {
+    Bounds acceptBox;        ///< where the polygon accepts a crossing
     std::int32_t index = 0;  ///< in the model
     std::int32_t material = -1;
   };
+  static_assert(sizeof(Real) != 4 || sizeof(PolygonRecord) == 32);
 };
 
 }  // namespace cmkit::detail

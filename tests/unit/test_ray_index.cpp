@@ -114,6 +114,14 @@ int expectSameAsEveryPolygon(const CollisionModel& m, unsigned seed, int count, 
                                           << e.x << " " << e.y << " " << e.z << ")";
     EXPECT_EQ(std::memcmp(&fast.fraction, &slow.fraction, sizeof(Real)), 0) << what;
     if (fast.polygon != slow.polygon) return hits;  // one report per model is enough
+    if (fast.hit()) {  // the polygon's plane, contents and material (a twin's from its lane: its own)
+      const CmPolygon& p = m.polygons()[std::size_t(fast.polygon)];
+      EXPECT_EQ(fast.normal, p.plane.normal) << what << ": polygon " << fast.polygon;
+      EXPECT_EQ(fast.dist, p.plane.dist) << what << ": polygon " << fast.polygon;
+      EXPECT_EQ(fast.contents, p.contents) << what;
+      EXPECT_EQ(fast.material, p.material) << what;
+      if (::testing::Test::HasFailure()) return hits;
+    }
     hits += fast.hit();
   }
   return hits;
