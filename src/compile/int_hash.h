@@ -5,7 +5,8 @@
 // vertices numbered near each other) go to slots near each other, until an
 // insertion probes too far (many keys with one high half: a vertex at the
 // centre of a large fan); from then on the keys are scattered over the
-// table. Only where a key lies changes, never what the map holds.
+// table, and a lookup in a table larger than the caches is a cache miss.
+// Only where a key lies changes, never what the map holds.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +31,8 @@ class IntHashMap {
     while (size < 2 * count) size *= 2;
     if (size > slots_.size()) grow(size);
   }
+  /// Whether the keys are scattered over the table (see home()).
+  bool scattered() const { return scattered_; }
   /// The value of `key`, or kEmpty.
   int find(std::uint64_t key) const {
     if (slots_.empty()) return kEmpty;
@@ -67,8 +70,14 @@ class IntHashMap {
     int value = kEmpty;
   };
   std::size_t mask() const { return slots_.size() - 1; }
-  /// Probes of an insertion past which the keys are scattered.
-  static constexpr std::size_t kMaxNearProbes = 64;
+  /// Probes of an insertion past which the keys are scattered. A mesh's
+  /// edges cluster where many polygons meet: lt4's world as triangles (each
+  /// polygon a fan) made one insertion probe past 64, the limit before, and
+  /// its scattered 4 MB table made the edge lookups the largest part of the
+  /// mesh build (docs/performance.md, "Eighth pass"). Still a bound on the
+  /// work of a crowd (a vertex at the centre of a fan of thousands:
+  /// test_int_hash.cpp).
+  static constexpr std::size_t kMaxNearProbes = 256;
   /// Near: eight slots per value of the key's high half, picked among by
   /// the low half's bits mixed. Scattered: Fibonacci hashing of the whole
   /// key.
