@@ -9,6 +9,7 @@
 // Only where a key lies changes, never what the map holds.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -24,9 +25,13 @@ class IntHashMap {
     slots_.clear();
     size_ = 0;
     scattered_ = false;
+    highHalves_ = 0;
   }
-  /// Room for `count` keys without growing.
-  void reserve(std::size_t count) {
+  /// Room for `count` keys without growing. `highHalves`, when not 0, is
+  /// how many values the keys' high halves take (the vertices, numbered
+  /// from 0): the homes then spread over the whole table (see home()).
+  void reserve(std::size_t count, std::size_t highHalves = 0) {
+    highHalves_ = std::max(highHalves_, highHalves);
     std::size_t size = 64;
     while (size < 2 * count) size *= 2;
     if (size > slots_.size()) grow(size);
@@ -71,24 +76,32 @@ class IntHashMap {
   };
   std::size_t mask() const { return slots_.size() - 1; }
   /// Probes of an insertion past which the keys are scattered. A mesh's
-  /// edges cluster where many polygons meet: lt4's world as triangles (each
-  /// polygon a fan) made one insertion probe past 64, the limit before, and
-  /// its scattered 4 MB table made the edge lookups the largest part of the
-  /// mesh build (docs/performance.md, "Eighth pass"). Still a bound on the
-  /// work of a crowd (a vertex at the centre of a fan of thousands:
-  /// test_int_hash.cpp).
-  static constexpr std::size_t kMaxNearProbes = 256;
-  /// Near: eight slots per value of the key's high half, picked among by
-  /// the low half's bits mixed. Scattered: Fibonacci hashing of the whole
-  /// key.
+  /// edges crowd where many polygons meet, and a run of such vertices
+  /// numbered one after another makes a cluster of a few hundred slots
+  /// (lt4's world as triangles, each polygon a fan, in a half-full table:
+  /// 426 probes; with a limit of 64, before, its table was scattered and
+  /// the edge lookups became the largest part of the mesh build,
+  /// docs/performance.md, "Eighth pass"). A scan of a cluster reads
+  /// neighbouring lines; the bound is for a crowd (a vertex at the centre
+  /// of a fan of thousands: test_int_hash.cpp), whose insertions would
+  /// otherwise probe ever longer.
+  static constexpr std::size_t kMaxNearProbes = 1024;
+  /// Near: the keys of high half h start probing at slot h * stride_ plus
+  /// one of eight picked by the low half's bits mixed. stride_ is the
+  /// table's slots per high half when reserve() was told how many there
+  /// are (the homes then cover the table once: eight slots a vertex
+  /// wrapped round a table smaller than eight times the vertices, and the
+  /// vertices at both ends crowded the same slots), else eight.
+  /// Scattered: Fibonacci hashing of the whole key.
   std::size_t home(std::uint64_t key) const {
     if (scattered_) return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> 32) & mask();
     const std::uint64_t spread = ((key & 0xffffffffull) * 0x9e3779b97f4a7c15ull) >> 61;
-    return static_cast<std::size_t>(((key >> 32) << 3) + spread) & mask();
+    return static_cast<std::size_t>((key >> 32) * stride_ + spread) & mask();
   }
   void grow(std::size_t size) {
     std::vector<Slot> old = std::move(slots_);
     slots_.assign(size, Slot{});
+    stride_ = highHalves_ ? std::max<std::size_t>(1, size / highHalves_) : kDefaultStride;
     size_ = 0;
     for (const Slot& s : old) {
       if (s.value != kEmpty) at(s.key) = s.value;
@@ -98,6 +111,10 @@ class IntHashMap {
   std::vector<Slot> slots_;  ///< a power of two in size, at most half used
   std::size_t size_ = 0;
   bool scattered_ = false;  ///< see home()
+  /// Slots per high half when reserve() was not told how many there are.
+  static constexpr std::size_t kDefaultStride = 8;
+  std::size_t highHalves_ = 0;           ///< see reserve()
+  std::size_t stride_ = kDefaultStride;  ///< see home()
 };
 
 }  // namespace cmkit::detail

@@ -82,8 +82,11 @@ TEST(IntHashMap, KeepsTheEdgesOfLt4AsTrianglesNear) {
   // (each polygon a fan over its vertices, two-sided, as cmkit_peers builds
   // it): vertices numbered as they are first met, a triangle's directed
   // edge shared with an earlier one that uses it the other way once (its
-  // reversed copy shares all three), else a new key. With a probe limit of
-  // 64 (before), an insertion probed past it and the table was scattered.
+  // reversed copy shares all three), else a new key. Before, an insertion
+  // probed past the limit and the table was scattered: with the old limit
+  // (64) in float builds, and in double builds (a model of slightly fewer
+  // triangles: a table half as large, fuller) with homes eight slots a
+  // vertex whatever the table's size, which wrapped round it.
   const std::vector<ModelPtr> models = test::buildMapModels(test::dataFile("maps/lt4/lt4.map"));
   ASSERT_FALSE(models.empty());
   const CollisionModel& world = *models.front();
@@ -100,7 +103,7 @@ TEST(IntHashMap, KeepsTheEdgesOfLt4AsTrianglesNear) {
   constexpr std::uint32_t kMask = contents::kSolid | contents::kPlayerClip;  // (cmkit_peers' polygons)
   for (const CmPolygon& p : world.polygons())
     if (p.contents & kMask) numIndices += 3 * std::size_t(std::max(0, int(p.numEdges) - 2));
-  table.reserve(numIndices);  // as convertMeshSurfaces does
+  table.reserve(numIndices, world.vertices().size());  // as convertMeshSurfaces does
   const auto useEdge = [&](int a, int b) {
     const auto reverse = users.find(edgeKey(b, a));
     if (reverse != users.end() && reverse->second == 1) {
