@@ -77,11 +77,11 @@ class IntHashMap {
   std::size_t mask() const { return slots_.size() - 1; }
   /// Probes of an insertion past which the keys are scattered. A mesh's
   /// edges crowd where many polygons meet, and a run of such vertices
-  /// numbered one after another makes a cluster of a few hundred slots
-  /// (lt4's world as triangles, each polygon a fan, in a half-full table:
-  /// 426 probes; with a limit of 64, before, its table was scattered and
-  /// the edge lookups became the largest part of the mesh build,
-  /// docs/performance.md, "Eighth pass"). A scan of a cluster reads
+  /// numbered one after another makes a cluster of up to a few hundred
+  /// slots (lt4's world as triangles, each polygon a fan, in a half-full
+  /// table; with a limit of 64, before, its table was scattered and
+  /// every edge lookup a cache miss: docs/performance.md, "Eighth pass").
+  /// A scan of a cluster reads
   /// neighbouring lines; the bound is for a crowd (a vertex at the centre
   /// of a fan of thousands: test_int_hash.cpp), whose insertions would
   /// otherwise probe ever longer.

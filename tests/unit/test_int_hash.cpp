@@ -1,8 +1,7 @@
 // The build's edge table (src/compile/int_hash.h): what it maps, in both of
 // its layouts, and that a real mesh's edges keep the near layout (a
 // scattered table makes every lookup a cache miss: lt4's world as triangles
-// scattered it before the probe limit was raised, and its edge lookups
-// were then the largest part of its build).
+// scattered it, and every edge lookup of its build was then a cache miss).
 #include <gtest/gtest.h>
 
 #include <algorithm>
