@@ -9,7 +9,6 @@
 // Only where a key lies changes, never what the map holds.
 #pragma once
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -25,13 +24,9 @@ class IntHashMap {
     slots_.clear();
     size_ = 0;
     scattered_ = false;
-    highHalves_ = 0;
   }
-  /// Room for `count` keys without growing. `highHalves`, when not 0, is
-  /// how many values the keys' high halves take (the vertices, numbered
-  /// from 0): the homes then spread over the whole table (see home()).
-  void reserve(std::size_t count, std::size_t highHalves = 0) {
-    highHalves_ = std::max(highHalves_, highHalves);
+  /// Room for `count` keys without growing.
+  void reserve(std::size_t count) {
     std::size_t size = 64;
     while (size < 2 * count) size *= 2;
     if (size > slots_.size()) grow(size);
@@ -51,6 +46,7 @@ class IntHashMap {
   /// non-negative value there (kEmpty left there means no value).
   int& at(std::uint64_t key) {
     if (2 * (size_ + 1) > slots_.size()) grow(slots_.empty() ? 64 : 2 * slots_.size());
+    if (!scattered_ && (key >> 32) >= slots_.size() / kSlotsPerHigh) growToHome(key >> 32);
     std::size_t probes = 0;
     for (std::size_t i = home(key);; i = (i + 1) & mask()) {
       Slot& s = slots_[i];
@@ -86,22 +82,28 @@ class IntHashMap {
   /// of a fan of thousands: test_int_hash.cpp), whose insertions would
   /// otherwise probe ever longer.
   static constexpr std::size_t kMaxNearProbes = 1024;
-  /// Near: the keys of high half h start probing at slot h * stride_ plus
-  /// one of eight picked by the low half's bits mixed. stride_ is the
-  /// table's slots per high half when reserve() was told how many there
-  /// are (the homes then cover the table once: eight slots a vertex
-  /// wrapped round a table smaller than eight times the vertices, and the
-  /// vertices at both ends crowded the same slots), else eight.
-  /// Scattered: Fibonacci hashing of the whole key.
+  /// Near: the keys of high half h start probing at slot 8 h plus one of
+  /// eight picked by the low half's bits mixed (kSlotsPerHigh). Scattered:
+  /// Fibonacci hashing of the whole key.
   std::size_t home(std::uint64_t key) const {
     if (scattered_) return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> 32) & mask();
     const std::uint64_t spread = ((key & 0xffffffffull) * 0x9e3779b97f4a7c15ull) >> 61;
-    return static_cast<std::size_t>((key >> 32) * stride_ + spread) & mask();
+    return static_cast<std::size_t>((key >> 32) * kSlotsPerHigh + spread) & mask();
+  }
+  /// Grows the table (a power of two) to kSlotsPerHigh slots a high half up
+  /// to h, so that the homes do not wrap round it: wrapped, the high halves
+  /// at its two ends share their homes and crowd them (lt4's world as
+  /// triangles in the double build: a table 49 % full and an insertion
+  /// probing 2226 slots). Not past kMaxSlotsPerKey slots a key: keys with
+  /// high halves far apart (few of them) wrap instead.
+  void growToHome(std::uint64_t h) {
+    std::size_t size = slots_.size();
+    while (size / kSlotsPerHigh <= h && size < kMaxSlotsPerKey * (size_ + 1)) size *= 2;
+    if (size > slots_.size()) grow(size);
   }
   void grow(std::size_t size) {
     std::vector<Slot> old = std::move(slots_);
     slots_.assign(size, Slot{});
-    stride_ = highHalves_ ? std::max<std::size_t>(1, size / highHalves_) : kDefaultStride;
     size_ = 0;
     for (const Slot& s : old) {
       if (s.value != kEmpty) at(s.key) = s.value;
@@ -111,10 +113,12 @@ class IntHashMap {
   std::vector<Slot> slots_;  ///< a power of two in size, at most half used
   std::size_t size_ = 0;
   bool scattered_ = false;  ///< see home()
-  /// Slots per high half when reserve() was not told how many there are.
-  static constexpr std::size_t kDefaultStride = 8;
-  std::size_t highHalves_ = 0;           ///< see reserve()
-  std::size_t stride_ = kDefaultStride;  ///< see home()
+  /// The slots of one high half's home (see home()).
+  static constexpr std::size_t kSlotsPerHigh = 8;
+  /// How sparse growToHome may make the table: a mesh's vertex has a few
+  /// edge keys (lt4's world as triangles: 3.4 on average), so eight slots a
+  /// vertex is a table at most about four times the keys it holds.
+  static constexpr std::size_t kMaxSlotsPerKey = 8;
 };
 
 }  // namespace cmkit::detail

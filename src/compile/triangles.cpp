@@ -26,9 +26,7 @@ void ModelBuilder::convertMeshSurfaces() {
   clearHash(bounds, mesh.positions.size());
   std::size_t numIndices = 0;
   for (const MeshSurface& s : mesh.surfaces) numIndices += s.indices.size();
-  // Each index starts an edge (the table grows for two-sided ones); the
-  // keys' high halves are the welded vertices, at most the mesh's points.
-  edgeHashHead_.reserve(numIndices, mesh.positions.size());
+  edgeHashHead_.reserve(numIndices);  // each index starts an edge (the table grows for two-sided ones)
   // Room for every triangle on both sides (two-sided materials) and its
   // edges: the arrays then never move while they fill.
   const std::size_t numTriangles = numIndices / 3;

@@ -102,7 +102,7 @@ TEST(IntHashMap, KeepsTheEdgesOfLt4AsTrianglesNear) {
   constexpr std::uint32_t kMask = contents::kSolid | contents::kPlayerClip;  // (cmkit_peers' polygons)
   for (const CmPolygon& p : world.polygons())
     if (p.contents & kMask) numIndices += 3 * std::size_t(std::max(0, int(p.numEdges) - 2));
-  table.reserve(numIndices, world.vertices().size());  // as convertMeshSurfaces does
+  table.reserve(numIndices);  // as convertMeshSurfaces does
   const auto useEdge = [&](int a, int b) {
     const auto reverse = users.find(edgeKey(b, a));
     if (reverse != users.end() && reverse->second == 1) {
