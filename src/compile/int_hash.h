@@ -73,11 +73,10 @@ class IntHashMap {
   std::size_t mask() const { return slots_.size() - 1; }
   /// Probes of an insertion past which the keys are scattered. A mesh's
   /// edges crowd where many polygons meet, and a run of such vertices
-  /// numbered one after another makes a cluster of up to a few hundred
-  /// slots (lt4's world as triangles, each polygon a fan, in a half-full
-  /// table; with a limit of 64, before, its table was scattered and
-  /// every edge lookup a cache miss: docs/performance.md, "Eighth pass").
-  /// A scan of a cluster reads
+  /// numbered one after another makes a cluster of about a hundred slots
+  /// in lt4's world as triangles (each polygon a fan); with a limit of 64,
+  /// before, its table was scattered and every edge lookup a cache miss
+  /// (docs/performance.md, "Eighth pass"). A scan of a cluster reads
   /// neighbouring lines; the bound is for a crowd (a vertex at the centre
   /// of a fan of thousands: test_int_hash.cpp), whose insertions would
   /// otherwise probe ever longer.
@@ -115,9 +114,11 @@ class IntHashMap {
   bool scattered_ = false;  ///< see home()
   /// The slots of one high half's home (see home()).
   static constexpr std::size_t kSlotsPerHigh = 8;
-  /// How sparse growToHome may make the table: a mesh's vertex has a few
-  /// edge keys (lt4's world as triangles: 3.4 on average), so eight slots a
-  /// vertex is a table at most about four times the keys it holds.
+  /// How sparse growToHome may make the table. A mesh's vertex has a few
+  /// edge keys (lt4's world as triangles: about 3.4), so eight slots a
+  /// vertex is about 2.4 slots a key, near the two to four of the load
+  /// rule; the cap stops a few keys with high halves far apart from
+  /// growing it further.
   static constexpr std::size_t kMaxSlotsPerKey = 8;
 };
 
