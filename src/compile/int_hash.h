@@ -92,9 +92,10 @@ class IntHashMap {
   /// Grows the table (a power of two) to kSlotsPerHigh slots a high half up
   /// to h, so that the homes do not wrap round it: wrapped, the high halves
   /// at its two ends share their homes and crowd them (lt4's world as
-  /// triangles in the double build: a table 49 % full and an insertion
-  /// probing 2226 slots). Not past kMaxSlotsPerKey slots a key: keys with
-  /// high halves far apart (few of them) wrap instead.
+  /// triangles in the double build, a half-full table, was scattered so:
+  /// IntHashMap.KeepsTheEdgesOfLt4AsTrianglesNear). Not past
+  /// kMaxSlotsPerKey slots a key: keys with high halves far apart (few of
+  /// them) wrap instead.
   void growToHome(std::uint64_t h) {
     std::size_t size = slots_.size();
     while (size / kSlotsPerHigh <= h && size < kMaxSlotsPerKey * (size_ + 1)) size *= 2;
