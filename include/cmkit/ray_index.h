@@ -2,7 +2,7 @@
 //
 // CONTRACT
 // - RayIndex is built once from a model (an 8-wide bounding volume hierarchy
-//   over its polygons, with their planes and edge lines copied in; lt4's
+//   over its polygons, with their planes and corners copied in; lt4's
 //   world: ~15 ms, ~2 MB) and is then immutable: cast() is a const function,
 //   safe to call from any number of threads at once, with no scratch memory.
 //   It does not refer to the model after construction.
