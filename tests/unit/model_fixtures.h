@@ -3,6 +3,7 @@
 // one-leaf model. Edges are shared within a piece, not between pieces.
 #pragma once
 
+#include <cmath>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -16,6 +17,7 @@
 #include "cmkit/model.h"
 #include "cmkit/trace_model.h"
 #include "model/edge_normals.h"
+#include "test_support.h"
 
 namespace cmkit::test {
 
@@ -133,6 +135,40 @@ inline ModelPtr twoSidedTerrainModel(int cells, std::mt19937& rng) {
   auto built = buildCollisionModelFromTriangles(mesh, "two-sided", materials);
   EXPECT_TRUE(built.ok()) << built.error().toString();
   return built.ok() ? built->model : nullptr;
+}
+
+/// A world model of 60 two-sided axial boxes (quad faces) and a two-sided
+/// prism whose caps have `sides` edges, through the map API: every face
+/// with its reversed twin.
+inline ModelPtr twoSidedPrismWorld(int sides, bool robustEdges = false) {
+  constexpr const char* kSheet = "textures/test/sheet";
+  std::string text = "Version 2\n{\n\"classname\" \"worldspawn\"\n";
+  for (int b = 0; b < 60; ++b) {
+    const Vec3 lo{Real(64 * (b % 10)), Real(64 * (b / 10)), 0};
+    text += axialBrush({lo, lo + Vec3{32, 32, 32}}, kSheet);
+  }
+  text += "{\n brushDef3\n {\n";
+  const auto side = [&](double a, double b, double c, double d) {
+    text += "  ( " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
+            std::to_string(d) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + kSheet + "\" 0 0 0\n";
+  };
+  for (int k = 0; k < sides; ++k) {  // around (320, 800), radius 100, z 0 .. 64
+    const double a = 2 * 3.14159265358979 * k / sides, nx = std::cos(a), ny = std::sin(a);
+    side(nx, ny, 0, -(100 + nx * 320 + ny * 800));
+  }
+  side(0, 0, 1, -64);
+  side(0, 0, -1, 0);
+  text += " }\n}\n}\n";
+  auto map = parseMapText(text);
+  EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());
+  if (!map) return nullptr;
+  MaterialTable materials;
+  materials.addMtrText(std::string(kSheet) + " { twosided }\n", "prism_test.mtr");
+  BuildOptions options;
+  options.robustEdges = robustEdges;
+  auto built = buildCollisionModels(*map, materials, options);
+  EXPECT_TRUE(built.ok());
+  return built && !built->models.empty() ? built->models.front() : nullptr;
 }
 
 }  // namespace cmkit::test
