@@ -335,9 +335,27 @@ class Builder {
     CMKIT_ASSERT(i == items_.size());
   }
 
+  /// BvhLeaf::twinStart of a polygon's twin (edge lists `a` and `b`, as
+  /// many edges): s when edge k of the twin is -a[(s + n - k) mod n] for
+  /// every k, as the builders' reversed copies are, and there are at most
+  /// BvhLeaf::kMaxMadeTwinEdges; else kStoredTwin (isTwin also pairs the
+  /// same edges in another order, whose corners are stored).
+  static std::uint8_t twinStart(std::span<const std::int32_t> a, std::span<const std::int32_t> b) {
+    const std::size_t n = a.size();
+    if (n == 0 || n != b.size() || n > BvhLeaf::kMaxMadeTwinEdges) return BvhLeaf::kStoredTwin;
+    static_assert(BvhLeaf::kMaxMadeTwinEdges < BvhLeaf::kStoredTwin);
+    for (std::size_t s = 0; s < n; ++s) {
+      bool reversed = true;
+      for (std::size_t k = 0; reversed && k < n; ++k) reversed = b[k] == -a[(s + n - k) % n];
+      if (reversed) return std::uint8_t(s);
+    }
+    return BvhLeaf::kStoredTwin;
+  }
+
   /// The leaves' materials, edge counts and edge uses (copied from the
-  /// model's, `uses`, in the leaves' order), after the hierarchy, each
-  /// polygon's fetched some lanes ahead as in addPlanes.
+  /// model's, `uses`, in the leaves' order; a twin's only where they are
+  /// not made from its polygon's, BvhLeaf::twinStart), after the hierarchy,
+  /// each polygon's fetched some lanes ahead as in addPlanes.
   void addUses(std::span<const EdgeUse> uses) {
     constexpr std::size_t kFetchAhead = 16;
     std::vector<std::int32_t> order;  // the polygons in the order their uses are copied
@@ -346,6 +364,7 @@ class Builder {
     for (BvhLeaf& b : out_.leaves) {
       b.firstUse = std::uint32_t(total);
       for (std::size_t j = 0; j < kLanes; ++j) {
+        b.twinStart[j] = 0;  // (no twin, or its corners made: none stored)
         if (b.polygon[j] < 0) continue;
         const PolygonUses& e = polygonUses_[std::size_t(b.polygonAt(j))];
         b.numEdges[j] = std::uint16_t(e.numEdges);
@@ -353,7 +372,11 @@ class Builder {
         order.push_back(b.polygonAt(j));
         total += BvhLeaf::usesStride(e.numEdges);
         if (b.twin[j] < 0) continue;
-        b.twinMaterial[j] = polygonUses_[std::size_t(b.twin[j])].material;
+        const PolygonUses& t = polygonUses_[std::size_t(b.twin[j])];
+        b.twinMaterial[j] = t.material;
+        b.twinStart[j] = twinStart(std::span(m_.polygonEdges).subspan(e.firstEdge, e.numEdges),
+                                   std::span(m_.polygonEdges).subspan(t.firstEdge, t.numEdges));
+        if (b.twinMade(j)) continue;
         order.push_back(b.twin[j]);
         total += BvhLeaf::usesStride(e.numEdges);  // (a twin's edges are its polygon's: model/twins.h)
       }

@@ -57,20 +57,33 @@ struct alignas(64) BvhLeaf : CullBlock {
   std::int32_t material[kLanes];
   std::int32_t twinMaterial[kLanes];
   /// The leaf's edge uses start at PolygonBvh::uses[firstUse]: lane 0's
-  /// polygon's numEdges[0], its twin's numEdges[0] (when it has one), lane
-  /// 1's, ... (a twin has as many edges as its polygon), each polygon's
-  /// starting a cache line (usesStride).
+  /// polygon's numEdges[0], its twin's numEdges[0] when the twin's are
+  /// stored (twinStart[0] == kStoredTwin; a twin has as many edges as its
+  /// polygon), lane 1's, ..., each polygon's starting a cache line
+  /// (usesStride).
   std::uint32_t firstUse;
   std::uint16_t numEdges[kLanes];  ///< lane j's polygon's (CmPolygon::numEdges)
+  /// How lane j's twin's edge uses are had: kStoredTwin, stored after the
+  /// polygon's; else s, made from the polygon's (twinCorners): the twin's
+  /// edge k is the polygon's edge (s + n - k) mod n used the other way
+  /// round, as the builders' reversed copies are (model/twins.h). (Made,
+  /// a twin's corners cost no memory: a two-sided mesh's uses were half
+  /// its twins'.) 0 in a lane without a twin.
+  std::uint8_t twinStart[kLanes];
+  /// twinStart of a lane whose twin's uses are stored.
+  static constexpr std::uint8_t kStoredTwin = 0xFF;
+  /// Twins of at most this many edges have their uses made (the queries
+  /// make them on the stack); others' are stored.
+  static constexpr std::size_t kMaxMadeTwinEdges = 8;
   /// The uses a polygon of n edges takes in PolygonBvh::uses: n, rounded up
   /// to whole cache lines (a triangle's 48 bytes are one line, not two
   /// lines three times in four).
   static std::size_t usesStride(std::size_t n) { return (n + kUsesPerLine - 1) & ~(kUsesPerLine - 1); }
   static constexpr std::size_t kUsesPerLine = 64 / sizeof(PolygonCorner);
-  /// Where each lane's polygon's edge uses start, and its twin's.
+  /// Where each lane's polygon's edge uses start, and its twin's when stored.
   struct UseStarts {
     std::size_t lane[kLanes];    ///< lane j's polygon's
-    std::size_t stride[kLanes];  ///< usesStride of lane j's polygon: its twin's follow
+    std::size_t stride[kLanes];  ///< usesStride of lane j's polygon: a stored twin's follow
     std::size_t of(std::size_t j) const { return lane[j]; }
     std::size_t twinOf(std::size_t j) const { return lane[j] + stride[j]; }
   };
@@ -83,9 +96,25 @@ struct alignas(64) BvhLeaf : CullBlock {
     for (std::size_t j = 0; j < kLanes; ++j) {
       u.lane[j] = at;
       u.stride[j] = usesStride(numEdges[j]);
-      at += u.stride[j] << unsigned((polygon[j] & kHasTwin) != 0);
+      at += u.stride[j] << unsigned(twinStart[j] == kStoredTwin);  // (only a lane with a twin's is)
     }
     return u;
+  }
+  /// Whether lane j's twin's uses are made (twinCorners), not stored (lane
+  /// j has a twin).
+  bool twinMade(std::size_t j) const { return twinStart[j] != kStoredTwin; }
+  /// Lane j's twin's corners made from its polygon's (`corners`, n of
+  /// them, n at most kMaxMadeTwinEdges) into out[0 .. n - 1]: the corners
+  /// the twin's stored uses would hold, bit for bit (twinStart).
+  void twinCorners(std::size_t j, const PolygonCorner* corners, PolygonCorner* out) const {
+    const std::size_t n = numEdges[j];
+    // Twin edge k is the polygon's edge m = (s + n - k) mod n reversed: it
+    // starts where that one ends, at the polygon's corner m + 1.
+    for (std::size_t k = 0, m = twinStart[j]; k < n; ++k, m = (m == 0 ? n : m) - 1) {
+      const PolygonCorner& c = corners[m];
+      out[k].entry = PolygonCorner::encode(-c.edgeNum(), c.internal());
+      out[k].p = corners[m + 1 == n ? 0 : m + 1].p;
+    }
   }
   /// Lane j's polygon number (lane j used).
   std::int32_t polygonAt(std::size_t j) const { return polygon[j] & ~kHasTwin; }
@@ -113,9 +142,11 @@ struct PolygonBvh {
   /// leaf by leaf in the leaves' order (BvhLeaf::firstUse): a leaf's in one
   /// run of memory, the leaves near one another in space near one another
   /// here, each polygon's from the start of a cache line (the entries up to
-  /// the next line's unused). (The model's edge uses in another order, with
-  /// the position of a vertex in place of the edge's two vertex numbers, for
-  /// the translations' tests: a sealed model's polygons' edges close a loop.)
+  /// the next line's unused); a twin's only where they are not made from
+  /// its polygon's (BvhLeaf::twinStart). (The model's edge uses in another
+  /// order, with the position of a vertex in place of the edge's two vertex
+  /// numbers, for the translations' tests: a sealed model's polygons' edges
+  /// close a loop.)
   std::vector<PolygonCorner, AlignedAllocator<PolygonCorner, 64>> uses;
   /// Inner nodes on the longest path from the root (the walks' stacks hold
   /// at most (kLanes - 1) * depth + 1 entries).
@@ -137,7 +168,8 @@ inline constexpr std::size_t kBvhMinPolygons = 256;
 /// The hierarchy of the model's polygons (the arrays' numbers in range);
 /// empty for a model with kBvhMinPolygons or fewer, or with a polygon of
 /// more than 65 535 edges (BvhLeaf::numEdges). `uses`: the model's edge
-/// uses (QueryData::edgeUses), copied into the leaves' order as corners.
+/// uses (QueryData::edgeUses), copied into the leaves' order as corners
+/// (a twin's where BvhLeaf::twinStart says so).
 /// Made top-down, splitting each set of polygons in two at the cheapest of
 /// a few planes along its widest axis by the surface-area cost (binned), into
 /// up to kLanes children per node; sets of up to kLanes polygons are leaves.

@@ -152,9 +152,13 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
   // The lanes' edge uses, asked for together (each polygon's test waits for
   // its own first: this overlaps the waits of the lanes after the first).
   const BvhLeaf::UseStarts uses = b.useStarts();
+  // (A twin's corners: stored after its polygon's, or made from them.)
+  const auto cornersOf = [&](std::size_t lane, bool twin) {
+    return bvh.uses.data() + (twin && !b.twinMade(lane) ? uses.twinOf(lane) : uses.of(lane));
+  };
   for (unsigned lanes = front | back; lanes; lanes &= lanes - 1) {
     const std::size_t lane = std::size_t(std::countr_zero(lanes));
-    prefetch(bvh.uses.data() + ((front >> lane) & 1u ? uses.of(lane) : uses.twinOf(lane)));
+    prefetch(cornersOf(lane, !((front >> lane) & 1u)));
   }
   // A polygon's tests; false when the query is over (blocked completely).
   // The trace bounds shrank at a hit: the lanes left are culled again.
@@ -171,9 +175,16 @@ bool translateTrmThroughBvhLeaf(TraceWork& tw, const PolygonBvh& bvh, std::size_
     poly.material = twin ? b.twinMaterial[lane] : b.material[lane];
     poly.numEdges = b.numEdges[lane];
     const std::int32_t polyNum = twin ? b.twin[lane] : b.polygonAt(lane);
-    const PolygonCorner* corners = bvh.uses.data() + (twin ? uses.twinOf(lane) : uses.of(lane));
     const Real before = tw.fraction;
-    if (translateTrmThroughPolygon(tw, polyNum, poly, corners)) return false;
+    bool blocked;
+    if (twin && b.twinMade(lane)) {  // (the twin's corners made from its polygon's)
+      PolygonCorner made[BvhLeaf::kMaxMadeTwinEdges];
+      b.twinCorners(lane, cornersOf(lane, false), made);
+      blocked = translateTrmThroughPolygon(tw, polyNum, poly, made);
+    } else {
+      blocked = translateTrmThroughPolygon(tw, polyNum, poly, cornersOf(lane, twin));
+    }
+    if (blocked) return false;
     if (tw.fraction != before && (front | back)) {
       const BoundsLanes bounds(tw);
       const unsigned left = bounds.pass(b) & leafPlanesCrossed(tw, b);

@@ -72,21 +72,24 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
       EXPECT_EQ(b.twinLanes() >> j & 1u, unsigned(twin >= 0)) << "the lane's flag says whether it has a twin";
       // What a translation's test reads of the lane's polygons: the leaf's
       // copies (materials, edge counts, the uses one polygon after another).
-      const auto expectUses = [&](const CmPolygon& q, std::size_t at) {
-        ASSERT_LE(at + q.numEdges, bvh.uses.size());
+      const auto expectCorners = [&](const CmPolygon& q, const detail::PolygonCorner* corners) {
         const detail::QueryData* d = detail::queryDataOf(m);
         for (std::size_t i = 0; i < q.numEdges; ++i) {
           // Corner i: edge i's entry and internal flag, and the position of
           // the vertex where it starts in the polygon's order, which is where
           // the edge before it ends.
           const detail::EdgeUse& want = d->edgeUses[q.firstEdge + i];
-          const detail::PolygonCorner& got = bvh.uses[at + i];
+          const detail::PolygonCorner& got = corners[i];
           EXPECT_EQ(got.edgeNum(), want.edgeNum);
           EXPECT_EQ(got.internal(), want.internal != 0);
           EXPECT_EQ(got.p, m.vertices()[std::size_t(want.start())]);
           const detail::EdgeUse& before = d->edgeUses[q.firstEdge + (i == 0 ? q.numEdges : i) - 1];
           EXPECT_EQ(got.p, m.vertices()[std::size_t(before.end())]);
         }
+      };
+      const auto expectUses = [&](const CmPolygon& q, std::size_t at) {
+        ASSERT_LE(at + q.numEdges, bvh.uses.size());
+        expectCorners(q, bvh.uses.data() + at);
       };
       EXPECT_EQ(b.numEdges[j], p.numEdges);
       EXPECT_EQ(b.material[j], p.material);
@@ -100,8 +103,19 @@ std::size_t checkSubtree(const CollisionModel& m, const PolygonBvh& bvh, std::in
         EXPECT_EQ(t.bounds.min, p.bounds.min);
         EXPECT_EQ(t.bounds.max, p.bounds.max);
         EXPECT_EQ(b.twinMaterial[j], t.material);
-        expectUses(t, uses.twinOf(j));  // (a twin's uses follow its polygon's)
-        EXPECT_EQ(uses.twinOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
+        if (b.twinMade(j)) {  // made from the polygon's: what would be stored
+          EXPECT_LE(t.numEdges, BvhLeaf::kMaxMadeTwinEdges);
+          if (t.numEdges <= BvhLeaf::kMaxMadeTwinEdges) {
+            detail::PolygonCorner made[BvhLeaf::kMaxMadeTwinEdges];
+            b.twinCorners(j, bvh.uses.data() + uses.of(j), made);
+            expectCorners(t, made);
+          }
+        } else {
+          expectUses(t, uses.twinOf(j));  // (a stored twin's uses follow its polygon's)
+          EXPECT_EQ(uses.twinOf(j) % BvhLeaf::kUsesPerLine, 0u) << "each polygon's uses start a line";
+        }
+      } else {
+        EXPECT_NE(b.twinStart[j], BvhLeaf::kStoredTwin) << "a lane without a twin stores none";
       }
       contents |= p.contents;
       EXPECT_EQ(b.contents[j], p.contents);
@@ -155,8 +169,13 @@ TEST(PolygonBvh, HoldsEveryPolygonOnceInBoxesThatContainIt) {
   std::vector<int> seen(world->polygons().size(), 0);
   const std::size_t depth = checkSubtree(*world, bvh, 0, nullptr, 0, seen);
   for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "polygon " << i;
-  std::size_t uses = 0;  // every polygon's copied once, each from a line's start
+  // Every polygon's copied once, each from a line's start, but the twins'
+  // made from their polygons'.
+  std::size_t uses = 0;
   for (const CmPolygon& p : world->polygons()) uses += BvhLeaf::usesStride(p.numEdges);
+  for (const BvhLeaf& b : bvh.leaves)
+    for (std::size_t j = 0; j < kLanes; ++j)
+      if ((b.twinLanes() >> j & 1u) && b.twinMade(j)) uses -= BvhLeaf::usesStride(b.numEdges[j]);
   EXPECT_EQ(bvh.uses.size(), uses);
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(bvh.uses.data()) % 64, 0u);
   EXPECT_EQ(depth, bvh.depth) << "the walks' stacks are sized by the depth";
@@ -186,6 +205,49 @@ TEST(PolygonBvh, HoldsATwoSidedSurfaceAsPairsInOneLane) {
   // one-sided triangles (merged into faces) have none.
   EXPECT_EQ(twins, std::size_t(24 * 24 * 2));
   EXPECT_LE(bvh.leaves.size() * 2, terrain->polygons().size() - twins);
+  // The builder's reversed copies: every twin's corners are made from its
+  // polygon's (checked against the twin's own in checkSubtree), none stored.
+  std::size_t uses = 0;
+  for (const CmPolygon& p : terrain->polygons()) uses += BvhLeaf::usesStride(p.numEdges);
+  for (const BvhLeaf& b : bvh.leaves)
+    for (std::size_t j = 0; j < kLanes; ++j)
+      if (b.twinLanes() >> j & 1u) {
+        EXPECT_TRUE(b.twinMade(j));
+        uses -= BvhLeaf::usesStride(b.numEdges[j]);
+      }
+  EXPECT_EQ(bvh.uses.size(), uses);
+}
+
+// A twin's corners are made from its polygon's up to kMaxMadeTwinEdges
+// edges (the queries make them on the stack); a two-sided polygon of more
+// edges keeps its twin's stored (checkSubtree checks both against the
+// twin's own edges).
+TEST(PolygonBvh, StoresTheCornersOfTwinsOfManyEdges) {
+  if (!detail::kCullBlocks)
+    GTEST_SKIP() << "a build without float lanes (double, no SIMD) makes no hierarchy";
+  for (const int sides : {int(BvhLeaf::kMaxMadeTwinEdges), int(BvhLeaf::kMaxMadeTwinEdges) + 4}) {
+    const ModelPtr m = test::twoSidedPrismWorld(sides);
+    ASSERT_TRUE(m);
+    const PolygonBvh& bvh = detail::queryDataOf(*m)->bvh;
+    ASSERT_FALSE(bvh.empty()) << m->polygons().size() << " polygons";
+    std::vector<int> seen(m->polygons().size(), 0);
+    checkSubtree(*m, bvh, 0, nullptr, 0, seen);
+    for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "polygon " << i;
+    std::size_t caps = 0, twins = 0, stored = 0;
+    for (const BvhLeaf& b : bvh.leaves)
+      for (std::size_t j = 0; j < kLanes; ++j) {
+        if (!(b.twinLanes() >> j & 1u)) continue;
+        ++twins;
+        if (b.numEdges[j] == std::size_t(sides)) ++caps;
+        if (!b.twinMade(j)) {
+          ++stored;
+          EXPECT_EQ(b.numEdges[j], std::size_t(sides)) << "only the caps' twins are stored";
+        }
+      }
+    EXPECT_EQ(twins * 2, m->polygons().size()) << "every face with its twin in one lane";
+    EXPECT_EQ(caps, 2u) << sides << " sides";
+    EXPECT_EQ(stored, std::size_t(sides) > BvhLeaf::kMaxMadeTwinEdges ? 2u : 0u) << sides << " sides";
+  }
 }
 
 /// A quad (edges 1..4) and polygons whose edge lists are `other`, of the
