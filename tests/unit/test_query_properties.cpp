@@ -416,9 +416,9 @@ TEST(QueryData, PreparedAndBareModelsAnswerAlikeTwoSidedPrismRobustEdges) {
 // sharp folds (each face's edges are its own and its reversed copy's: the
 // folded normal, 1 / 0.3 units long, moves the edge out by 0.83 units, not
 // 0.25: docs/fidelity.md). The original's test of a trace-model edge against
-// such an edge can report a contact where the two edges do not meet (a
-// box's bottom edge and a crate's top edge at right angles to it, the point
-// 6 units from the box). Which such pairs a translation tests depends on the
+// such an edge stops the move where the trace-model edge's line meets the
+// edge's line moved out that far: on a shallow move, far back along it, where
+// the two edges do not meet. Which such pairs a translation tests depends on the
 // order it meets the polygons (a polygon met after a nearer hit is culled by
 // the shrunk bounds), so the hierarchy's walk and the BSP walk can report
 // different fractions there: the nearer one is always an edge contact on
