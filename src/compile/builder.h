@@ -198,6 +198,9 @@ class ModelBuilder {
                std::vector<std::string>* warnings);
   /// Runs the whole pipeline (the list of steps) and returns the flattened model.
   ModelPtr build();
+  /// Whether the edge table scattered its keys (int_hash.h; for tests: a
+  /// real mesh's edges should keep the near layout).
+  bool edgeTableScattered() const { return edgeHashHead_.scattered(); }
 
  private:
   // ---- brushes.cpp

@@ -6,15 +6,17 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <map>
 #include <random>
 #include <unordered_map>
 #include <vector>
 
 #include "cmkit/contents.h"
+#include "cmkit/materials.h"
+#include "cmkit/mesh.h"
 #include "cmkit/model.h"
-#include "compile/builder.h"  // edgeKey
+#include "compile/builder.h"  // edgeKey, ModelBuilder
 #include "compile/int_hash.h"
+#include "model/material_cache.h"
 #include "test_support.h"
 
 namespace cmkit {
@@ -77,55 +79,39 @@ TEST(IntHashMap, MapsEveryKeyNearAndScattered) {
 }
 
 TEST(IntHashMap, KeepsTheEdgesOfLt4AsTrianglesNear) {
-  // The edge keys the mesh build makes of lt4's world model as triangles
-  // (each polygon a fan over its vertices, two-sided, as cmkit_peers builds
-  // it): vertices numbered as they are first met, a triangle's directed
-  // edge shared with an earlier one that uses it the other way once (its
-  // reversed copy shares all three), else a new key. Before, an insertion
-  // probed past the limit and the table was scattered: with the old limit
-  // (64) in float builds, and in double builds (a model of slightly fewer
-  // triangles: a table half as large, fuller) with homes eight slots a
+  // lt4's world model as triangles, as cmkit_peers builds it (every solid or
+  // playerclip polygon as a fan over its vertices, two-sided), through the
+  // mesh build itself: its edge table must keep the near layout. Before, an
+  // insertion probed past the limit and the table was scattered: with the
+  // old limit (64) in float builds, and in double builds (a model of slightly
+  // fewer triangles: a table half as large, fuller) with homes eight slots a
   // vertex whatever the table's size, which wrapped round it.
   const std::vector<ModelPtr> models = test::buildMapModels(test::dataFile("maps/lt4/lt4.map"));
   ASSERT_FALSE(models.empty());
   const CollisionModel& world = *models.front();
-  std::vector<int> number(world.vertices().size(), -1);
-  int numbered = 0;
-  const auto vertexNumber = [&](std::int32_t v) {
-    int& n = number[std::size_t(v)];
-    if (n < 0) n = numbered++;
-    return n;
-  };
-  std::map<std::uint64_t, int> users;  // directed edge -> users of its newest edge
-  IntHashMap table;
-  std::size_t numIndices = 0;
+  TriangleMesh mesh;
+  mesh.positions.assign(world.vertices().begin(), world.vertices().end());
+  MeshSurface surface{"textures/test/twosided", {}};
   constexpr std::uint32_t kMask = contents::kSolid | contents::kPlayerClip;  // (cmkit_peers' polygons)
-  for (const CmPolygon& p : world.polygons())
-    if (p.contents & kMask) numIndices += 3 * std::size_t(std::max(0, int(p.numEdges) - 2));
-  table.reserve(numIndices);  // as convertMeshSurfaces does
-  const auto useEdge = [&](int a, int b) {
-    const auto reverse = users.find(edgeKey(b, a));
-    if (reverse != users.end() && reverse->second == 1) {
-      reverse->second = 2;
-      return;
-    }
-    users[edgeKey(a, b)] = 1;
-    int& value = table.at(edgeKey(a, b));
-    if (value == IntHashMap::kEmpty) value = int(users.size());
-  };
-  std::vector<int> corners;
+  std::vector<std::uint32_t> corners;
   for (const CmPolygon& p : world.polygons()) {
     if (!(p.contents & kMask)) continue;
     corners.clear();
-    for (const std::int32_t e : world.edgesOf(p)) corners.push_back(vertexNumber(world.edgeStart(e)));
-    for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
-      const int a = corners[0], b = corners[k], c = corners[k + 1];
-      useEdge(a, b), useEdge(b, c), useEdge(c, a);
-      useEdge(a, c), useEdge(c, b), useEdge(b, a);  // the reversed copy
-    }
+    for (const std::int32_t e : world.edgesOf(p)) corners.push_back(std::uint32_t(world.edgeStart(e)));
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+      surface.indices.insert(surface.indices.end(), {corners[0], corners[k], corners[k + 1]});
   }
-  EXPECT_GT(users.size(), 40000u);
-  EXPECT_FALSE(table.scattered());
+  mesh.surfaces.push_back(std::move(surface));
+  EXPECT_GT(mesh.surfaces[0].indices.size(), 3u * 20000u);
+  MaterialTable materials;
+  materials.addMtrText("textures/test/twosided { twosided }\n", "test.mtr");
+  detail::MaterialCache cache(materials);
+  std::vector<std::string> warnings;
+  detail::ModelBuilder builder(mesh, "lt4 as triangles", cache, &warnings);
+  const ModelPtr built = builder.build();
+  ASSERT_TRUE(built);
+  EXPECT_GT(built->edges().size(), 40000u);
+  EXPECT_FALSE(builder.edgeTableScattered());
 }
 
 }  // namespace
