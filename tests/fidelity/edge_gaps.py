@@ -27,15 +27,9 @@ import math
 import os
 import sys
 
+from check_lt4 import fields, numbers  # (the answer lines' parsers, beside this script)
+
 CLASSES = [(0.3, "<= 0.3"), (1.0, "0.3-1"), (2.0, "1-2"), (5.0, "2-5"), (math.inf, "> 5")]
-
-
-def fields(line):
-    return dict(tok.split("=", 1) for tok in line.split() if "=" in tok)
-
-
-def numbers(text):
-    return [float(x) for x in text.split(",")]
 
 
 def trm_bounds(spec):
