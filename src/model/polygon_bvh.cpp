@@ -335,21 +335,14 @@ class Builder {
     CMKIT_ASSERT(i == items_.size());
   }
 
-  /// BvhLeaf::twinStart of a polygon's twin (edge lists `a` and `b`, as
-  /// many edges): s when edge k of the twin is -a[(s + n - k) mod n] for
-  /// every k, as the builders' reversed copies are, and there are at most
-  /// BvhLeaf::kMaxMadeTwinEdges; else kStoredTwin (isTwin also pairs the
-  /// same edges in another order, whose corners are stored).
+  /// BvhLeaf::twinStart of a polygon's twin (edge lists `a` and `b`): where
+  /// the builders' reversed copy starts (model/twins.h, reversedFrom), for at
+  /// most BvhLeaf::kMaxMadeTwinEdges edges; else kStoredTwin (isTwin also
+  /// pairs the same edges in another order, whose corners are stored).
   static std::uint8_t twinStart(std::span<const std::int32_t> a, std::span<const std::int32_t> b) {
-    const std::size_t n = a.size();
-    if (n == 0 || n != b.size() || n > BvhLeaf::kMaxMadeTwinEdges) return BvhLeaf::kStoredTwin;
     static_assert(BvhLeaf::kMaxMadeTwinEdges < BvhLeaf::kStoredTwin);
-    for (std::size_t s = 0; s < n; ++s) {
-      bool reversed = true;
-      for (std::size_t k = 0; reversed && k < n; ++k) reversed = b[k] == -a[(s + n - k) % n];
-      if (reversed) return std::uint8_t(s);
-    }
-    return BvhLeaf::kStoredTwin;
+    const std::ptrdiff_t s = a.size() <= BvhLeaf::kMaxMadeTwinEdges ? reversedFrom(a, b) : -1;
+    return s < 0 ? BvhLeaf::kStoredTwin : std::uint8_t(s);
   }
 
   /// The leaves' materials, edge counts and edge uses (copied from the

@@ -19,23 +19,28 @@ bool isNegated(Real a, Real b) { return std::bit_cast<RealBits>(b) == std::bit_c
 
 }  // namespace
 
+std::ptrdiff_t reversedFrom(std::span<const std::int32_t> a, std::span<const std::int32_t> b) {
+  const std::size_t n = a.size();
+  if (n == 0 || n != b.size()) return -1;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (a[s] != -b[0]) continue;
+    bool reversed = true;
+    for (std::size_t k = 1; reversed && k < n; ++k) reversed = b[k] == -a[(s + n - k) % n];
+    if (reversed) return std::ptrdiff_t(s);
+  }
+  return -1;
+}
+
 bool isTwin(const ModelArrays& m, const CmPolygon& a, const CmPolygon& b) {
   if (a.numEdges != b.numEdges || a.contents != b.contents || !isNegated(a.plane.dist, b.plane.dist))
     return false;
   for (int k = 0; k < 3; ++k)
     if (!isNegated(a.plane.normal[k], b.plane.normal[k])) return false;
   const std::span<const std::int32_t> ea = m.edgesOf(a), eb = m.edgesOf(b);
-  // What a reversed copy made by the builders has: a's edges negated, in
-  // reverse order from one of them. (Enough: each edge then has its negation
-  // in the other list. Any other order is checked edge by edge below.)
-  const std::size_t n = ea.size();
-  if (n != 0) {
-    std::size_t start = 0;
-    while (start < n && ea[start] != -eb[0]) ++start;
-    bool reversed = start < n;
-    for (std::size_t k = 1; reversed && k < n; ++k) reversed = eb[k] == -ea[(start + n - k) % n];
-    if (reversed) return true;
-  }
+  // What a reversed copy made by the builders has (enough: each edge then
+  // has its negation in the other list). Any other order is checked edge by
+  // edge below.
+  if (reversedFrom(ea, eb) >= 0) return true;
   const auto has = [](std::span<const std::int32_t> edges, std::int32_t e) {
     return std::find(edges.begin(), edges.end(), e) != edges.end();
   };

@@ -5,6 +5,7 @@
 // entry whose two sides are told apart by the sign of one product.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -19,6 +20,11 @@ namespace cmkit::detail {
 /// round (so "inside every edge of b" is "outside every edge of a" for the
 /// same products).
 bool isTwin(const ModelArrays& m, const CmPolygon& a, const CmPolygon& b);
+
+/// Where a builder's reversed copy starts: the s for which edge list `b` is
+/// `a`'s edges negated in reverse order from a[s] (b[k] == -a[(s + n - k)
+/// mod n] for every k, n edges each), or -1 when there is none.
+std::ptrdiff_t reversedFrom(std::span<const std::int32_t> a, std::span<const std::int32_t> b);
 
 /// For each of `polygons` (model polygon numbers), the position in
 /// `polygons` of its reversed twin (isTwin), or -1: neighbours in `polygons`

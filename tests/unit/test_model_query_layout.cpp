@@ -282,6 +282,16 @@ TEST(Twins, AreTheReversedEdgesInAnyOrder) {
   EXPECT_FALSE(quadTwinOf({-4, -3, -5, -1}));
   EXPECT_FALSE(quadTwinOf({-4, -4, -2, -1}));
   EXPECT_FALSE(quadTwinOf({-4, -3, -2}));
+  // Where a builder's reversed copy starts (the hierarchy makes such a
+  // twin's corners from its polygon's): -1 for any other order.
+  const std::vector<std::int32_t> quad{1, 2, 3, 4};
+  const auto from = [&](std::vector<std::int32_t> other) { return detail::reversedFrom(quad, other); };
+  EXPECT_EQ(from({-4, -3, -2, -1}), 3);
+  EXPECT_EQ(from({-2, -1, -4, -3}), 1);
+  EXPECT_EQ(from({-1, -4, -3, -2}), 0);
+  EXPECT_EQ(from({-1, -2, -3, -4}), -1);
+  EXPECT_EQ(from({-4, -3, -2}), -1);
+  EXPECT_EQ(from({}), -1);
 }
 
 TEST(PolygonBvh, SmallModelsHaveNone) {
