@@ -148,16 +148,11 @@ inline ModelPtr twoSidedPrismWorld(int sides, bool robustEdges = false) {
     text += axialBrush({lo, lo + Vec3{32, 32, 32}}, kSheet);
   }
   text += "{\n brushDef3\n {\n";
-  const auto side = [&](double a, double b, double c, double d) {
-    text += "  ( " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
-            std::to_string(d) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + kSheet + "\" 0 0 0\n";
-  };
   for (int k = 0; k < sides; ++k) {  // around (320, 800), radius 100, z 0 .. 64
     const double a = 2 * 3.14159265358979 * k / sides, nx = std::cos(a), ny = std::sin(a);
-    side(nx, ny, 0, -(100 + nx * 320 + ny * 800));
+    text += brushSide(nx, ny, 0, -(100 + nx * 320 + ny * 800), kSheet);
   }
-  side(0, 0, 1, -64);
-  side(0, 0, -1, 0);
+  text += brushSide(0, 0, 1, -64, kSheet) + brushSide(0, 0, -1, 0, kSheet);
   text += " }\n}\n}\n";
   auto map = parseMapText(text);
   EXPECT_TRUE(map.ok()) << (map.ok() ? "" : map.error().toString());

@@ -197,15 +197,19 @@ inline std::uint32_t pointContentsAt(const CollisionModel& m, const Vec3& p,
   return pointContents(m, {p, placement}, work).contents;
 }
 
+/// A brushDef3 side line: the plane a x + b y + c z + d = 0 (normal out of
+/// the brush) with `material`.
+inline std::string brushSide(double a, double b, double c, double d, const char* material) {
+  return "  ( " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
+         std::to_string(d) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
+}
+
 /// One axial brush side per bound, all with `material`.
 inline std::string axialBrush(const Bounds& b, const char* material) {
   std::string s = "{\n brushDef3\n {\n";
   const double planes[6][4] = {{1, 0, 0, -b.max.x}, {-1, 0, 0, b.min.x}, {0, 1, 0, -b.max.y},
                                {0, -1, 0, b.min.y}, {0, 0, 1, -b.max.z}, {0, 0, -1, b.min.z}};
-  for (const auto& p : planes) {
-    s += "  ( " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " " +
-         std::to_string(p[3]) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
-  }
+  for (const auto& p : planes) s += brushSide(p[0], p[1], p[2], p[3], material);
   return s + " }\n}\n";
 }
 
