@@ -59,21 +59,9 @@ std::size_t distinctColors(const std::vector<std::uint8_t>& rgb) {
   return colors.size();
 }
 
-/// A brushDef3 block for an axis-aligned box (planes a b c d with
-/// a*x + b*y + c*z + d = 0, normals out of the brush).
+/// A brushDef3 block for an axis-aligned box (test::axialBrush).
 std::string boxBrush(const Vec3& mn, const Vec3& mx, const char* material) {
-  std::string s = "{\nbrushDef3\n{\n";
-  auto side = [&](int a, int b, int c, Real d) {
-    s += "( " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
-         std::to_string(d) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
-  };
-  side(1, 0, 0, -mx.x);
-  side(-1, 0, 0, mn.x);
-  side(0, 1, 0, -mx.y);
-  side(0, -1, 0, mn.y);
-  side(0, 0, 1, -mx.z);
-  side(0, 0, -1, mn.z);
-  return s + "}\n}\n";
+  return test::axialBrush(Bounds(mn, mx), material);
 }
 
 /// A closed room of six brushes with a water pool and a clip pillar.

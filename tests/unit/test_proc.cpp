@@ -20,15 +20,10 @@ using namespace cmkit;
 
 fs::path procData() { return test::testDataDir() / "proc"; }
 
-/// A box brush from min to max with one material on every side (planes
-/// outward, as brushDef3 writes them: n.p - d = 0 with "( a b c -d )").
+/// A box brush from min to max with one material on every side
+/// (test::axialBrush).
 std::string boxBrush(const Vec3& mn, const Vec3& mx, const char* material = "textures/base/floor") {
-  auto side = [&](float a, float b, float c, float d) {
-    return "( " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
-           std::to_string(-d) + " ) ( ( 0.0078125 0 0 ) ( 0 0.0078125 0 ) ) \"" + material + "\" 0 0 0\n";
-  };
-  return "{\nbrushDef3\n{\n" + side(0, 0, 1, mx.z) + side(0, 0, -1, -mn.z) + side(1, 0, 0, mx.x) +
-         side(-1, 0, 0, -mn.x) + side(0, 1, 0, mx.y) + side(0, -1, 0, -mn.y) + "}\n}\n";
+  return test::axialBrush(Bounds(mn, mx), material);
 }
 
 std::string worldWith(const std::string& brushes) {
